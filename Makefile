@@ -1,0 +1,43 @@
+# phasor — the two commands of the README, plus developer targets.
+#   make demo      install what is missing, build Release, render scenes/demo.wscene
+#   make test      install what is missing, build, run the test suite (ctest)
+JOBS      ?= $(shell nproc)
+BUILD     ?= build
+CMAKE_ARGS ?=
+
+.PHONY: all deps configure build demo test sanitize bench fuzz docs clean
+
+all: build
+
+deps:
+	@scripts/install-deps.sh
+
+configure: deps
+	@cmake -S . -B $(BUILD) -G Ninja -DCMAKE_BUILD_TYPE=Release $(CMAKE_ARGS) > /dev/null
+
+build: configure
+	@cmake --build $(BUILD) -j $(JOBS)
+
+demo: build
+	@mkdir -p out
+	$(BUILD)/bin/phasor render scenes/demo.wscene -o out/demo.exr
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900
+
+# Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (separate build tree).
+sanitize: deps
+	@cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPHASOR_SANITIZE=ON -DPHASOR_BUILD_BENCH=OFF > /dev/null
+	@cmake --build build-asan -j $(JOBS)
+	@cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --output-on-failure -j $(JOBS) -L unit --timeout 1800
+
+bench: build
+	@$(BUILD)/bench/run_benchmarks.sh $(BUILD)
+
+# Regenerates docs/plugins.md from the plug-ins' schemas.
+docs: build
+	@$(BUILD)/bin/phasor describe --markdown > docs/plugins.md
+
+clean:
+	rm -rf $(BUILD) build-asan out

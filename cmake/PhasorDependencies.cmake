@@ -1,0 +1,53 @@
+# SPDX-License-Identifier: Apache-2.0
+# The five libraries of the design card plus TBB, GoogleTest and Google Benchmark, with fixes for
+# Debian 12's broken CMake configs (docs: ../shared/docs/dependencies.md, summarised in
+# docs/building.md).
+
+find_package(TBB REQUIRED COMPONENTS tbb)
+find_package(embree 3.13 REQUIRED)
+
+# OpenImageIO 2.4 (Debian): its exported target lists /usr/include/opencv4, which does not exist
+# unless OpenCV is installed; CMake refuses to generate with a missing include directory. Drop
+# every non-existent directory from the target's include properties.
+find_package(OpenImageIO 2.4 CONFIG REQUIRED)
+foreach(_prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
+  get_target_property(_dirs OpenImageIO::OpenImageIO ${_prop})
+  if(_dirs)
+    set(_kept)
+    foreach(_d IN LISTS _dirs)
+      if(EXISTS "${_d}" OR _d MATCHES "^\\$<")
+        list(APPEND _kept "${_d}")
+      endif()
+    endforeach()
+    set_target_properties(OpenImageIO::OpenImageIO PROPERTIES ${_prop} "${_kept}")
+  endif()
+endforeach()
+if(TARGET OpenImageIO::OpenImageIO_Util)
+  foreach(_prop INTERFACE_INCLUDE_DIRECTORIES INTERFACE_SYSTEM_INCLUDE_DIRECTORIES)
+    get_target_property(_dirs OpenImageIO::OpenImageIO_Util ${_prop})
+    if(_dirs)
+      set(_kept)
+      foreach(_d IN LISTS _dirs)
+        if(EXISTS "${_d}" OR _d MATCHES "^\\$<")
+          list(APPEND _kept "${_d}")
+        endif()
+      endforeach()
+      set_target_properties(OpenImageIO::OpenImageIO_Util PROPERTIES ${_prop} "${_kept}")
+    endif()
+  endforeach()
+endif()
+
+# OpenColorIO and OpenSubdiv: project-owned Find modules (cmake/Find*.cmake), because Debian's
+# configs compute a wrong prefix (OCIO) or reference static libraries that are not shipped (OSD).
+find_package(OpenColorIO 2.1 REQUIRED)
+find_package(OpenSubdiv 3.5 REQUIRED)
+find_package(TinyGLTF 2.7 REQUIRED)
+find_package(Threads REQUIRED)
+
+if(PHASOR_BUILD_TESTS)
+  find_package(GTest REQUIRED)
+  include(GoogleTest)
+endif()
+if(PHASOR_BUILD_BENCH)
+  find_package(benchmark REQUIRED)
+endif()

@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages phasor needs, idempotently: packages already present are not
+# touched and apt is not called at all when nothing is missing. Runs apt as root, or through
+# sudo; says clearly what to do when neither is possible.
+set -euo pipefail
+
+PACKAGES=(
+  cmake ninja-build pkgconf g++ make
+  libembree-dev libtbb-dev libopenimageio-dev libimath-dev libopencolorio-dev libosd-dev
+  libtinygltf-dev nlohmann-json3-dev libstb-dev libcerf-dev
+  libgtest-dev libbenchmark-dev
+)
+# Optional extras for `make fuzz` (clang + libFuzzer runtime).
+if [[ "${PHASOR_WITH_FUZZ:-0}" == 1 ]]; then
+  PACKAGES+=(clang libclang-rt-14-dev)
+fi
+
+missing=()
+for p in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [[ ${#missing[@]} -eq 0 ]]; then
+  exit 0
+fi
+
+echo "phasor: installing missing Debian packages: ${missing[*]}" >&2
+if [[ $(id -u) -eq 0 ]]; then
+  SUDO=()
+elif command -v sudo >/dev/null 2>&1 && sudo -n true 2>/dev/null; then
+  SUDO=(sudo -n)
+else
+  echo "phasor: these packages are missing and I cannot install them (not root, no password-less sudo):" >&2
+  echo "    sudo apt-get install --no-install-recommends ${missing[*]}" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${SUDO[@]}" apt-get update -qq
+"${SUDO[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"

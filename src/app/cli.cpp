@@ -1,0 +1,102 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "app/cli.h"
+
+#include <charconv>
+
+namespace phasor {
+
+namespace {
+template <typename T>
+bool ParseInt(const std::string &s, T &out) {
+    auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
+    return ec == std::errc() && p == s.data() + s.size();
+}
+}  // namespace
+
+bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
+    std::vector<std::string> args(argv + 1, argv + argc);
+    if (args.empty()) {
+        err = "no command given";
+        return false;
+    }
+    std::size_t i = 0;
+    const std::string cmd = args[i++];
+    if (cmd == "--help" || cmd == "-h" || cmd == "help") o.command = Command::Help;
+    else if (cmd == "--version") o.command = Command::Version;
+    else if (cmd == "render") o.command = Command::Render;
+    else if (cmd == "check") o.command = Command::Check;
+    else if (cmd == "format") o.command = Command::Format;
+    else if (cmd == "list") o.command = Command::List;
+    else if (cmd == "describe") o.command = Command::Describe;
+    else {
+        err = "unknown command '" + cmd + "'";
+        return false;
+    }
+    std::vector<std::string> positional;
+    auto value = [&](const std::string &flag, std::string &out) {
+        if (i >= args.size()) {
+            err = "'" + flag + "' needs a value";
+            return false;
+        }
+        out = args[i++];
+        return true;
+    };
+    while (i < args.size()) {
+        std::string a = args[i++], v;
+        if (a == "-o" || a == "--output") { if (!value(a, o.output)) return false; }
+        else if (a == "--integrator") { if (!value(a, o.integrator)) return false; }
+        else if (a == "--sampler") { if (!value(a, o.sampler)) return false; }
+        else if (a == "--spp" || a == "--threads" || a == "--seed") {
+            if (!value(a, v)) return false;
+            bool ok = a == "--spp" ? ParseInt(v, o.spp) && o.spp > 0
+                      : a == "--threads" ? ParseInt(v, o.threads) && o.threads >= 0
+                                         : ParseInt(v, o.seed) && o.seed >= 0;
+            if (!ok) {
+                err = "'" + a + "' expects a non-negative whole number" + std::string(a == "--spp" ? " (≥ 1)" : "") +
+                      "; got '" + v + "'";
+                return false;
+            }
+        } else if (a == "-D" || a.rfind("-D", 0) == 0) {
+            std::string def = a == "-D" ? "" : a.substr(2);
+            if (a == "-D" && !value(a, def)) return false;
+            auto eq = def.find('=');
+            if (eq == std::string::npos || eq == 0) {
+                err = "'-D' expects name=value; got '" + def + "'";
+                return false;
+            }
+            o.defines.emplace_back(def.substr(0, eq), def.substr(eq + 1));
+        } else if (a == "--quiet" || a == "-q") o.quiet = true;
+        else if (a == "--strict") o.strict = true;
+        else if (a == "--markdown") o.markdown = true;
+        else if (a == "--help" || a == "-h") { o.command = Command::Help; return true; }
+        else if (!a.empty() && a[0] == '-') {
+            err = "unknown option '" + a + "'";
+            return false;
+        } else positional.push_back(a);
+    }
+    switch (o.command) {
+        case Command::Render:
+        case Command::Check:
+        case Command::Format:
+            if (positional.size() != 1) {
+                err = "'" + cmd + "' expects exactly one scene file";
+                return false;
+            }
+            o.scene = positional[0];
+            break;
+        case Command::List:
+            if (positional.size() > 1) { err = "'list' takes at most one family"; return false; }
+            if (!positional.empty()) o.family = positional[0];
+            break;
+        case Command::Describe:
+            if (o.markdown) break;
+            if (positional.size() != 2) { err = "'describe' expects FAMILY NAME"; return false; }
+            o.family = positional[0];
+            o.name = positional[1];
+            break;
+        default: break;
+    }
+    return true;
+}
+
+}  // namespace phasor

@@ -1,0 +1,260 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the command-line program: render, check, format, list, describe.
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <sstream>
+
+#include "app/cli.h"
+#include "core/image_io.h"
+#include "core/registry.h"
+#include "core/scene.h"
+#include "parser/parser.h"
+
+using namespace phasor;
+
+namespace {
+
+std::atomic<bool> gCancel{false};
+
+extern "C" void OnSigint(int) {
+    gCancel.store(true);
+    std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the program at once
+}
+
+const char *kUsage =
+    "usage: phasor <command> [options]\n"
+    "\n"
+    "commands:\n"
+    "  render SCENE [-o FILE] [--spp N] [--threads N] [--seed S] [--integrator NAME]\n"
+    "               [--sampler sobol|independent] [-D name=value ...] [--strict] [--quiet]\n"
+    "                      render SCENE to FILE (.exr; a .png is written beside it)\n"
+    "  check SCENE [-D name=value ...] [--strict]\n"
+    "                      load and validate only; exit status 0 if the scene is valid\n"
+    "  format SCENE        print SCENE in canonical form\n"
+    "  list [FAMILY]       list plug-ins (families: spectrum texture material shape light\n"
+    "                      detector integrator)\n"
+    "  describe FAMILY NAME   print a plug-in's parameters\n"
+    "  describe --markdown    print every plug-in's parameters as Markdown (docs/plugins.md)\n"
+    "  --version, --help\n";
+
+bool Colour() { return isatty(2) && !std::getenv("NO_COLOR"); }
+
+// Parses and builds; prints diagnostics. Returns nullptr on error.
+std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
+    auto desc = ParseSceneFile(o.scene, o.defines, diag);
+    std::unique_ptr<Scene> scene;
+    if (desc && !diag.HasErrors()) scene = Scene::Build(*desc, diag, o.integrator);
+    diag.Print(std::cerr, Colour());
+    if (diag.HasErrors()) {
+        std::cerr << diag.ErrorCount() << " error" << (diag.ErrorCount() == 1 ? "" : "s") << " in '" << o.scene
+                  << "'\n";
+        return nullptr;
+    }
+    return scene;
+}
+
+std::string FormatDuration(double s) {
+    char buf[32];
+    if (s < 60) std::snprintf(buf, sizeof buf, "%.1fs", s);
+    else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
+    else std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, (int(s) / 60) % 60);
+    return buf;
+}
+
+// Verifies before rendering that `path` can be created (so a long render never ends in an
+// unwritable path), creating missing parent directories.
+void CheckWritable(const std::string &path) {
+    namespace fs = std::filesystem;
+    fs::path p(path);
+    std::error_code ec;
+    if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
+    if (ec) throw Error("cannot write '" + path + "': cannot create directory '" + p.parent_path().string() +
+                        "': " + ec.message());
+    if (fs::is_directory(p, ec)) throw Error("cannot write '" + path + "': it is a directory");
+    fs::path probe = p;
+    probe += ".phasor-probe";
+    FILE *f = std::fopen(probe.c_str(), "wb");
+    if (!f) throw Error("cannot write '" + path + "': " + std::strerror(errno));
+    std::fclose(f);
+    fs::remove(probe, ec);
+}
+
+int Render(const CliOptions &o) {
+    Diagnostics diag(o.strict);
+    auto scene = Load(o, diag);
+    if (!scene) return 1;
+    RenderSettings &rs = scene->Settings();
+    RenderOptions opt;
+    opt.spp = o.spp > 0 ? o.spp : rs.spp;
+    opt.seed = o.seed >= 0 ? uint64_t(o.seed) : rs.seed;
+    opt.threads = o.threads;
+    opt.sampler = o.sampler.empty() ? rs.sampler : o.sampler;
+    opt.cancel = &gCancel;
+    std::string out = !o.output.empty() ? o.output
+                      : !rs.output.empty() ? rs.output
+                                           : "out/" + std::filesystem::path(o.scene).stem().string() + ".exr";
+    std::filesystem::path exr(out), png(out);
+    if (exr.extension() == ".png") exr.replace_extension(".exr");
+    else png.replace_extension(".png");
+    if (exr.extension() != ".exr") {
+        std::cerr << "error: output '" << out << "' must end in .exr or .png\n";
+        return 1;
+    }
+    try {
+        CheckWritable(exr.string());
+        CheckWritable(png.string());
+    } catch (const Error &e) {
+        std::cerr << "error: " << e.Message() << "\n";
+        return 1;
+    }
+
+    const Detector &det = scene->GetDetector();
+    Film film(det.Width(), det.Height(), det.Response());
+    bool bar = !o.quiet && isatty(2);
+    auto start = std::chrono::steady_clock::now();
+    if (bar)
+        opt.progress = [&](int done, int total) {
+            double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            double frac = double(done) / total;
+            int width = 30, filled = int(frac * width);
+            double rate = double(done) * det.Width() * det.Height() / std::max(t, 1e-9);
+            std::fprintf(stderr, "\r[%s%s] %3d%% %d/%d spp  %s elapsed  ETA %s  %.2f Msamples/s   ",
+                         std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(),
+                         int(frac * 100), done, total, FormatDuration(t).c_str(),
+                         FormatDuration(frac > 0 ? t / frac - t : 0).c_str(), rate * 1e-6);
+            std::fflush(stderr);
+        };
+    std::signal(SIGINT, OnSigint);
+    RenderStats st;
+    try {
+        st = scene->GetIntegrator().Render(*scene, film, opt);
+    } catch (const Error &e) {
+        std::cerr << (bar ? "\n" : "") << "error: " << e.Message() << "\n";
+        return 1;
+    }
+    std::signal(SIGINT, SIG_DFL);
+    if (bar) std::fprintf(stderr, "\n");
+
+    Image img = film.Resolve();
+    img.metadata["phasor:scene"] = o.scene;
+    img.metadata["phasor:integrator"] = scene->GetIntegrator().ToString();
+    img.metadata["phasor:spp_requested"] = std::to_string(opt.spp);
+    img.metadata["phasor:spp_reached"] = std::to_string(st.sppReached);
+    img.metadata["phasor:seed"] = std::to_string(opt.seed);
+    img.metadata["phasor:sampler"] = opt.sampler;
+    img.metadata["phasor:render_seconds"] = std::to_string(st.seconds);
+    img.metadata["phasor:cancelled"] = st.cancelled ? "true" : "false";
+    try {
+        WriteExr(exr.string(), img);
+        if (det.Response().GetKind() == SensorResponse::Kind::Radiometric)
+            WriteFalseColorPng(png.string(), img, "intensity");
+        else
+            WritePng(png.string(), img);
+    } catch (const Error &e) {
+        std::cerr << "error: " << e.Message() << "\n";
+        return 1;
+    }
+    if (!o.quiet) {
+        std::cerr << (st.cancelled ? "interrupted: " : "") << "rendered " << st.sppReached << " spp in "
+                  << FormatDuration(st.seconds) << " with " << scene->GetIntegrator().name << "\n";
+        if (st.invalidSamples > 0)
+            std::cerr << "warning: " << st.invalidSamples << " samples were NaN/Inf/negative and were discarded\n";
+        std::cerr << "wrote " << exr.string() << " and " << png.string() << "\n";
+    }
+    return st.cancelled ? 130 : 0;
+}
+
+int Check(const CliOptions &o) {
+    Diagnostics diag(o.strict);
+    auto scene = Load(o, diag);
+    if (!scene) return 1;
+    if (!o.quiet) std::cerr << o.scene << ": ok\n";
+    return 0;
+}
+
+int Format(const CliOptions &o) {
+    Diagnostics diag;
+    std::string text;
+    bool ok = FormatSceneFile(o.scene, diag, text);
+    diag.Print(std::cerr, Colour());
+    if (!ok || diag.HasErrors()) return 1;
+    std::cout << text;
+    return 0;
+}
+
+int List(const CliOptions &o) {
+    bool any = false;
+    for (const FamilyInfo &f : AllFamilies()) {
+        if (!o.family.empty() && o.family != f.family && o.family != f.keyword &&
+            !(o.family == "kernel" && f.family == "material"))
+            continue;
+        any = true;
+        std::cout << f.family << " (" << f.keyword << "):\n";
+        for (const Schema *s : f.schemas) std::cout << "  " << s->name << " — " << s->doc << "\n";
+    }
+    if (!any) {
+        std::cerr << "error: unknown family '" << o.family << "'\n";
+        return 1;
+    }
+    return 0;
+}
+
+int Describe(const CliOptions &o) {
+    if (o.markdown) {
+        std::cout << "# phasor plug-in reference\n\nGenerated by `phasor describe --markdown` from the plug-ins' "
+                     "schemas; do not edit by hand.\n\n";
+        for (const FamilyInfo &f : AllFamilies()) {
+            std::cout << "## " << f.keyword << "\n\n";
+            for (const Schema *s : f.schemas) std::cout << s->Markdown();
+        }
+        return 0;
+    }
+    const Schema *s = FindSchema(o.family, o.name);
+    if (!s) {
+        std::vector<std::string> names;
+        for (const FamilyInfo &f : AllFamilies())
+            if (f.family == o.family || f.keyword == o.family)
+                for (const Schema *x : f.schemas) names.push_back(x->name);
+        std::string sug = Suggest(o.name, names);
+        std::cerr << "error: no " << o.family << " named '" << o.name << "'"
+                  << (sug.empty() ? "" : "; did you mean '" + sug + "'?") << "\n";
+        return 1;
+    }
+    std::cout << s->Describe();
+    return 0;
+}
+
+}  // namespace
+
+int main(int argc, char **argv) {
+    CliOptions o;
+    std::string err;
+    if (!ParseCommandLine(argc, argv, o, err)) {
+        std::cerr << "error: " << err << "\n" << kUsage;
+        return 1;
+    }
+    try {
+        switch (o.command) {
+            case Command::Help: std::cout << kUsage; return 0;
+            case Command::Version: std::cout << "phasor " << PHASOR_VERSION << "\n"; return 0;
+            case Command::Render: return Render(o);
+            case Command::Check: return Check(o);
+            case Command::Format: return Format(o);
+            case Command::List: return List(o);
+            case Command::Describe: return Describe(o);
+        }
+    } catch (const Error &e) {
+        std::cerr << (e.Loc().Known() ? e.Loc().ToString() + ": " : "") << "error: " << e.Message() << "\n";
+        return 1;
+    } catch (const std::exception &e) {
+        std::cerr << "internal error: " << e.what() << "\n";
+        return 2;
+    }
+    return 1;
+}

@@ -1,0 +1,119 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/diagnostics.h"
+
+#include <algorithm>
+#include <sstream>
+
+namespace phasor {
+
+std::string FileLoc::ToString() const {
+    if (file.empty()) return "<built-in>";
+    std::string s = file;
+    if (line > 0) {
+        s += ":" + std::to_string(line);
+        if (col > 0) s += ":" + std::to_string(col);
+    }
+    return s;
+}
+
+void Diagnostics::Report(Diagnostic d) {
+    if (d.severity == Severity::Warning && strict_) d.severity = Severity::Error;
+    for (const Diagnostic &o : all_)
+        if (o.severity == d.severity && o.loc == d.loc && o.message == d.message) return;
+    if (d.severity == Severity::Error) {
+        ++errorCount_;
+        if (errorCount_ > maxErrors_) return;
+    } else if (d.severity == Severity::Warning) {
+        ++warningCount_;
+    }
+    all_.push_back(std::move(d));
+}
+
+void Diagnostics::Error(const FileLoc &loc, std::string msg, std::vector<Diagnostic> notes) {
+    Report(Diagnostic{Severity::Error, loc, std::move(msg), std::move(notes)});
+}
+
+void Diagnostics::Warning(const FileLoc &loc, std::string msg, std::vector<Diagnostic> notes) {
+    Report(Diagnostic{Severity::Warning, loc, std::move(msg), std::move(notes)});
+}
+
+void Diagnostics::AddSource(const std::string &file, std::string text) {
+    for (auto &s : sources_)
+        if (s.first == file) return;
+    sources_.emplace_back(file, std::make_shared<const std::string>(std::move(text)));
+}
+
+std::string Diagnostics::Format(const Diagnostic &d, bool color) const {
+    const char *sev = d.severity == Severity::Error     ? "error"
+                      : d.severity == Severity::Warning ? "warning"
+                                                        : "note";
+    const char *sevColor = d.severity == Severity::Error     ? "\033[1;31m"
+                           : d.severity == Severity::Warning ? "\033[1;35m"
+                                                             : "\033[1;36m";
+    std::ostringstream os;
+    if (color) os << "\033[1m";
+    os << d.loc.ToString() << ": ";
+    if (color) os << sevColor;
+    os << sev << ": ";
+    if (color) os << "\033[0m";
+    os << d.message << "\n";
+    // Quote the source line with a caret under the offending text.
+    if (d.loc.line > 0) {
+        for (const auto &[name, text] : sources_) {
+            if (name != d.loc.file) continue;
+            std::size_t pos = 0;
+            for (int l = 1; l < d.loc.line && pos != std::string::npos; ++l) {
+                pos = text->find('\n', pos);
+                if (pos != std::string::npos) ++pos;
+            }
+            if (pos == std::string::npos || pos > text->size()) break;
+            std::size_t end = text->find('\n', pos);
+            std::string line = text->substr(pos, end == std::string::npos ? std::string::npos : end - pos);
+            if (!line.empty() && line.back() == '\r') line.pop_back();
+            os << "    " << line << "\n    ";
+            // Columns count bytes; keep tabs so the caret lines up.
+            int col = std::max(1, d.loc.col);
+            for (int i = 1; i < col && i - 1 < (int)line.size(); ++i) os << (line[i - 1] == '\t' ? '\t' : ' ');
+            if (color) os << "\033[1;32m";
+            os << '^';
+            for (int i = 1; i < d.loc.length; ++i) os << '~';
+            if (color) os << "\033[0m";
+            os << "\n";
+            break;
+        }
+    }
+    for (const Diagnostic &n : d.notes) os << Format(n, color);
+    return os.str();
+}
+
+void Diagnostics::Print(std::ostream &os, bool color) const {
+    for (const Diagnostic &d : all_) os << Format(d, color);
+    if (errorCount_ > maxErrors_)
+        os << "too many errors (" << errorCount_ << "); only the first " << maxErrors_ << " are shown\n";
+}
+
+std::size_t EditDistance(const std::string &a, const std::string &b) {
+    std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        cur[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j)
+            cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+        std::swap(prev, cur);
+    }
+    return prev[b.size()];
+}
+
+std::string Suggest(const std::string &name, const std::vector<std::string> &candidates) {
+    std::string best;
+    std::size_t bestD = std::string::npos;
+    for (const std::string &c : candidates) {
+        std::size_t d = EditDistance(name, c);
+        if (d < bestD) { bestD = d; best = c; }
+    }
+    // Accept up to a third of the name's length (at least 1, at most 3 edits).
+    std::size_t limit = std::clamp<std::size_t>(name.size() / 3, 1, 3);
+    return bestD <= limit ? best : std::string();
+}
+
+}  // namespace phasor

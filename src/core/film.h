@@ -1,0 +1,65 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the film: per-pixel spectral accumulation → RGB + monochrome intensity + variance of
+// the pixel mean; written as EXR through OpenImageIO and PNG through an OpenColorIO display
+// transform (image_io.h). Thread-safe for distinct pixels (tiles never share pixels).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "core/spectrum.h"
+
+namespace phasor {
+
+/// One finished image with named float channels, row-major, top row first.
+struct Image {
+    int width = 0, height = 0;
+    std::vector<std::string> channels;  // e.g. R G B intensity variance
+    std::vector<float> data;            // width*height*channels.size(), interleaved
+    std::map<std::string, std::string> metadata;  // written as EXR string attributes
+    int ChannelIndex(const std::string &name) const;  // -1 if absent
+    float At(int x, int y, int c) const { return data[(std::size_t(y) * width + x) * channels.size() + c]; }
+    float &At(int x, int y, int c) { return data[(std::size_t(y) * width + x) * channels.size() + c]; }
+};
+
+class Film {
+  public:
+    Film(int width, int height, SensorResponse response);
+
+    int Width() const { return width_; }
+    int Height() const { return height_; }
+    const SensorResponse &Response() const { return response_; }
+
+    /// Adds one sample's estimate for pixel (x, y): `L` holds the per-wavelength values
+    /// (radiance, or irradiance for sensor planes), already divided by nothing; the film divides
+    /// by the wavelength pdfs and averages over the carried wavelengths.
+    void AddSample(int x, int y, const SampledSpectrum &L, const SampledWavelengths &wl);
+    /// Adds a sample already reduced to (channels, intensity), e.g. from an integrator that
+    /// computes its own spectral integral.
+    void AddReduced(int x, int y, const Vec3 &channels, double intensity);
+    /// Records a sample that was discarded because of numerical trouble (NaN/Inf/negative).
+    void AddInvalidSample(int x, int y);
+
+    /// Number of samples added to a pixel (including invalid ones, which count as zero).
+    long long SampleCount(int x, int y) const;
+    long long InvalidSampleCount() const;
+
+    /// Final image: R, G, B (linear Rec.709 for CIE sensors; equal to intensity for radiometric
+    /// ones), intensity, variance (the sample variance of the *mean* of `intensity`: s²/n).
+    Image Resolve() const;
+
+  private:
+    struct Pixel {
+        // Running means and sum of squared deviations (Welford), robust against cancellation.
+        Vec3 mean;          // channel means
+        double meanI = 0, m2I = 0;
+        long long n = 0;
+        long long invalid = 0;
+    };
+    int width_, height_;
+    SensorResponse response_;
+    std::vector<Pixel> pixels_;
+};
+
+}  // namespace phasor

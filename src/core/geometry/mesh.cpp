@@ -1,0 +1,223 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — triangle meshes, the shared mesh shape, ray-origin offsetting and the default
+// (brute-force) Shape::Intersect.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "core/diagnostics.h"
+#include "core/geometry/intersect.h"
+#include "core/shape.h"
+
+namespace phasor {
+
+namespace {
+
+double MaxAbs(const Vec3 &v) { return std::max({std::abs(v.x), std::abs(v.y), std::abs(v.z)}); }
+
+/// Determinant of the linear (upper-left 3×3) part of an affine transform.
+double LinearDeterminant(const Transform &t) {
+    const auto &m = t.Matrix();
+    return m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+           m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+           m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+}
+
+}  // namespace
+
+// ---- TriangleMesh ---------------------------------------------------------------------------
+
+Bounds3 TriangleMesh::Bounds() const {
+    Bounds3 b;
+    for (const Vec3 &p : positions) b.Extend(p);
+    return b;
+}
+
+double TriangleMesh::Area() const {
+    double a = 0;
+    for (std::size_t i = 0; i + 2 < indices.size(); i += 3) {
+        const Vec3 &p0 = positions[indices[i]], &p1 = positions[indices[i + 1]],
+                   &p2 = positions[indices[i + 2]];
+        a += 0.5 * Length(Cross(p1 - p0, p2 - p0));
+    }
+    return a;
+}
+
+void TriangleMesh::Validate(const std::string &what) const {
+    if (indices.size() % 3 != 0)
+        throw Error(what + ": the index count (" + std::to_string(indices.size()) +
+                    ") is not a multiple of 3");
+    if (!normals.empty() && normals.size() != positions.size())
+        throw Error(what + ": " + std::to_string(normals.size()) + " normals for " +
+                    std::to_string(positions.size()) + " positions");
+    if (!uvs.empty() && uvs.size() != positions.size())
+        throw Error(what + ": " + std::to_string(uvs.size()) + " uvs for " +
+                    std::to_string(positions.size()) + " positions");
+    for (std::size_t i = 0; i < positions.size(); ++i)
+        if (!IsFinite(positions[i]))
+            throw Error(what + ": position " + std::to_string(i) + " is not finite");
+    for (std::size_t i = 0; i < normals.size(); ++i)
+        if (!IsFinite(normals[i]))
+            throw Error(what + ": normal " + std::to_string(i) + " is not finite");
+    for (std::size_t i = 0; i < indices.size(); ++i)
+        if (indices[i] >= positions.size())
+            throw Error(what + ": index " + std::to_string(indices[i]) + " (triangle " +
+                        std::to_string(i / 3) + ") is out of range; there are " +
+                        std::to_string(positions.size()) + " vertices");
+}
+
+void TriangleMesh::Transform(const phasor::Transform &t) {
+    for (Vec3 &p : positions) p = t.Point(p);
+    for (Vec3 &n : normals) {
+        // Normals transform with the inverse transpose; renormalise afterwards.
+        Vec3 m = t.Normal(n);
+        double len = Length(m);
+        n = len > 0 ? m / len : m;
+    }
+    // A mirroring transform flips the orientation of every triangle; swap two vertices so that
+    // the winding (counter-clockwise seen from outside) stays consistent with the normals.
+    if (LinearDeterminant(t) < 0)
+        for (std::size_t i = 0; i + 2 < indices.size(); i += 3) std::swap(indices[i + 1], indices[i + 2]);
+}
+
+// ---- SurfaceInteraction ---------------------------------------------------------------------
+
+Vec3 SurfaceInteraction::SpawnOrigin(const Vec3 &w) const {
+    // Offset along the geometric normal to the side of w. The offset scales with the magnitude
+    // of the coordinates: 1e-9 relative covers double-precision analytic intersections; mesh
+    // shapes are intersected by Embree in float, whose rounding of vertices and ray origins is
+    // ≤ 1 ulp ≤ 2^-23·|x| per coordinate, so we add 8·2^-24 (4–8 ulp) of the largest
+    // coordinate of the point or of the shape's bounds (vertices may be larger than p).
+    double mag = MaxAbs(p);
+    double offset = 1e-9 * (1 + mag);
+    if (!shape || shape->Mesh()) {
+        double scale = mag;
+        if (shape) {
+            Bounds3 b = shape->Bounds();
+            if (!b.Empty()) scale = std::max({scale, MaxAbs(b.lo), MaxAbs(b.hi)});
+        }
+        offset += 8 * std::ldexp(1.0, -24) * scale;
+    }
+    return Dot(w, n) >= 0 ? p + offset * n : p - offset * n;
+}
+
+// ---- Shape ----------------------------------------------------------------------------------
+
+std::optional<double> Shape::Intersect(const Ray &ray, double tMin, double tMax) const {
+    // Reference implementation for meshes: brute force over every triangle in double precision
+    // (Embree is used for real queries; this serves tests and tiny meshes).
+    const TriangleMesh *mesh = Mesh();
+    if (!mesh) return std::nullopt;
+    std::optional<double> best;
+    for (std::size_t i = 0; i + 2 < mesh->indices.size(); i += 3) {
+        auto h = RayTriangle(ray, mesh->positions[mesh->indices[i]], mesh->positions[mesh->indices[i + 1]],
+                             mesh->positions[mesh->indices[i + 2]], tMin, tMax);
+        if (h) {
+            best = h->t;
+            tMax = h->t;
+        }
+    }
+    return best;
+}
+
+// ---- MeshShape ------------------------------------------------------------------------------
+
+MeshShape::MeshShape(TriangleMesh mesh) : mesh_(std::move(mesh)) {
+    mesh_.Validate("triangle mesh");
+    bounds_ = mesh_.Bounds();
+    // CDF over triangles by area for area-uniform sampling.
+    std::size_t n = mesh_.TriangleCount();
+    areaCdf_.resize(n);
+    double sum = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const Vec3 &p0 = mesh_.positions[mesh_.indices[3 * i]];
+        const Vec3 &p1 = mesh_.positions[mesh_.indices[3 * i + 1]];
+        const Vec3 &p2 = mesh_.positions[mesh_.indices[3 * i + 2]];
+        sum += 0.5 * Length(Cross(p1 - p0, p2 - p0));
+        areaCdf_[i] = sum;
+    }
+    area_ = sum;
+}
+
+SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, double b1,
+                                          double b2) const {
+    const uint32_t *idx = &mesh_.indices[3 * std::size_t(prim)];
+    const Vec3 &p0 = mesh_.positions[idx[0]], &p1 = mesh_.positions[idx[1]], &p2 = mesh_.positions[idx[2]];
+    double b0 = 1 - b1 - b2;
+
+    SurfaceInteraction si;
+    si.t = t;
+    si.shape = this;
+    si.material = material;
+    si.areaLight = areaLight;
+    si.p = b0 * p0 + b1 * p1 + b2 * p2;
+
+    // Geometric normal from the winding (counter-clockwise seen from outside).
+    Vec3 ng = Cross(p1 - p0, p2 - p0);
+    double len = Length(ng);
+    ng = len > 0 ? ng / len : Vec3(0, 0, 1);
+
+    // Shading normal: interpolated vertex normals; the geometric normal is flipped to its side
+    // so that both describe the same "outside" even when the winding disagrees with the normals.
+    Vec3 ns = ng;
+    if (!mesh_.normals.empty()) {
+        Vec3 m = b0 * mesh_.normals[idx[0]] + b1 * mesh_.normals[idx[1]] + b2 * mesh_.normals[idx[2]];
+        double ml = Length(m);
+        if (ml > 0) {
+            ns = m / ml;
+            if (Dot(ng, ns) < 0) ng = -ng;
+        }
+    }
+    si.n = ng;
+
+    // Texture coordinates (default parameterisation (0,0), (1,0), (1,1) as in pbrt) and dp/du
+    // from the 2×2 system dp02 = duv02.u·dpdu + duv02.v·dpdv, dp12 = duv12.u·dpdu + duv12.v·dpdv.
+    Vec2 uv0(0, 0), uv1(1, 0), uv2(1, 1);
+    if (!mesh_.uvs.empty()) {
+        uv0 = mesh_.uvs[idx[0]];
+        uv1 = mesh_.uvs[idx[1]];
+        uv2 = mesh_.uvs[idx[2]];
+    }
+    si.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
+    Vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
+    Vec3 dp02 = p0 - p2, dp12 = p1 - p2;
+    double det = duv02.x * duv12.y - duv02.y * duv12.x;
+    Vec3 dpdu;
+    if (std::abs(det) > 1e-14 * (LengthSquared(duv02) + LengthSquared(duv12)))
+        dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
+    else
+        dpdu = p1 - p0;
+    si.shading = Frame::FromNormalTangent(ns, dpdu);
+    return si;
+}
+
+ShapeSample MeshShape::Sample(const Vec2 &u) const {
+    ShapeSample ss;
+    if (!(area_ > 0)) return ss;
+    // Choose a triangle with probability proportional to its area, then reuse u.x.
+    double target = u.x * area_;
+    auto it = std::upper_bound(areaCdf_.begin(), areaCdf_.end(), target);
+    std::size_t i = std::min<std::size_t>(it - areaCdf_.begin(), areaCdf_.size() - 1);
+    while (i > 0 && areaCdf_[i] == areaCdf_[i - 1]) --i;  // never a zero-area triangle
+    double lo = i > 0 ? areaCdf_[i - 1] : 0, hi = areaCdf_[i];
+    double ux = hi > lo ? Clamp((target - lo) / (hi - lo), 0, 1) : 0.5;
+
+    // Uniform point on the triangle (square-root parameterisation, Osada et al. 2002).
+    double su = std::sqrt(ux);
+    double b1 = (1 - u.y) * su, b2 = u.y * su;
+    SurfaceInteraction si = Interaction(Ray{}, 0, unsigned(i), b1, b2);
+    ss.p = si.p;
+    ss.n = si.n;
+    ss.pdfArea = 1 / area_;
+    return ss;
+}
+
+std::string MeshShape::ToString() const {
+    std::ostringstream os;
+    os << "MeshShape[triangles=" << mesh_.TriangleCount() << ", vertices=" << mesh_.positions.size()
+       << ", normals=" << (mesh_.normals.empty() ? "no" : "yes")
+       << ", uvs=" << (mesh_.uvs.empty() ? "no" : "yes") << ", area=" << area_ << " m^2]";
+    return os.str();
+}
+
+}  // namespace phasor

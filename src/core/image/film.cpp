@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the film (film.h): per-pixel running means of the sensor channels and of the
+// monochrome intensity, and the variance of the intensity mean.
+
+#include "core/film.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include "core/diagnostics.h"
+
+namespace phasor {
+
+int Image::ChannelIndex(const std::string &name) const {
+    for (std::size_t i = 0; i < channels.size(); ++i)
+        if (channels[i] == name) return int(i);
+    return -1;
+}
+
+Film::Film(int width, int height, SensorResponse response)
+    : width_(width), height_(height), response_(response) {
+    if (width <= 0 || height <= 0)
+        throw Error("film resolution must be positive, got " + std::to_string(width) + "x" +
+                    std::to_string(height));
+    pixels_.resize(std::size_t(width) * std::size_t(height));
+}
+
+void Film::AddSample(int x, int y, const SampledSpectrum &L, const SampledWavelengths &wl) {
+    // Monte Carlo estimate of ∫ L(λ) w(λ) dλ from the carried wavelengths: the average over the
+    // Count() entries of L·w/pdf (hero wavelength sampling, theory §0 D10). An entry with pdf 0
+    // (a terminated companion) contributes nothing; a delta sample uses only entry 0, whose pdf
+    // is the probability of having picked that line.
+    const int count = wl.Count();
+    Vec3 channels;
+    double intensity = 0;
+    for (int i = 0; i < count; ++i) {
+        if (wl.pdf[i] == 0) continue;
+        double f = L[i] / wl.pdf[i];
+        channels += response_.Channels(wl.lambda[i]) * f;
+        intensity += response_.Intensity(wl.lambda[i]) * f;
+    }
+    AddReduced(x, y, channels / count, intensity / count);
+}
+
+void Film::AddReduced(int x, int y, const Vec3 &channels, double intensity) {
+    auto bad = [](double v) { return !std::isfinite(v) || v < 0; };
+    if (bad(channels.x) || bad(channels.y) || bad(channels.z) || bad(intensity)) {
+        AddInvalidSample(x, y);
+        return;
+    }
+    assert(x >= 0 && x < width_ && y >= 0 && y < height_);
+    Pixel &p = pixels_[std::size_t(y) * width_ + x];
+    // Welford's online update of mean and M2 = Σ(x − mean)² (Welford 1962).
+    ++p.n;
+    double invN = 1.0 / double(p.n);
+    p.mean += (channels - p.mean) * invN;
+    double delta = intensity - p.meanI;
+    p.meanI += delta * invN;
+    p.m2I += delta * (intensity - p.meanI);
+}
+
+void Film::AddInvalidSample(int x, int y) {
+    assert(x >= 0 && x < width_ && y >= 0 && y < height_);
+    Pixel &p = pixels_[std::size_t(y) * width_ + x];
+    ++p.invalid;
+    // An invalid sample counts as a zero-valued sample (keeps the estimator's normalisation).
+    ++p.n;
+    double invN = 1.0 / double(p.n);
+    p.mean -= p.mean * invN;
+    double delta = -p.meanI;
+    p.meanI += delta * invN;
+    p.m2I += delta * (0 - p.meanI);
+}
+
+long long Film::SampleCount(int x, int y) const {
+    return pixels_[std::size_t(y) * width_ + x].n;
+}
+
+long long Film::InvalidSampleCount() const {
+    long long total = 0;
+    for (const Pixel &p : pixels_) total += p.invalid;
+    return total;
+}
+
+Image Film::Resolve() const {
+    Image img;
+    img.width = width_;
+    img.height = height_;
+    img.channels = {"R", "G", "B", "intensity", "variance"};
+    img.data.assign(std::size_t(width_) * height_ * img.channels.size(), 0.0f);
+    const bool cie = response_.GetKind() == SensorResponse::Kind::CieXyz;
+    long long minSamples = std::numeric_limits<long long>::max();
+    for (int y = 0; y < height_; ++y) {
+        for (int x = 0; x < width_; ++x) {
+            const Pixel &p = pixels_[std::size_t(y) * width_ + x];
+            minSamples = std::min(minSamples, p.n);
+            Vec3 rgb = cie ? XyzToLinearSrgb(p.mean) : Vec3(p.meanI, p.meanI, p.meanI);
+            // Variance of the mean: unbiased sample variance s² = M2/(n−1), divided by n.
+            double varMean = p.n >= 2 ? p.m2I / double(p.n - 1) / double(p.n) : 0.0;
+            img.At(x, y, 0) = float(rgb.x);
+            img.At(x, y, 1) = float(rgb.y);
+            img.At(x, y, 2) = float(rgb.z);
+            img.At(x, y, 3) = float(p.meanI);
+            img.At(x, y, 4) = float(std::max(varMean, 0.0));
+        }
+    }
+    img.metadata["phasor:samples_per_pixel"] = std::to_string(minSamples);
+    img.metadata["phasor:invalid_samples"] = std::to_string(InvalidSampleCount());
+    img.metadata["phasor:sensor"] = response_.Name();
+    return img;
+}
+
+}  // namespace phasor

@@ -1,0 +1,39 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — image I/O (OpenImageIO for every read/write) and display transforms (OpenColorIO).
+// OIIO and OCIO headers stay inside image_io.cpp / color.cpp.
+#pragma once
+
+#include <string>
+
+#include "core/film.h"
+
+namespace phasor {
+
+/// Writes all channels of `img` (float) and its metadata to an EXR file. Writes to a temporary
+/// name in the same directory and renames, so a failed write leaves nothing behind.
+/// Throws phasor::Error naming the file and the reason.
+void WriteExr(const std::string &path, const Image &img);
+/// Reads any image OIIO can read into float channels (EXR channel names kept; others R,G,B,A).
+Image ReadImage(const std::string &path);
+
+/// Display-referred 8-bit RGB through an OpenColorIO display/view transform.
+struct DisplayOptions {
+    std::string display = "sRGB";
+    std::string view = "Standard";
+    double exposure = 0;  // stops, applied in scene-linear before the transform
+};
+/// Applies the display transform to the R,G,B channels of `img` (scene-linear Rec.709) and writes
+/// an 8-bit PNG through OIIO (atomic, as WriteExr). Uses $OCIO if set, else the config shipped
+/// with phasor. Throws phasor::Error.
+void WritePng(const std::string &path, const Image &img, const DisplayOptions &opt = {});
+/// The display transform on one linear RGB triple (for tests): returns display-referred values.
+Vec3 ApplyDisplayTransform(const Vec3 &linearRgb, const DisplayOptions &opt = {});
+/// Name of the OCIO config in use ("$OCIO: <path>" or "built-in").
+std::string ColorConfigDescription();
+
+/// Writes a one-channel false-colour PNG (dB scale over `rangeDb` below the max, viridis-like
+/// colour map) — for sensor-plane images. Throws phasor::Error.
+void WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
+                        double rangeDb = 40);
+
+}  // namespace phasor

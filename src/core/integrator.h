@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — integrators (design.md §4.3). All render into the same Film from the same Scene.
+#pragma once
+
+#include <atomic>
+#include <cstdint>
+#include <functional>
+#include <string>
+
+#include "core/film.h"
+#include "core/sampler.h"
+
+namespace phasor {
+
+class Scene;
+
+struct RenderOptions {
+    int spp = 16;
+    uint64_t seed = 0;
+    int threads = 0;  // 0 = all cores
+    std::string sampler = "sobol";
+    /// Set to true (e.g. from a SIGINT handler) to stop after the current sample pass.
+    const std::atomic<bool> *cancel = nullptr;
+    /// Called after each completed pass with (passes done, total passes); may be empty.
+    std::function<void(int, int)> progress;
+};
+
+struct RenderStats {
+    int sppReached = 0;  // samples per pixel completed in every pixel
+    bool cancelled = false;
+    double seconds = 0;
+    long long invalidSamples = 0;  // NaN/Inf/negative estimates discarded (never written)
+    long long rays = 0;            // rays traced (intersection + shadow)
+};
+
+class Integrator {
+  public:
+    virtual ~Integrator() = default;
+    /// Renders `scene` into `film` (whose size matches the scene's detector).
+    virtual RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const = 0;
+    virtual std::string ToString() const = 0;
+    std::string name;
+};
+
+}  // namespace phasor

@@ -1,0 +1,87 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the diffraction-kernel (material) interface (design.md §4.1).
+//
+// Frame: every direction is in the local shading frame (z = shading normal, pointing to the
+// side the shape calls "outside"); wi and wo both point *away* from the surface. wi is the
+// direction the tracer came from (towards the camera in a backward tracer).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+#include "core/spectrum.h"
+
+namespace phasor {
+
+/// Lobe flags returned by Sample().
+enum ScatterFlags : unsigned {
+    ScatterReflection = 1u << 0,
+    ScatterTransmission = 1u << 1,
+    ScatterDiffuse = 1u << 2,     // a continuous lobe with a finite pdf
+    /// A near-delta lobe (smooth reflection/refraction, grating order): in the ray-optics limit a
+    /// Dirac delta; for a generalized ray its true angular width is the ray's own spread σ_k/k.
+    ScatterNearDelta = 1u << 3,
+    ScatterDispersive = 1u << 4,  // direction depends on wavelength (collapse to the hero)
+};
+
+/// What a kernel is asked about (design.md §4.1).
+struct ScatterQuery {
+    Vec3 wi;                               // local, unit, pointing away from the surface
+    const SampledWavelengths *wl = nullptr;
+    double etaOutside = 1;                 // real index of the medium on the +z side (the air)
+    /// Ray-optics limit requested (the `ray` integrator): near-delta lobes are true deltas, Eval
+    /// returns 0 for them, and wave effects collapse to their geometric limit.
+    bool rayOptics = true;
+    /// Footprint of the incident generalized ray (theory §1.2): β² [m²] and ρ; zero for a
+    /// classical ray. Near-delta lobes use it to spread Eval over the ray's angular width.
+    double beta2 = 0, rho = 0;
+    Vec2 uv;                               // surface parameterisation of the hit
+    Vec3 pLocal;                           // hit position in the shape's local frame [m]
+};
+
+struct ScatterSample {
+    Vec3 wo;                  // local, unit, pointing away from the surface
+    /// Throughput factor per wavelength: f·|cosθo|/pdf for continuous lobes, a_j/p_j for
+    /// discrete ones (theory §3.1). Includes the (η_i/η_t)² radiance factor on refraction.
+    SampledSpectrum weight;
+    double pdf = 0;           // solid-angle density for continuous lobes; the discrete lobe's
+                              // selection probability for near-delta lobes
+    int lobe = 0;             // which term of the mixture (for diagnostics / sample–solve)
+    unsigned flags = 0;
+    double eta = 1;           // relative index η_t/η_i crossed (1 for reflection)
+};
+
+class Material {
+  public:
+    virtual ~Material() = default;
+
+    /// Picks one term of the scattering mixture with probability p_j (u0) and a direction in it
+    /// (u). Returns nullopt if the path is absorbed / no valid direction.
+    virtual std::optional<ScatterSample> Sample(const ScatterQuery &q, double u0, const Vec2 &u) const = 0;
+    /// Scattered density towards wo per unit solid angle per unit incident irradiance [1/sr]
+    /// (no cosine); continuous lobes only in the ray-optics limit, near-delta lobes contribute
+    /// their GR-spread Gaussian when !q.rayOptics.
+    virtual SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const = 0;
+    /// Solid-angle density with which Sample() produces wo (continuous lobes only).
+    virtual double Pdf(const ScatterQuery &q, const Vec3 &wo) const = 0;
+    /// True if every lobe is a near-delta lobe (no point in light sampling in the ray limit).
+    virtual bool IsDeltaOnly() const = 0;
+    /// True if f(wi→wo) = f(wo→wi) (checked by the contract suite).
+    virtual bool IsReciprocal() const { return true; }
+    virtual std::string ToString() const = 0;
+};
+
+/// A texture: a scalar-per-wavelength value over the surface (e.g. reflectance).
+class Texture {
+  public:
+    virtual ~Texture() = default;
+    /// Value at surface parameters uv for the sampled wavelengths.
+    virtual SampledSpectrum Eval(const Vec2 &uv, const SampledWavelengths &wl) const = 0;
+    /// Upper bound over the surface and all wavelengths.
+    virtual double MaxValue() const = 0;
+    virtual std::string ToString() const = 0;
+};
+
+}  // namespace phasor

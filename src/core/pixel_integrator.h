@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the shared render loop of integrators that estimate each pixel independently
+// (`ray`, `grt`): TBB over 16×16 tiles, sample passes in growing batches (so Ctrl-C stops after
+// a complete pass and the partial image has a uniform spp), deterministic per (pixel, sample).
+#pragma once
+
+#include "core/integrator.h"
+#include "core/scene.h"
+
+namespace phasor {
+
+/// Per-thread counters merged after each batch.
+struct PathStats {
+    long long rays = 0;
+};
+
+class PixelIntegrator : public Integrator {
+  public:
+    RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override;
+
+    /// One estimate for pixel (x, y), sample `index`: the per-wavelength value the pixel reports
+    /// (radiance for cameras), not divided by the wavelength pdfs (the film does that).
+    /// The sampler is positioned after the wavelength dimension. May drop companion wavelengths
+    /// (wl.TerminateSecondary()) when a dispersive lobe is taken.
+    virtual SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl,
+                                          Sampler &sampler, PathStats &stats) const = 0;
+};
+
+}  // namespace phasor

@@ -1,0 +1,12 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/light.h"
+
+namespace phasor {
+
+SampledSpectrum Light::L(const Vec3 &, const Vec3 &, const Vec3 &, const SampledWavelengths &) const {
+    return SampledSpectrum(0.0);
+}
+
+SampledSpectrum Light::Le(const Vec3 &, const SampledWavelengths &) const { return SampledSpectrum(0.0); }
+
+}  // namespace phasor

@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/pixel_integrator.h"
+
+#include <algorithm>
+#include <chrono>
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/combinable.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+namespace phasor {
+
+RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const RenderOptions &opt) const {
+    auto start = std::chrono::steady_clock::now();
+    std::unique_ptr<tbb::global_control> threads;
+    if (opt.threads > 0)
+        threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opt.threads);
+    std::unique_ptr<Sampler> prototype = MakeSampler(opt.sampler, opt.seed);
+    if (!prototype) throw Error("unknown sampler '" + opt.sampler + "' (use sobol or independent)");
+
+    RenderStats stats;
+    const int w = film.Width(), h = film.Height();
+    constexpr int Tile = 16;
+    int done = 0;
+    int batch = 1;
+    while (done < opt.spp) {
+        if (opt.cancel && opt.cancel->load()) {
+            stats.cancelled = true;
+            break;
+        }
+        int end = std::min(opt.spp, done + batch);
+        tbb::combinable<PathStats> local;
+        tbb::parallel_for(
+            tbb::blocked_range2d<int>(0, h, Tile, 0, w, Tile),
+            [&](const tbb::blocked_range2d<int> &r) {
+                std::unique_ptr<Sampler> sampler = prototype->Clone();
+                PathStats &ps = local.local();
+                for (int y = r.rows().begin(); y < r.rows().end(); ++y)
+                    for (int x = r.cols().begin(); x < r.cols().end(); ++x)
+                        for (int s = done; s < end; ++s) {
+                            sampler->StartPixelSample(x, y, s);
+                            // Wavelengths first, so they are stratified across the pixel's samples.
+                            SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
+                            SampledSpectrum L = EstimatePixel(scene, x, y, wl, *sampler, ps);
+                            film.AddSample(x, y, L, wl);
+                        }
+            },
+            tbb::simple_partitioner());
+        local.combine_each([&](const PathStats &p) { stats.rays += p.rays; });
+        done = end;
+        batch = std::min(batch * 2, 16);
+        if (opt.progress) opt.progress(done, opt.spp);
+    }
+    stats.sppReached = done;
+    stats.invalidSamples = film.InvalidSampleCount();
+    stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+}
+
+}  // namespace phasor

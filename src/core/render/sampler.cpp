@@ -1,0 +1,143 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/sampler.h"
+
+namespace phasor {
+
+void Pcg32::SetSequence(uint64_t seed, uint64_t stream) {
+    // PCG32 initialisation (O'Neill 2014).
+    state_ = 0;
+    inc_ = (stream << 1u) | 1u;
+    NextU32();
+    state_ += seed;
+    NextU32();
+}
+
+uint32_t Pcg32::NextU32() {
+    uint64_t old = state_;
+    state_ = old * 6364136223846793005ULL + inc_;
+    uint32_t xorshifted = uint32_t(((old >> 18u) ^ old) >> 27u);
+    uint32_t rot = uint32_t(old >> 59u);
+    return (xorshifted >> rot) | (xorshifted << ((32u - rot) & 31u));
+}
+
+double Pcg32::Uniform() {
+    // 53 random bits → [0, 1).
+    uint64_t hi = NextU32(), lo = NextU32();
+    return double(((hi << 32) | lo) >> 11) * 0x1p-53;
+}
+
+uint64_t MixBits(uint64_t v) {
+    // splitmix64 finaliser.
+    v ^= v >> 30;
+    v *= 0xbf58476d1ce4e5b9ULL;
+    v ^= v >> 27;
+    v *= 0x94d049bb133111ebULL;
+    v ^= v >> 31;
+    return v;
+}
+
+uint64_t Hash(uint64_t a, uint64_t b, uint64_t c, uint64_t d) {
+    uint64_t h = MixBits(a + 0x9e3779b97f4a7c15ULL);
+    h = MixBits(h ^ (b + 0x9e3779b97f4a7c15ULL));
+    h = MixBits(h ^ (c + 0x9e3779b97f4a7c15ULL));
+    return MixBits(h ^ (d + 0x9e3779b97f4a7c15ULL));
+}
+
+namespace {
+
+uint64_t PixelKey(int x, int y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); }
+
+class IndependentSampler final : public Sampler {
+  public:
+    explicit IndependentSampler(uint64_t seed) : seed_(seed) {}
+    void StartPixelSample(int x, int y, int index) override {
+        rng_.SetSequence(Hash(seed_, PixelKey(x, y)), uint64_t(index));
+    }
+    double Get1D() override { return rng_.Uniform(); }
+    Vec2 Get2D() override {
+        double a = rng_.Uniform();
+        return {a, rng_.Uniform()};
+    }
+    Vec2 GetPixel2D() override { return Get2D(); }
+    std::unique_ptr<Sampler> Clone() const override { return std::make_unique<IndependentSampler>(seed_); }
+    std::string Name() const override { return "independent"; }
+
+  private:
+    uint64_t seed_;
+    Pcg32 rng_;
+};
+
+uint32_t ReverseBits(uint32_t v) {
+    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
+    v = ((v >> 8) & 0x00FF00FFu) | ((v & 0x00FF00FFu) << 8);
+    return (v >> 16) | (v << 16);
+}
+
+// Sobol' dimension 0 (van der Corput) and dimension 1 (primitive polynomial x + 1).
+uint32_t Sobol0(uint32_t i) { return ReverseBits(i); }
+uint32_t Sobol1(uint32_t i) {
+    uint32_t r = 0;
+    for (uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1)
+        if (i & 1) r ^= v;
+    return r;
+}
+
+// Hash-based approximation of a nested uniform (Owen) scramble: a permutation of the bits
+// that only lets each bit depend on the bits above it (Laine–Karras style hash, Burley 2020).
+uint32_t OwenScramble(uint32_t v, uint32_t seed) {
+    v = ReverseBits(v);
+    v ^= v * 0x3d20adeau;
+    v += seed;
+    v *= (seed >> 16) | 1u;
+    v ^= v * 0x05526c56u;
+    v ^= v * 0x53a22864u;
+    return ReverseBits(v);
+}
+
+double ToUnit(uint32_t v) { return std::min(double(v) * 0x1p-32, 0x1.fffffffffffffp-1); }
+
+// "Padded" Sobol': every pair of dimensions is an Owen-scrambled (0,2)-sequence whose sample
+// order is shuffled per pixel and per pair, so consecutive pairs are decorrelated.
+class SobolSampler final : public Sampler {
+  public:
+    explicit SobolSampler(uint64_t seed) : seed_(seed) {}
+    void StartPixelSample(int x, int y, int index) override {
+        pixelHash_ = Hash(seed_, PixelKey(x, y));
+        index_ = uint32_t(index);
+        dim_ = 0;
+    }
+    double Get1D() override {
+        uint64_t h = Hash(pixelHash_, dim_++);
+        uint32_t i = OwenScramble(index_, uint32_t(h));
+        return ToUnit(OwenScramble(Sobol0(i), uint32_t(h >> 32)));
+    }
+    Vec2 Get2D() override {
+        uint64_t h = Hash(pixelHash_, dim_);
+        uint64_t h2 = Hash(pixelHash_, dim_ + 1, 7);
+        dim_ += 2;
+        uint32_t i = OwenScramble(index_, uint32_t(h));
+        return {ToUnit(OwenScramble(Sobol0(i), uint32_t(h >> 32))), ToUnit(OwenScramble(Sobol1(i), uint32_t(h2)))};
+    }
+    Vec2 GetPixel2D() override { return Get2D(); }
+    std::unique_ptr<Sampler> Clone() const override { return std::make_unique<SobolSampler>(seed_); }
+    std::string Name() const override { return "sobol"; }
+
+  private:
+    uint64_t seed_, pixelHash_ = 0;
+    uint32_t index_ = 0;
+    uint64_t dim_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Sampler> MakeIndependentSampler(uint64_t seed) { return std::make_unique<IndependentSampler>(seed); }
+std::unique_ptr<Sampler> MakeSobolSampler(uint64_t seed) { return std::make_unique<SobolSampler>(seed); }
+std::unique_ptr<Sampler> MakeSampler(const std::string &name, uint64_t seed) {
+    if (name == "independent") return MakeIndependentSampler(seed);
+    if (name == "sobol") return MakeSobolSampler(seed);
+    return nullptr;
+}
+
+}  // namespace phasor

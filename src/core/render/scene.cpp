@@ -1,0 +1,157 @@
+// SPDX-License-Identifier: Apache-2.0
+#include "core/scene.h"
+
+namespace phasor {
+
+namespace {
+
+// The `Render` block is not a plug-in but is validated the same way.
+const Schema &RenderSchema() {
+    static const Schema s{
+        "render", "Render", "What to render: detector, integrator, samples, output.",
+        {P::Ref("detector", "detector", "the detector to render (required if the scene has several)"),
+         P::Ref("integrator", "integrator", "the integrator (default: the only one in the scene, else `ray`)"),
+         P::Integer("spp", "samples per pixel").Default(Value::Integer(16)).Min(1),
+         P::Integer("seed", "random seed").Default(Value::Integer(0)).Min(0),
+         P::String("sampler", "sample generator")
+             .Default(Value::String("sobol"))
+             .Choices({"sobol", "independent"}),
+         P::String("output", "output EXR path, relative to the working directory (a .png is written beside it)")}};
+    return s;
+}
+
+template <typename T>
+std::shared_ptr<T> PickOne(BuildContext &ctx, const ParamDict *render, const std::string &param,
+                           const std::string &what, Diagnostics &diag, const FileLoc &sceneLoc) {
+    if (render && render->Has(param)) {
+        try {
+            return ctx.GetRef<T>(*render, param);
+        } catch (const Error &e) {
+            diag.Report(e);
+            return nullptr;
+        }
+    }
+    auto all = ctx.All<T>();
+    if (all.size() == 1) return all[0];
+    if (all.size() > 1) {
+        std::vector<Diagnostic> notes;
+        for (auto &o : all)
+            if (const SceneEntity *e = ctx.EntityOf(o.get()))
+                notes.push_back(Diagnostic{Severity::Note, e->loc, what + " defined here", {}});
+        diag.Error(render ? render->EntityLoc() : sceneLoc,
+                   "the scene has " + std::to_string(all.size()) + " " + what + "s; choose one with Render { " +
+                       param + " = @name }",
+                   std::move(notes));
+    }
+    return nullptr;
+}
+
+}  // namespace
+
+Scene::~Scene() = default;
+
+std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
+                                    const std::string &integratorOverride) {
+    std::unique_ptr<Scene> scene(new Scene());
+    scene->ownedDesc_ = std::make_unique<SceneDesc>(descIn);
+    const SceneDesc &desc = *scene->ownedDesc_;
+    FileLoc sceneLoc{desc.sourceFile, 0, 0, 1};
+    scene->ctx_ = std::make_unique<BuildContext>(desc, diag);
+    BuildContext &ctx = *scene->ctx_;
+    ctx.BuildAll();
+
+    // Render block.
+    const SceneEntity *renderEntity = ctx.RenderEntity();
+    const ParamDict *render = renderEntity ? &renderEntity->params : nullptr;
+    int renderCount = 0;
+    for (const SceneEntity &e : desc.entities)
+        if (e.keyword == "Render" && ++renderCount == 2) diag.Error(e.loc, "only one Render block is allowed");
+    if (render && render->Validate(RenderSchema(), diag)) {
+        scene->settings_.spp = render->GetInt("spp");
+        scene->settings_.seed = (uint64_t)render->GetNumber("seed");
+        scene->settings_.sampler = render->GetString("sampler");
+        if (render->Has("output")) scene->settings_.output = render->GetString("output");
+        scene->settings_.loc = render->EntityLoc();
+    }
+
+    scene->detector_ = PickOne<Detector>(ctx, render, "detector", "detector", diag, sceneLoc);
+    if (!scene->detector_ && ctx.All<Detector>().empty() && !diag.HasErrors())
+        diag.Error(render ? render->EntityLoc() : sceneLoc, "the scene has no detector (add e.g. Detector \"perspective\")");
+
+    // Integrator: the CLI override (by @name or by type), else Render.integrator, else the only one,
+    // else a default `ray`.
+    if (!integratorOverride.empty()) {
+        for (auto &i : ctx.All<Integrator>()) {
+            const SceneEntity *e = ctx.EntityOf(i.get());
+            if (e && (e->name == integratorOverride || (e->type == integratorOverride && !scene->integrator_)))
+                scene->integrator_ = i;
+        }
+        if (!scene->integrator_) {
+            auto *entry = Registry<Integrator>::Find(integratorOverride);
+            if (!entry) {
+                std::string s = Suggest(integratorOverride, Registry<Integrator>::Names());
+                diag.Error(FileLoc{"<command line>", 0, 0, 1},
+                           "unknown integrator '" + integratorOverride + "'" +
+                               (s.empty() ? "" : "; did you mean '" + s + "'?"));
+            } else {
+                ParamDict d;
+                d.Validate(entry->schema(), diag);
+                try {
+                    scene->integrator_ = std::shared_ptr<Integrator>(entry->create(d, ctx));
+                } catch (const Error &e) {
+                    diag.Report(e);
+                }
+            }
+        }
+    } else {
+        if ((render && render->Has("integrator")) || ctx.All<Integrator>().size() > 1)
+            scene->integrator_ = PickOne<Integrator>(ctx, render, "integrator", "integrator", diag, sceneLoc);
+        else if (ctx.All<Integrator>().size() == 1)
+            scene->integrator_ = ctx.All<Integrator>()[0];
+        else if (auto *entry = Registry<Integrator>::Find("ray")) {
+            ParamDict d;
+            d.Validate(entry->schema(), diag);
+            scene->integrator_ = std::shared_ptr<Integrator>(entry->create(d, ctx));
+        }
+    }
+    if (render) render->ReportUnused(diag, "Render");
+    if (diag.HasErrors() || !scene->detector_ || !scene->integrator_) return nullptr;
+
+    // Geometry and lights.
+    scene->shapes_ = ctx.All<Shape>();
+    std::vector<const Shape *> shapes;
+    for (auto &s : scene->shapes_) shapes.push_back(s.get());
+    try {
+        scene->accel_ = std::make_unique<Accel>(shapes);
+    } catch (const Error &e) {
+        diag.Report(e);
+        return nullptr;
+    }
+    std::vector<std::pair<const Spectrum *, double>> emitters;
+    for (auto &l : ctx.All<Light>()) {
+        l->Preprocess(scene->accel_->Bounds());
+        scene->lights_.push_back(l.get());
+        if (l->IsInfinite()) scene->infiniteLights_.push_back(l.get());
+        emitters.emplace_back(&l->EmissionSpectrum(), l->PowerScale());
+    }
+    if (scene->lights_.empty()) diag.Warning(sceneLoc, "the scene has no light; the image will be black");
+    scene->wavelengths_ = std::make_unique<WavelengthSampler>(emitters, scene->detector_->Response());
+    if (diag.HasErrors()) return nullptr;
+    return scene;
+}
+
+bool Scene::Occluded(const SurfaceInteraction &from, const Vec3 &to) const {
+    Vec3 d = to - from.p;
+    Vec3 o = from.SpawnOrigin(d);
+    Vec3 od = to - o;
+    double dist = Length(od);
+    if (!(dist > 0)) return false;
+    // Stop just short of the target so the light's own surface does not occlude it.
+    return accel_->Occluded(Ray{o, od / dist}, 0, dist * (1 - 1e-7));
+}
+
+bool Scene::OccludedDirection(const SurfaceInteraction &from, const Vec3 &dir) const {
+    return accel_->Occluded(Ray{from.SpawnOrigin(dir), dir}, 0, Infinity);
+}
+
+}  // namespace phasor

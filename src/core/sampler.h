@@ -1,0 +1,57 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — random numbers and samplers. Every sample value is a pure function of
+// (seed, pixel, sample index, dimension), so renders are deterministic for any thread count and
+// any tile order.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "core/math.h"
+
+namespace phasor {
+
+/// PCG32 (O'Neill 2014): 64-bit state, 32-bit output.
+class Pcg32 {
+  public:
+    Pcg32() : Pcg32(0x853c49e6748fea9bULL, 0xda3e39cb94b95bdbULL) {}
+    Pcg32(uint64_t seed, uint64_t stream) { SetSequence(seed, stream); }
+    void SetSequence(uint64_t seed, uint64_t stream);
+    uint32_t NextU32();
+    /// Uniform in [0, 1).
+    double Uniform();
+
+  private:
+    uint64_t state_ = 0, inc_ = 1;
+};
+
+/// 64-bit mix (splitmix64 finaliser) for hashing seeds and indices.
+uint64_t MixBits(uint64_t v);
+uint64_t Hash(uint64_t a, uint64_t b, uint64_t c = 0, uint64_t d = 0);
+
+/// A sampler hands out the dimensions of one sample of one pixel. Not thread-safe; one per
+/// thread (Clone()).
+class Sampler {
+  public:
+    virtual ~Sampler() = default;
+    /// Starts sample `index` of pixel (x, y); resets the dimension counter.
+    virtual void StartPixelSample(int x, int y, int index) = 0;
+    virtual double Get1D() = 0;
+    virtual Vec2 Get2D() = 0;
+    /// The 2-D sample used for the position inside the pixel (first dimensions, stratified best).
+    virtual Vec2 GetPixel2D() = 0;
+    virtual std::unique_ptr<Sampler> Clone() const = 0;
+    virtual std::string Name() const = 0;
+};
+
+/// Independent uniform samples from a PCG stream per (seed, pixel, sample).
+std::unique_ptr<Sampler> MakeIndependentSampler(uint64_t seed);
+/// Low-discrepancy: Sobol' (first 2 dims: the 2-D Sobol' (0,2)-sequence) with Owen-style hashed
+/// scrambling per pixel and dimension, so pixels are decorrelated and every prefix of 2^k samples
+/// is stratified.
+std::unique_ptr<Sampler> MakeSobolSampler(uint64_t seed);
+/// By name: "independent" or "sobol"; nullptr if unknown.
+std::unique_ptr<Sampler> MakeSampler(const std::string &name, uint64_t seed);
+
+}  // namespace phasor

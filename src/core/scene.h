@@ -1,0 +1,70 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the built scene: shapes with their kernels, lights, detector, integrator and render
+// settings, plus the Embree accelerator and the wavelength sampler.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/accel.h"
+#include "core/detector.h"
+#include "core/integrator.h"
+#include "core/light.h"
+#include "core/material.h"
+#include "core/registry.h"
+#include "core/spectrum.h"
+
+namespace phasor {
+
+/// Settings of the `Render` block (all optional; the CLI may override them).
+struct RenderSettings {
+    int spp = 16;
+    uint64_t seed = 0;
+    std::string output;          // "" → derived from the scene file name
+    std::string sampler = "sobol";
+    FileLoc loc;
+};
+
+class Scene {
+  public:
+    /// Builds a scene from a description: creates every entity through the registry, checks the
+    /// whole thing (exactly one detector unless `Render.detector` picks one, …). Returns nullptr
+    /// after reporting errors to `diag`. `integratorOverride` picks an integrator by @name or by
+    /// plug-in type (created with default parameters when the scene has none of that type).
+    static std::unique_ptr<Scene> Build(const SceneDesc &desc, Diagnostics &diag,
+                                        const std::string &integratorOverride = "");
+    ~Scene();
+
+    const Accel &GetAccel() const { return *accel_; }
+    const std::vector<const Light *> &Lights() const { return lights_; }
+    const std::vector<const Light *> &InfiniteLights() const { return infiniteLights_; }
+    const Detector &GetDetector() const { return *detector_; }
+    const Integrator &GetIntegrator() const { return *integrator_; }
+    const WavelengthSampler &Wavelengths() const { return *wavelengths_; }
+    const RenderSettings &Settings() const { return settings_; }
+    RenderSettings &Settings() { return settings_; }
+    Bounds3 Bounds() const { return accel_->Bounds(); }
+
+    std::optional<SurfaceInteraction> Intersect(const Ray &ray, double tMax = Infinity) const {
+        return accel_->IntersectSurface(ray, 0, tMax);
+    }
+    /// True if the segment from `from` (a surface point) to `to` is blocked.
+    bool Occluded(const SurfaceInteraction &from, const Vec3 &to) const;
+    bool OccludedDirection(const SurfaceInteraction &from, const Vec3 &dir) const;
+
+  private:
+    Scene() = default;
+    std::unique_ptr<BuildContext> ctx_;  // owns every plug-in object
+    std::unique_ptr<Accel> accel_;
+    std::vector<std::shared_ptr<Shape>> shapes_;
+    std::vector<const Light *> lights_, infiniteLights_;
+    std::shared_ptr<Detector> detector_;
+    std::shared_ptr<Integrator> integrator_;
+    std::unique_ptr<WavelengthSampler> wavelengths_;
+    RenderSettings settings_;
+    std::unique_ptr<SceneDesc> ownedDesc_;
+};
+
+}  // namespace phasor

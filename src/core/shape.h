@@ -1,0 +1,104 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — rays, surface interactions, shapes and triangle meshes (design.md §3 "shapes").
+// World space is right-handed, lengths in metres.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace phasor {
+
+class Material;
+class Light;
+
+struct Ray {
+    Vec3 o, d;  // origin [m], unit direction
+    Vec3 At(double t) const { return o + t * d; }
+};
+
+/// A triangle mesh in world space (transform already applied). Optional per-vertex normals and
+/// uvs (same count as positions, or empty).
+struct TriangleMesh {
+    std::vector<Vec3> positions;
+    std::vector<Vec3> normals;
+    std::vector<Vec2> uvs;
+    std::vector<uint32_t> indices;  // 3 per triangle
+    std::size_t TriangleCount() const { return indices.size() / 3; }
+    Bounds3 Bounds() const;
+    double Area() const;
+    /// Throws phasor::Error if an index is out of range or an array size is inconsistent.
+    void Validate(const std::string &what) const;
+    void Transform(const phasor::Transform &t);
+};
+
+/// Where a ray met a surface. `n` is the geometric normal, `shading` the shading frame
+/// (shading.n may differ from n for interpolated normals); both face the same side as the shape's
+/// outward normal (not flipped towards the ray).
+struct SurfaceInteraction {
+    Vec3 p;
+    Vec3 n;
+    Frame shading;
+    Vec2 uv;
+    double t = 0;
+    const class Shape *shape = nullptr;
+    const Material *material = nullptr;  // null: an interface that only bounds a light, or black
+    const Light *areaLight = nullptr;    // the emitter attached to this shape, if any
+    /// Offset origin for a ray leaving the surface towards `w` (avoids self-intersection).
+    Vec3 SpawnOrigin(const Vec3 &w) const;
+};
+
+/// A point sampled on a shape.
+struct ShapeSample {
+    Vec3 p, n;         // position, outward unit normal
+    double pdfArea = 0;  // density w.r.t. surface area [1/m²]
+};
+
+/// A shape plug-in. Triangle-based shapes (rectangle, meshes, glTF, subdivision) hand Embree a
+/// mesh; analytic ones (sphere, disk) are Embree user geometry that calls Intersect().
+class Shape {
+  public:
+    virtual ~Shape() = default;
+
+    /// Triangulated geometry, or nullptr for an analytic shape.
+    virtual const TriangleMesh *Mesh() const { return nullptr; }
+    /// Analytic shapes: nearest hit with t in (tMin, tMax), computed in double precision.
+    virtual std::optional<double> Intersect(const Ray &ray, double tMin, double tMax) const;
+    /// Completes an interaction from a hit: for meshes `prim` is the triangle index and (b1, b2)
+    /// its barycentrics; for analytic shapes they are unused.
+    virtual SurfaceInteraction Interaction(const Ray &ray, double t, unsigned prim, double b1,
+                                           double b2) const = 0;
+    virtual Bounds3 Bounds() const = 0;
+    virtual double Area() const = 0;
+    /// Uniform sampling by area.
+    virtual ShapeSample Sample(const Vec2 &u) const = 0;
+    virtual std::string ToString() const = 0;
+
+    const Material *material = nullptr;  // set by the builder from `material = @…`
+    const Light *areaLight = nullptr;    // set when an `area` light names this shape
+    std::string name;
+};
+
+/// Shared implementation for triangle meshes (used by every mesh-producing shape plug-in).
+class MeshShape : public Shape {
+  public:
+    explicit MeshShape(TriangleMesh mesh);
+    const TriangleMesh *Mesh() const override { return &mesh_; }
+    SurfaceInteraction Interaction(const Ray &ray, double t, unsigned prim, double b1,
+                                   double b2) const override;
+    Bounds3 Bounds() const override { return bounds_; }
+    double Area() const override { return area_; }
+    ShapeSample Sample(const Vec2 &u) const override;  // area-weighted triangle choice
+    std::string ToString() const override;
+
+  protected:
+    TriangleMesh mesh_;
+    Bounds3 bounds_;
+    double area_ = 0;
+    std::vector<double> areaCdf_;
+};
+
+}  // namespace phasor

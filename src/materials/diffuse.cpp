@@ -1,0 +1,144 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — `diffuse`: an ideal Lambertian reflector (theory §4.7).
+//
+// Models a matte surface whose scattered radiance is independent of direction: f = R/π per unit
+// solid angle, R ∈ [0, 1] the directional-hemispherical reflectance (from a spectrum or a
+// texture). Valid for surfaces rough on the scale of the wavelength and the footprint; in the
+// generalized-ray picture it is a continuous lobe, so it is the same in the ray-optics limit and
+// for generalized rays (the GR keeps β, ρ; coherence handling is the integrator's business,
+// theory §4.7). Two-sided (pbrt's convention): it reflects into the hemisphere of wi, whichever
+// side of the shading normal that is, and never transmits. Sampling: cosine-weighted hemisphere
+// (Malley's method on Shirley & Chiu's concentric disc mapping), so the weight is exactly R.
+#include <memory>
+#include <sstream>
+
+#include "core/diagnostics.h"
+#include "core/material.h"
+#include "core/registry.h"
+
+namespace phasor {
+
+namespace {
+
+// Shirley & Chiu (1997) concentric square → disc mapping (area preserving, low distortion).
+Vec2 ConcentricDisc(const Vec2 &u) {
+    const double ox = 2 * u.x - 1, oy = 2 * u.y - 1;
+    if (ox == 0 && oy == 0) return {0, 0};
+    double r, theta;
+    if (std::abs(ox) > std::abs(oy)) {
+        r = ox;
+        theta = (Pi / 4) * (oy / ox);
+    } else {
+        r = oy;
+        theta = Pi / 2 - (Pi / 4) * (ox / oy);
+    }
+    return {r * std::cos(theta), r * std::sin(theta)};
+}
+
+}  // namespace
+
+class DiffuseMaterial final : public Material {
+  public:
+    DiffuseMaterial(std::shared_ptr<const Spectrum> reflectance, std::shared_ptr<Texture> texture)
+        : reflectance_(std::move(reflectance)), texture_(std::move(texture)) {}
+
+    static const Schema &GetSchema() {
+        static const Schema s{
+            "material",
+            "diffuse",
+            "Lambertian reflector (two-sided, no transmission): f = R/π, cosine-weighted sampling",
+            {
+                P::Spectrum("reflectance", "directional-hemispherical reflectance R(λ) in [0, 1]")
+                    .Default(Value::Number(0.5))
+                    .Min(0)
+                    .Max(1),
+                P::Ref("texture", "texture",
+                       "spatially varying reflectance R(uv, λ) in [0, 1]; replaces 'reflectance'"),
+            }};
+        return s;
+    }
+
+    static std::unique_ptr<Material> Create(const ParamDict &dict, BuildContext &ctx) {
+        if (dict.Has("texture")) {
+            if (dict.Has("reflectance")) {
+                ctx.Diag().Warning(dict.Loc("reflectance"),
+                                   "ignoring 'reflectance' because 'texture' was given");
+                dict.GetValue("reflectance");  // reported here, not again as unused
+            }
+            std::shared_ptr<Texture> tex = ctx.GetRef<Texture>(dict, "texture");
+            if (!(tex->MaxValue() <= 1))
+                throw Error(dict.Loc("texture"),
+                            "the texture of a diffuse material is a reflectance and must "
+                            "not exceed 1 (its maximum is " +
+                                std::to_string(tex->MaxValue()) + ")");
+            return std::make_unique<DiffuseMaterial>(nullptr, std::move(tex));
+        }
+        std::shared_ptr<const Spectrum> r = ctx.GetSpectrum(dict, "reflectance");
+        if (!(r->MaxValue() <= 1))
+            throw Error(dict.Loc("reflectance"),
+                        "'reflectance' must lie in [0, 1]; its maximum is " + std::to_string(r->MaxValue()));
+        return std::make_unique<DiffuseMaterial>(std::move(r), nullptr);
+    }
+
+    /// Presets for the generic contract suite (tests/materials/kernel_contract_test.cpp). The
+    /// suite defines the fixture texture @contract_checker.
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(3);
+        p[0].Set("reflectance", Value::Number(0.5));
+        p[1].Set("reflectance", Value::Number(1.0));
+        p[2].Set("texture", Value::Ref("contract_checker"));
+        return p;
+    }
+
+    std::optional<ScatterSample> Sample(const ScatterQuery &q, double, const Vec2 &u) const override {
+        if (q.wi.z == 0) return std::nullopt;
+        // Malley's method: project a uniform disc sample up to the hemisphere (pdf = cosθ/π).
+        const Vec2 d = ConcentricDisc(u);
+        const double z = SafeSqrt(1 - d.x * d.x - d.y * d.y);
+        if (z == 0) return std::nullopt;  // exactly on the horizon: pdf 0
+        ScatterSample s;
+        s.wo = Vec3(d.x, d.y, q.wi.z > 0 ? z : -z);  // mirrored to wi's side (two-sided)
+        s.pdf = z * InvPi;
+        s.weight = Reflectance(q);  // f·|cosθo|/pdf = (R/π)·cosθ/(cosθ/π)
+        s.lobe = 0;
+        s.flags = ScatterReflection | ScatterDiffuse;
+        s.eta = 1;
+        return s;
+    }
+
+    SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const override {
+        if (!SameSide(q.wi, wo)) return SampledSpectrum(0);
+        return Reflectance(q) * InvPi;
+    }
+
+    double Pdf(const ScatterQuery &q, const Vec3 &wo) const override {
+        return SameSide(q.wi, wo) ? std::abs(wo.z) * InvPi : 0;
+    }
+
+    bool IsDeltaOnly() const override { return false; }
+
+    std::string ToString() const override {
+        std::ostringstream os;
+        os << "DiffuseMaterial[ "
+           << (texture_ ? "texture = " + texture_->ToString() : "reflectance = " + reflectance_->ToString())
+           << " ]";
+        return os.str();
+    }
+
+  private:
+    static bool SameSide(const Vec3 &a, const Vec3 &b) { return a.z * b.z > 0; }
+
+    SampledSpectrum Reflectance(const ScatterQuery &q) const {
+        if (texture_) return texture_->Eval(q.uv, *q.wl);
+        SampledSpectrum r;
+        for (int i = 0; i < q.wl->Count(); ++i) r[i] = reflectance_->Eval(q.wl->lambda[i]);
+        return r;
+    }
+
+    std::shared_ptr<const Spectrum> reflectance_;
+    std::shared_ptr<Texture> texture_;
+};
+
+PHASOR_EXPORT_PLUGIN(Material, DiffuseMaterial)
+
+}  // namespace phasor

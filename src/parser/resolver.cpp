@@ -1,0 +1,519 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — .wscene resolver: FileAst → SceneDesc (docs/wscene.md §5–§7). Follows Includes,
+// substitutes $defines (and -D overrides), evaluates dimensioned arithmetic and math functions,
+// converts to SI, applies `enabled`, and checks names and @references.
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "core/units.h"
+#include "parser/ast.h"
+#include "parser/eval.h"
+#include "parser/parser.h"
+
+namespace phasor {
+
+namespace {
+
+using wscene::Expr;
+using wscene::FileAst;
+using wscene::Pos;
+using wscene::Stmt;
+
+const char *kCommandLine = "<command line>";
+
+std::optional<std::string> ReadWholeFile(const std::string &path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) return std::nullopt;
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return std::nullopt;
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    if (in.bad()) return std::nullopt;
+    return ss.str();
+}
+
+struct DefineInfo {
+    std::optional<Value> value;  // nullopt: its definition failed (already reported)
+    FileLoc site;                // the name in the Define statement
+};
+
+struct Override {
+    std::string name, text;
+    FileLoc nameLoc;  // in <command line>
+    int line = 0, valueCol = 0;
+    bool used = false;
+};
+
+struct NameInfo {
+    std::string keyword, type;
+    FileLoc loc;
+    bool disabled = false, broken = false;
+    FileLoc enabledLoc;
+};
+
+class Resolver {
+  public:
+    Resolver(const ParseOptions &opt, Diagnostics &diag) : opt_(opt), diag_(diag), eval_(diag) {
+        eval_.lookupVar = [this](const Expr &e, const FileLoc &loc) { return LookupVar(e, loc); };
+        eval_.notesFor = [this](const std::string &file) { return ChainOf(file); };
+    }
+
+    std::optional<SceneDesc> Run(const std::string *text, const std::string &fileName) {
+        std::size_t errorsBefore = diag_.ErrorCount();
+        PrepareOverrides();
+        std::optional<std::string> content;
+        if (text) content = *text;
+        else content = Read(fileName);
+        if (!content) {
+            diag_.Error(FileLoc{fileName, 0, 0, 1}, "cannot read scene file '" + fileName + "'");
+            return std::nullopt;
+        }
+        desc_.sourceFile = fileName;
+        stack_.push_back(Key(fileName));
+        ProcessFile(*content, fileName);
+        stack_.pop_back();
+        Finish();
+        if (diag_.ErrorCount() != errorsBefore) return std::nullopt;
+        return std::move(desc_);
+    }
+
+  private:
+    // ---- files and includes ----------------------------------------------------------------
+    std::optional<std::string> Read(const std::string &path) {
+        return opt_.readFile ? opt_.readFile(path) : ReadWholeFile(path);
+    }
+    static std::string Key(const std::string &path) {
+        return std::filesystem::path(path).lexically_normal().generic_string();
+    }
+    std::vector<Diagnostic> ChainOf(const std::string &file) const {
+        auto it = chains_.find(file);
+        return it == chains_.end() ? std::vector<Diagnostic>{} : it->second;
+    }
+    void Err(const FileLoc &loc, const std::string &msg, std::vector<Diagnostic> notes = {}) {
+        for (const Diagnostic &n : ChainOf(loc.file)) notes.push_back(n);
+        diag_.Error(loc, msg, std::move(notes));
+    }
+    void Warn(const FileLoc &loc, const std::string &msg, std::vector<Diagnostic> notes = {}) {
+        for (const Diagnostic &n : ChainOf(loc.file)) notes.push_back(n);
+        diag_.Warning(loc, msg, std::move(notes));
+    }
+    static Diagnostic Note(const FileLoc &loc, std::string msg) {
+        return Diagnostic{Severity::Note, loc, std::move(msg), {}};
+    }
+    FileLoc Loc(const std::string &file, const Pos &p) const { return FileLoc{file, p.line, p.col, std::max(1, p.length)}; }
+
+    void ProcessFile(const std::string &text, const std::string &file) {
+        diag_.AddSource(file, text);
+        FileAst ast;
+        wscene::ParseFileAst(text, file, diag_, ast, ChainOf(file));
+        if (ast.lexError) lostNames_ = true;
+        for (const Stmt &st : ast.stmts) {
+            if (diag_.TooManyErrors()) return;
+            switch (st.kind) {
+                case Stmt::Kind::Header: CheckHeader(st, file); break;
+                case Stmt::Kind::Include: DoInclude(st, file); break;
+                case Stmt::Kind::Define: DoDefine(st, file); break;
+                case Stmt::Kind::Block: DoBlock(st, file); break;
+            }
+        }
+    }
+
+    void CheckHeader(const Stmt &st, const std::string &file) {
+        if (st.text.empty()) return;  // reported by the syntax pass
+        if (st.text != "1")
+            Err(Loc(file, st.textPos),
+                "unsupported format version 'wscene " + st.text + "' (this phasor reads version 1)");
+    }
+
+    void DoInclude(const Stmt &st, const std::string &file) {
+        FileLoc at = Loc(file, st.textPos);
+        if (st.text.empty()) {
+            Err(at, "empty file name in Include");
+            return;
+        }
+        std::string target =
+            (std::filesystem::path(file).parent_path() / std::filesystem::path(st.text)).lexically_normal().generic_string();
+        std::string key = Key(target);
+        for (std::size_t k = 0; k < stack_.size(); ++k) {
+            if (stack_[k] != key) continue;
+            std::string cycle;
+            for (std::size_t m = k; m < stack_.size(); ++m) cycle += stack_[m] + " → ";
+            Err(at, "include cycle: '" + st.text + "' is already being read (" + cycle + key + ")");
+            return;
+        }
+        if ((int)stack_.size() > opt_.maxIncludeDepth) {
+            Err(at, "includes nested too deeply (more than " + std::to_string(opt_.maxIncludeDepth) + " levels)");
+            return;
+        }
+        std::optional<std::string> content = Read(target);
+        if (!content) {
+            Err(at, "cannot read included file '" + st.text + "' (looked for " + target + ")");
+            return;
+        }
+        // The include chain of the new file: this Include, then this file's own chain.
+        if (!chains_.count(target)) {
+            std::vector<Diagnostic> chain = {Note(Loc(file, st.pos), "included from here")};
+            for (const Diagnostic &n : ChainOf(file)) chain.push_back(n);
+            chains_[target] = std::move(chain);
+        }
+        stack_.push_back(key);
+        ProcessFile(*content, target);
+        stack_.pop_back();
+    }
+
+    // ---- Define and -D ---------------------------------------------------------------------
+    void PrepareOverrides() {
+        std::string source;
+        int line = 0;
+        for (const auto &[name, text] : opt_.defines) {
+            ++line;
+            std::string shown = "-D " + name + "=" + text;
+            for (char &c : shown)
+                if (c == '\n' || c == '\r') c = ' ';
+            source += shown + "\n";
+            Override ov;
+            ov.name = name;
+            ov.text = text;
+            ov.line = line;
+            ov.valueCol = int(name.size()) + 5;
+            ov.nameLoc = FileLoc{kCommandLine, line, 4, std::max(1, int(name.size()))};
+            if (!wscene::IsIdentifier(name) || wscene::IsReservedWord(name)) {
+                diag_.Error(ov.nameLoc, "'-D " + name + "': '" + name + "' is not a valid variable name");
+                continue;
+            }
+            bool dup = false;
+            for (const Override &o : overrides_)
+                if (o.name == name) {
+                    diag_.Error(ov.nameLoc, "'-D " + name + "' is given twice",
+                                {Note(o.nameLoc, "first given here")});
+                    dup = true;
+                }
+            if (!dup) overrides_.push_back(std::move(ov));
+        }
+        if (!opt_.defines.empty()) diag_.AddSource(kCommandLine, source);
+    }
+
+    std::optional<Value> EvalOverride(Override &ov, const std::optional<Value> &def) {
+        FileLoc valueLoc{kCommandLine, ov.line, ov.valueCol, std::max(1, int(ov.text.size()))};
+        // A Define holding a string takes the -D text as the string (quotes optional).
+        if (def && def->kind == Value::Kind::String) {
+            Diagnostics scratch;
+            Expr e;
+            if (wscene::ParseExprAst(ov.text, kCommandLine, ov.line, ov.valueCol, scratch, e) &&
+                e.kind == Expr::Kind::String)
+                return Value::String(e.text, valueLoc);
+            return Value::String(ov.text, valueLoc);
+        }
+        Expr e;
+        if (!wscene::ParseExprAst(ov.text, kCommandLine, ov.line, ov.valueCol, diag_, e)) return std::nullopt;
+        std::optional<Value> v = eval_.Eval(e, kCommandLine);
+        // A quoted quantity ("150 um") is read as the quantity.
+        if (v && v->kind == Value::Kind::String && !(def && def->kind == Value::Kind::String)) {
+            Expr inner;
+            Diagnostics scratch;
+            if (wscene::ParseExprAst(v->text, kCommandLine, ov.line, ov.valueCol + 1, scratch, inner)) {
+                std::optional<Value> w = eval_.Eval(inner, kCommandLine);
+                if (w) v = w;
+            }
+        }
+        if (v) v->loc = valueLoc;
+        return v;
+    }
+
+    static bool Compatible(const Value &def, const Value &v) {
+        using K = Value::Kind;
+        switch (def.kind) {
+            case K::Number: return v.kind == K::Number && v.dim == def.dim;
+            case K::Complex: return v.kind == K::Complex || (v.kind == K::Number && v.dim.IsNone());
+            case K::List:
+                if (v.kind != K::List) return false;
+                if (!def.items.empty() && !v.items.empty() && def.items[0].kind == K::Number &&
+                    v.items[0].kind == K::Number)
+                    return def.items[0].dim == v.items[0].dim;
+                return true;
+            default: return v.kind == def.kind;
+        }
+    }
+
+    void DoDefine(const Stmt &st, const std::string &file) {
+        FileLoc site = Loc(file, st.namePos);
+        auto it = defines_.find(st.name);
+        if (it != defines_.end()) {
+            Err(site, "redefinition of '$" + st.name + "'", {Note(it->second.site, "first defined here")});
+            return;
+        }
+        DefineInfo info;
+        info.site = site;
+        if (!st.broken) info.value = eval_.Eval(st.value, file);
+        for (Override &ov : overrides_) {
+            if (ov.name != st.name) continue;
+            ov.used = true;
+            if (st.broken) break;
+            std::optional<Value> v = EvalOverride(ov, info.value);
+            if (!v || !info.value) {
+                info.value = std::nullopt;
+                break;
+            }
+            if (!Compatible(*info.value, *v)) {
+                const Value &d = *info.value;
+                std::string want = d.kind == Value::Kind::Number ? d.dim.Describe() : d.DescribeKind();
+                if (d.kind == Value::Kind::List && !d.items.empty() && d.items[0].kind == Value::Kind::Number)
+                    want = "a list of " + d.items[0].dim.Describe().substr(d.items[0].dim.Describe().find(' ') + 1) + "s";
+                diag_.Error(v->loc,
+                            "'-D " + st.name + "' must be " + want + ", like the Define it overrides; got " +
+                                v->DescribeKind() + " (" + v->ToString() + ")",
+                            {Note(site, "'" + st.name + "' is defined here as " + d.ToString())});
+                info.value = std::nullopt;
+                break;
+            }
+            info.value = v;
+            break;
+        }
+        defines_.emplace(st.name, std::move(info));
+    }
+
+    std::optional<Value> LookupVar(const Expr &e, const FileLoc &loc) {
+        auto it = defines_.find(e.text);
+        if (it == defines_.end()) {
+            pendingVars_.push_back({e.text, loc});
+            return std::nullopt;
+        }
+        if (!it->second.value) return std::nullopt;  // its Define failed; already reported
+        Value v = *it->second.value;
+        v.loc = loc;
+        return v;
+    }
+
+    // ---- blocks ----------------------------------------------------------------------------
+    void DoBlock(const Stmt &st, const std::string &file) {
+        FileLoc kwLoc = Loc(file, st.pos);
+        FileLoc nameLoc = st.hasName ? Loc(file, st.namePos) : kwLoc;
+        bool ok = !st.broken;
+        if (st.keyword == "Render") {
+            if (renderSeen_) {
+                Err(kwLoc, "only one Render block is allowed", {Note(renderLoc_, "the first Render block is here")});
+                ok = false;
+            } else {
+                renderSeen_ = true;
+                renderLoc_ = kwLoc;
+            }
+        }
+        if (st.hasType && st.text.empty()) {
+            Err(Loc(file, st.textPos), "empty plug-in type for " + st.keyword);
+            ok = false;
+        }
+        NameInfo *named = nullptr;
+        if (st.hasName) {
+            if (!wscene::IsIdentifier(st.name)) {
+                Err(nameLoc, "invalid name \"" + st.name +
+                                 "\": names are letters, digits and '_' (not starting with a digit) so that @name "
+                                 "can refer to them");
+                ok = false;
+            } else if (auto it = names_.find(st.name); it != names_.end()) {
+                Err(nameLoc, "duplicate name '" + st.name + "': already used by " + it->second.keyword + " \"" +
+                                 it->second.type + "\"",
+                    {Note(it->second.loc, "'" + st.name + "' is first defined here")});
+                ok = false;
+            } else {
+                NameInfo info{st.keyword, st.text, nameLoc, false, st.broken, {}};
+                named = &names_.emplace(st.name, info).first->second;
+            }
+        }
+        if (st.broken) return;
+
+        SceneEntity ent;
+        ent.keyword = st.keyword;
+        ent.type = st.text;
+        ent.name = st.hasName ? st.name : "";
+        ent.loc = kwLoc;
+        ent.nameLoc = nameLoc;
+        ent.params = ParamDict(kwLoc);
+        bool enabled = true;
+        std::map<std::string, FileLoc> seen;
+        for (const wscene::ParamNode &p : st.params) {
+            FileLoc pLoc = Loc(file, p.namePos);
+            if (auto s = seen.find(p.name); s != seen.end()) {
+                Err(pLoc, "duplicate parameter '" + p.name + "'", {Note(s->second, "'" + p.name + "' is first given here")});
+                ok = false;
+                continue;
+            }
+            seen.emplace(p.name, pLoc);
+            std::optional<Value> v = eval_.Eval(p.value, file);
+            if (!v) {
+                ok = false;
+                continue;
+            }
+            if (p.name == "enabled") {
+                if (v->kind != Value::Kind::Bool) {
+                    Err(v->loc, "'enabled' must be a boolean expression (true, false, or e.g. $mode == \"fast\"); got " +
+                                    v->DescribeKind());
+                    ok = false;
+                    continue;
+                }
+                enabled = v->boolean;
+                if (!enabled && named) {
+                    named->disabled = true;
+                    named->enabledLoc = pLoc;
+                }
+                continue;
+            }
+            ent.params.Add(p.name, std::move(*v), pLoc);
+        }
+        if (!ok) {
+            if (named) named->broken = true;
+            return;
+        }
+        if (enabled) desc_.entities.push_back(std::move(ent));
+    }
+
+    // ---- after everything was read ---------------------------------------------------------
+    void Finish() {
+        for (const Override &ov : overrides_) {
+            if (ov.used) continue;
+            std::vector<std::string> names;
+            for (const auto &d : defines_) names.push_back(d.first);
+            std::string sug = Suggest(ov.name, names);
+            diag_.Warning(ov.nameLoc, "'-D " + ov.name + "' does not override any Define in the scene" +
+                                          (sug.empty() ? "" : "; did you mean '" + sug + "'?"));
+        }
+        for (const auto &[name, loc] : pendingVars_) {
+            auto it = defines_.find(name);
+            if (it != defines_.end()) {
+                Err(loc, "'$" + name + "' is used before its Define", {Note(it->second.site, "defined here")});
+                continue;
+            }
+            std::vector<std::string> names;
+            for (const auto &d : defines_) names.push_back(d.first);
+            std::string sug = Suggest(name, names);
+            std::vector<Diagnostic> notes;
+            for (const Override &ov : overrides_)
+                if (ov.name == name)
+                    notes.push_back(Note(ov.nameLoc, "-D only overrides a Define; add 'Define " + name + " = …' to the scene"));
+            Err(loc, "'$" + name + "' is not defined" + (sug.empty() ? "" : "; did you mean '$" + sug + "'?"),
+                std::move(notes));
+        }
+        for (const SceneEntity &e : desc_.entities)
+            for (const Param &p : e.params.All()) CheckRefs(p.value);
+    }
+
+    void CheckRefs(const Value &v) {
+        if (v.kind == Value::Kind::Ref) {
+            auto it = names_.find(v.text);
+            if (it == names_.end()) {
+                if (lostNames_) return;  // the name may have been in a part lost to a lexical error
+                std::vector<std::string> names;
+                for (const auto &n : names_) names.push_back(n.first);
+                std::string sug = Suggest(v.text, names);
+                std::string msg = "'@" + v.text + "' is not defined";
+                if (!sug.empty()) {
+                    const NameInfo &s = names_.at(sug);
+                    msg += "; did you mean '@" + sug + "' (" + s.keyword + " \"" + s.type + "\" at " + s.loc.ToString() + ")?";
+                }
+                Err(v.loc, msg);
+                return;
+            }
+            const NameInfo &n = it->second;
+            if (n.disabled)
+                Err(v.loc, "'@" + v.text + "' refers to " + n.keyword + " \"" + n.type + "\", which is disabled",
+                    {Note(n.enabledLoc, "disabled here")});
+            return;
+        }
+        for (const Value &it : v.items) CheckRefs(it);
+    }
+
+    const ParseOptions &opt_;
+    Diagnostics &diag_;
+    wscene::Evaluator eval_;
+    SceneDesc desc_;
+    std::vector<std::string> stack_;  // files being read (include cycle detection)
+    std::map<std::string, std::vector<Diagnostic>> chains_;  // file → "included from" notes
+    std::map<std::string, DefineInfo> defines_;
+    std::vector<Override> overrides_;
+    std::vector<std::pair<std::string, FileLoc>> pendingVars_;
+    std::map<std::string, NameInfo> names_;
+    bool renderSeen_ = false;
+    FileLoc renderLoc_;
+    bool lostNames_ = false;
+};
+
+}  // namespace
+
+std::optional<SceneDesc> ParseSceneFile(const std::string &path, const ParseOptions &options, Diagnostics &diag) {
+    return Resolver(options, diag).Run(nullptr, path);
+}
+
+std::optional<SceneDesc> ParseSceneFile(const std::string &path, const DefineList &defines, Diagnostics &diag) {
+    ParseOptions o;
+    o.defines = defines;
+    return ParseSceneFile(path, o, diag);
+}
+
+std::optional<SceneDesc> ParseSceneString(const std::string &text, const std::string &virtualFileName,
+                                          const ParseOptions &options, Diagnostics &diag) {
+    return Resolver(options, diag).Run(&text, virtualFileName);
+}
+
+std::optional<SceneDesc> ParseSceneString(const std::string &text, const std::string &virtualFileName,
+                                          const DefineList &defines, Diagnostics &diag) {
+    ParseOptions o;
+    o.defines = defines;
+    return ParseSceneString(text, virtualFileName, o, diag);
+}
+
+std::optional<std::pair<std::string, std::string>> SplitDefineArgument(const std::string &arg, Diagnostics &diag) {
+    std::size_t eq = arg.find('=');
+    FileLoc loc{kCommandLine, 0, 0, 1};
+    if (eq == std::string::npos) {
+        diag.Error(loc, "'-D " + arg + "': expected name=value");
+        return std::nullopt;
+    }
+    std::string name = arg.substr(0, eq);
+    while (!name.empty() && (name.back() == ' ' || name.back() == '\t')) name.pop_back();
+    if (!wscene::IsIdentifier(name)) {
+        diag.Error(loc, "'-D " + arg + "': '" + name + "' is not a valid variable name");
+        return std::nullopt;
+    }
+    return std::make_pair(name, arg.substr(eq + 1));
+}
+
+std::optional<Value> ParseValueString(const std::string &text, const std::string &virtualFileName, Diagnostics &diag) {
+    diag.AddSource(virtualFileName, text);
+    Expr e;
+    if (!wscene::ParseExprAst(text, virtualFileName, 1, 1, diag, e)) return std::nullopt;
+    wscene::Evaluator ev(diag);
+    ev.lookupVar = [&](const Expr &x, const FileLoc &loc) -> std::optional<Value> {
+        diag.Error(loc, "'$" + x.text + "' is not defined");
+        return std::nullopt;
+    };
+    return ev.Eval(e, virtualFileName);
+}
+
+bool SameScene(const SceneDesc &a, const SceneDesc &b, std::string *why) {
+    auto fail = [&](const std::string &m) {
+        if (why) *why = m;
+        return false;
+    };
+    if (a.entities.size() != b.entities.size())
+        return fail("entity count " + std::to_string(a.entities.size()) + " vs " + std::to_string(b.entities.size()));
+    for (std::size_t i = 0; i < a.entities.size(); ++i) {
+        const SceneEntity &x = a.entities[i], &y = b.entities[i];
+        std::string at = "entity " + std::to_string(i) + " (" + x.keyword + " \"" + x.type + "\" \"" + x.name + "\")";
+        if (x.keyword != y.keyword || x.type != y.type || x.name != y.name)
+            return fail(at + " vs " + y.keyword + " \"" + y.type + "\" \"" + y.name + "\"");
+        const auto &px = x.params.All(), &py = y.params.All();
+        if (px.size() != py.size()) return fail(at + ": parameter count differs");
+        for (std::size_t k = 0; k < px.size(); ++k) {
+            if (px[k].name != py[k].name) return fail(at + ": parameter " + px[k].name + " vs " + py[k].name);
+            if (!px[k].value.SameAs(py[k].value))
+                return fail(at + ": '" + px[k].name + "' = " + px[k].value.ToString() + " vs " + py[k].value.ToString());
+        }
+    }
+    return true;
+}
+
+}  // namespace phasor

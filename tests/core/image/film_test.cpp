@@ -1,0 +1,175 @@
+// SPDX-License-Identifier: Apache-2.0
+// The film: exact means, the variance of the pixel mean, invalid samples, spectral reduction
+// against the sensor response (CIE flat spectrum → Y = 1, radiometric, delta lines).
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "core/diagnostics.h"
+#include "core/film.h"
+#include "support/stats.h"
+
+namespace phasor {
+namespace {
+
+constexpr int R = 0, G = 1, B = 2, I = 3, V = 4;
+
+SampledWavelengths DeltaLine(double lambda, double prob) {
+    SampledWavelengths wl;
+    wl.delta = true;
+    wl.lambda = {lambda, 0, 0, 0};
+    wl.pdf = {prob, 0, 0, 0};
+    return wl;
+}
+
+TEST(Film, ResolvesTheDocumentedChannels) {
+    Film film(3, 2, SensorResponse(SensorResponse::Kind::Radiometric));
+    Image img = film.Resolve();
+    EXPECT_EQ(img.width, 3);
+    EXPECT_EQ(img.height, 2);
+    EXPECT_EQ(img.channels, (std::vector<std::string>{"R", "G", "B", "intensity", "variance"}));
+    EXPECT_EQ(img.data.size(), 3u * 2u * 5u);
+    EXPECT_EQ(img.ChannelIndex("variance"), V);
+    EXPECT_EQ(img.ChannelIndex("alpha"), -1);
+    EXPECT_THROW(Film(0, 4, SensorResponse(SensorResponse::Kind::Radiometric)), Error);
+}
+
+TEST(Film, ConstantSamplesGiveTheExactMeanAndZeroVariance) {
+    Film film(2, 1, SensorResponse(SensorResponse::Kind::Radiometric));
+    const double c = 0.3;  // not a dyadic rational: a naive running sum would drift
+    for (int i = 0; i < 1000; ++i) {
+        film.AddReduced(0, 0, Vec3(c, c, c), c);
+        // Radiometric response is flat (weight 1): a certain line of value c reads c.
+        film.AddSample(1, 0, SampledSpectrum(c), DeltaLine(1064e-9, 1.0));
+    }
+    Image img = film.Resolve();
+    for (int x = 0; x < 2; ++x) {
+        EXPECT_EQ(film.SampleCount(x, 0), 1000);
+        for (int ch : {R, G, B, I}) EXPECT_EQ(img.At(x, 0, ch), float(c)) << x << " " << ch;
+        EXPECT_EQ(img.At(x, 0, V), 0.0f);
+    }
+}
+
+TEST(Film, VarianceChannelIsTheVarianceOfTheMean) {
+    Film film(2, 1, SensorResponse(SensorResponse::Kind::Radiometric));
+    // 1 … 5: mean 3, s² = 2.5, s²/n = 0.5 (all exact in binary).
+    for (int k = 1; k <= 5; ++k) film.AddReduced(0, 0, Vec3(k, k, k), k);
+    // A random sequence against a two-pass computation in double.
+    test::TestRng rng(7);
+    std::vector<double> xs(2000);
+    for (double &x : xs) {
+        x = 1e3 + std::exp(3 * rng.Uniform());  // large offset: stresses cancellation
+        film.AddReduced(1, 0, Vec3(x, x, x), x);
+    }
+    double mean = 0;
+    for (double x : xs) mean += x;
+    mean /= xs.size();
+    double s2 = 0;
+    for (double x : xs) s2 += (x - mean) * (x - mean);
+    s2 /= xs.size() - 1;
+
+    Image img = film.Resolve();
+    EXPECT_EQ(img.At(0, 0, I), 3.0f);
+    EXPECT_EQ(img.At(0, 0, V), 0.5f);
+    EXPECT_EQ(img.At(1, 0, I), float(mean));
+    EXPECT_NEAR(img.At(1, 0, V), s2 / xs.size(), 1e-6 * s2 / xs.size());
+
+    Film single(1, 1, SensorResponse(SensorResponse::Kind::Radiometric));
+    single.AddReduced(0, 0, Vec3(1, 1, 1), 1);
+    EXPECT_EQ(single.Resolve().At(0, 0, V), 0.0f);  // n < 2
+}
+
+TEST(Film, InvalidSamplesAreCountedAsZeroAndNeverPropagate) {
+    Film film(2, 1, SensorResponse(SensorResponse::Kind::Radiometric));
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double inf = std::numeric_limits<double>::infinity();
+    for (int k = 0; k < 3; ++k) film.AddReduced(0, 0, Vec3(2, 2, 2), 2);
+    film.AddSample(0, 0, SampledSpectrum(nan), DeltaLine(500e-9, 1));
+    film.AddSample(0, 0, SampledSpectrum(-1), DeltaLine(500e-9, 1));
+    film.AddReduced(0, 0, Vec3(1, inf, 1), 1);
+    film.AddReduced(0, 0, Vec3(1, 1, 1), nan);
+    film.AddInvalidSample(0, 0);
+    for (int k = 0; k < 2; ++k) film.AddReduced(1, 0, Vec3(1, 1, 1), 1);
+
+    EXPECT_EQ(film.InvalidSampleCount(), 5);
+    EXPECT_EQ(film.SampleCount(0, 0), 8);
+    Image img = film.Resolve();
+    for (float v : img.data) EXPECT_TRUE(std::isfinite(v));
+    // Mean of {2, 2, 2, 0, 0, 0, 0, 0} and s²/n of that sequence.
+    EXPECT_FLOAT_EQ(img.At(0, 0, I), 0.75f);
+    double s2 = (3 * 1.25 * 1.25 + 5 * 0.75 * 0.75) / 7;
+    EXPECT_FLOAT_EQ(img.At(0, 0, V), float(s2 / 8));
+    EXPECT_EQ(img.metadata.at("phasor:invalid_samples"), "5");
+    EXPECT_EQ(img.metadata.at("phasor:samples_per_pixel"), "2");  // min over pixels
+}
+
+TEST(Film, OnlyCarriedWavelengthsContribute) {
+    Film film(3, 1, SensorResponse(SensorResponse::Kind::Radiometric));
+    // Delta: entry 0 only, divided by the line's selection probability.
+    SampledSpectrum L;
+    L.v = {1.5, 100, 100, 100};
+    film.AddSample(0, 0, L, DeltaLine(633e-9, 0.25));
+    // Continuous with terminated companions (pdf 0, hero pdf divided by NumWavelengths): only
+    // the hero counts, and it estimates L/pdf with the hero's original pdf.
+    SampledWavelengths wl;
+    wl.lambda = {500e-9, 600e-9, 700e-9, 800e-9};
+    wl.pdf = {8e6, 8e6, 8e6, 8e6};
+    wl.TerminateSecondary();
+    film.AddSample(1, 0, L, wl);
+    // All four carried: the average of L/pdf.
+    wl.pdf = {1e6, 2e6, 4e6, 8e6};
+    L.v = {1, 2, 4, 8};
+    film.AddSample(2, 0, L, wl);
+    Image img = film.Resolve();
+    EXPECT_FLOAT_EQ(img.At(0, 0, I), float(1.5 / 0.25));
+    EXPECT_FLOAT_EQ(img.At(1, 0, I), float(1.5 / 8e6));
+    EXPECT_FLOAT_EQ(img.At(2, 0, I), float(1e-6));
+    for (int x = 0; x < 3; ++x)
+        for (int ch : {R, G, B}) EXPECT_EQ(img.At(x, 0, ch), img.At(x, 0, I));  // radiometric grey
+}
+
+TEST(Film, CieSensorReadsYEqualOneForAFlatUnitSpectrum) {
+    // Uniform hero wavelength over the CIE range with stratified companions, L(λ) = 1; the
+    // estimate of ∫ȳ/∫ȳ dλ must be 1 in expectation — t-test per pixel (Šidák over the pixels).
+    const int w = 2, h = 2, spp = 4000;
+    const double lo = CieLambdaMin, hi = CieLambdaMax, range = hi - lo;
+    Film film(w, h, SensorResponse(SensorResponse::Kind::CieXyz));
+    test::TestRng rng(1234);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x)
+            for (int s = 0; s < spp; ++s) {
+                double u = rng.Uniform();
+                SampledWavelengths wl;
+                for (int i = 0; i < NumWavelengths; ++i) {
+                    double ui = u + double(i) / NumWavelengths;
+                    wl.lambda[i] = lo + (ui - std::floor(ui)) * range;
+                    wl.pdf[i] = 1 / range;
+                }
+                film.AddSample(x, y, SampledSpectrum(1.0), wl);
+            }
+    Image img = film.Resolve();
+    const double alpha = test::SidakAlpha(0.01, w * h);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            double mean = img.At(x, y, I), varMean = img.At(x, y, V);
+            ASSERT_GT(varMean, 0);
+            test::TTestResult t = test::MeanTTest(mean, varMean, spp - 1, 1.0);
+            EXPECT_GT(t.pValue, alpha) << "pixel " << x << "," << y << ": Y = " << mean << " "
+                                       << t.ToString();
+            std::printf("pixel %d,%d: Y = %.6f ± %.2g, p = %.3f\n", x, y, mean, std::sqrt(varMean),
+                        t.pValue);
+            // RGB is linear Rec.709 of the XYZ means: its luminance is the same Y.
+            Vec3 xyz = LinearSrgbToXyz(Vec3(img.At(x, y, R), img.At(x, y, G), img.At(x, y, B)));
+            EXPECT_NEAR(xyz.y, mean, 1e-5 * mean);
+        }
+    EXPECT_EQ(img.metadata.at("phasor:samples_per_pixel"), std::to_string(spp));
+    EXPECT_EQ(img.metadata.at("phasor:invalid_samples"), "0");
+}
+
+}  // namespace
+}  // namespace phasor

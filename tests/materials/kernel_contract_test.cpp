@@ -1,0 +1,527 @@
+// SPDX-License-Identifier: Apache-2.0
+// The generic diffraction-kernel contract suite (design.md §4.1, style.md §2.6): every registered
+// material × each of its TestPresets() × λ ∈ {400, 550, 700} nm × 7 incident directions (normal,
+// oblique, two grazing, two from below the shading normal). A new kernel is covered as soon as it
+// is registered and declares presets; presets may reference the fixtures of material_test_util.h.
+//
+// Conventions checked (core/material.h): local frame, wi and wo point away from the surface;
+// continuous samples have weight = Eval·|cosθo|/Pdf and report pdf = Pdf(wo); near-delta samples
+// report their lobe's selection probability as pdf, have Eval = Pdf = 0 in the ray-optics limit,
+// and obey the law of reflection or Snell's law (tangential wave vector kept, η = ScatterSample::eta).
+// Statistical checks use proper tests (χ², Welch / one-sample t) with fixed seeds and a Šidák
+// correction over the whole instantiation at family-wise level 1 %.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include "material_test_util.h"
+#include "support/stats.h"
+
+namespace phasor::test {
+namespace {
+
+constexpr double Lambdas[] = {400e-9, 550e-9, 700e-9};
+struct Incident {
+    double cosTheta, phi;
+};
+// Normal, oblique, grazing (86° and 89.4°), and two from below the shading normal.
+constexpr Incident Incidents[] = {{1.0, 0.0},  {0.8, 0.7},   {0.4, 2.1},  {0.08, 3.9},
+                                  {0.01, 5.2}, {-0.9, 1.3}, {-0.5, 4.4}};
+constexpr int NumLambdas = int(std::size(Lambdas)), NumIncidents = int(std::size(Incidents));
+// Statistical test kinds per instance (χ² sphere, importance vs uniform, furnace, discrete orders).
+constexpr int StatTestsPerCase = 4;
+
+struct ContractCase {
+    std::string kernel;
+    int preset = 0, lambdaIndex = 0, incident = 0;
+    std::string Name() const {
+        std::ostringstream os;
+        os << kernel << "_p" << preset << "_" << int(std::lround(Lambdas[lambdaIndex] * 1e9)) << "nm_in"
+           << incident;
+        return os.str();
+    }
+};
+
+std::vector<ContractCase> AllCases() {
+    std::vector<ContractCase> cases;
+    for (const auto &e : Registry<Material>::Entries()) {
+        const std::size_t n = e.presets().size();
+        for (std::size_t p = 0; p < n; ++p)
+            for (int l = 0; l < NumLambdas; ++l)
+                for (int d = 0; d < NumIncidents; ++d) cases.push_back({e.name, int(p), l, d});
+    }
+    return cases;
+}
+
+double Alpha() {
+    static const double a = SidakAlpha(0.01, std::max<int>(1, int(AllCases().size()) * StatTestsPerCase));
+    return a;
+}
+
+// Deterministic per (case, test) seed (FNV-1a of the name).
+uint64_t SeedFor(const std::string &s) {
+    uint64_t h = 1469598103934665603ull;
+    for (char c : s) h = (h ^ (unsigned char)c) * 1099511628211ull;
+    return h;
+}
+
+struct Moments {
+    double n = 0, mean = 0, m2 = 0;  // Welford
+    void Add(double x) {
+        n += 1;
+        double d = x - mean;
+        mean += d / n;
+        m2 += d * (x - mean);
+    }
+    double VarianceOfMean() const { return n > 1 ? m2 / (n - 1) / n : 0; }
+};
+
+// Energy carried by one sample at wavelength slot i: a_j/p_j with the radiance scaling (η_i/η_t)²
+// undone on transmission, so that it measures power, not radiance. Uses the hero's η, so it is
+// only meaningful for the companions when the sample is not dispersive.
+double EnergyWeight(const ScatterSample &s, int i) {
+    const double w = s.weight[i];
+    return (s.flags & ScatterTransmission) ? w * s.eta * s.eta : w;
+}
+
+// Pools cells with small expectation (sorted by expectation) into groups of ≥ 5 and folds any
+// remainder into the last group, so that no tiny leftover pool dominates χ². Cells with
+// expectation 0 are passed through (Chi2Test counts the samples that land there).
+void PreparePooled(const std::vector<double> &obs, const std::vector<double> &ex, std::vector<double> *po,
+                   std::vector<double> *pe) {
+    std::vector<std::size_t> order(obs.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::sort(order.begin(), order.end(), [&](auto a, auto b) { return ex[a] < ex[b]; });
+    double o = 0, e = 0;
+    for (std::size_t i : order) {
+        if (ex[i] <= 0 || ex[i] >= 5) {
+            po->push_back(obs[i]);
+            pe->push_back(ex[i]);
+            continue;
+        }
+        o += obs[i];
+        e += ex[i];
+        if (e >= 5) {
+            po->push_back(o);
+            pe->push_back(e);
+            o = e = 0;
+        }
+    }
+    if (e > 0) {
+        // Fold the remainder into the smallest cell with a positive expectation ≥ 5, if any.
+        std::size_t best = pe->size();
+        for (std::size_t i = 0; i < pe->size(); ++i)
+            if ((*pe)[i] > 0 && (best == pe->size() || (*pe)[i] < (*pe)[best])) best = i;
+        if (best < pe->size()) {
+            (*po)[best] += o;
+            (*pe)[best] += e;
+        } else {
+            po->push_back(o);
+            pe->push_back(e);
+        }
+    }
+}
+
+// On a χ² failure: observed and expected tables plus a plotting script (style.md §2.6 step 6).
+std::string WriteChi2Data(const std::string &name, int nCos, int nPhi, const std::vector<double> &obs,
+                          const std::vector<double> &ex) {
+    std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "phasor_chi2";
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    std::filesystem::path file = dir / (name + ".py");
+    std::ofstream f(file);
+    auto table = [&](const char *var, const std::vector<double> &v) {
+        f << var << " = np.array([\n";
+        for (int c = 0; c < nCos; ++c) {
+            f << "  [";
+            for (int p = 0; p < nPhi; ++p) f << v[std::size_t(c) * nPhi + p] << (p + 1 < nPhi ? ", " : "");
+            f << "],\n";
+        }
+        f << "])\n";
+    };
+    f << "# χ² failure data: rows = cosθ from -1 to 1, columns = φ from 0 to 2π.\n"
+      << "import numpy as np\nimport matplotlib.pyplot as plt\n";
+    table("observed", obs);
+    table("expected", ex);
+    f << "fig, ax = plt.subplots(1, 3, figsize=(15, 4))\n"
+      << "for a, d, t in zip(ax, [observed, expected, (observed - expected) / np.sqrt(np.maximum(expected, 1))],\n"
+      << "                   ['observed', 'expected', '(O-E)/sqrt(E)']):\n"
+      << "    im = a.imshow(d, origin='lower', aspect='auto', extent=[0, 2 * np.pi, -1, 1]); a.set_title(t)\n"
+      << "    fig.colorbar(im, ax=a)\n"
+      << "plt.show()\n";
+    return file.string();
+}
+
+class MaterialContract : public ::testing::TestWithParam<ContractCase> {
+  protected:
+    void SetUp() override {
+        c_ = GetParam();
+        const PluginEntry<Material> *entry = Registry<Material>::Find(c_.kernel);
+        ASSERT_NE(entry, nullptr);
+        std::vector<ParamDict> presets = entry->presets();
+        ASSERT_LT(std::size_t(c_.preset), presets.size());
+        Diagnostics diag;
+        material_ = BuildMaterial(c_.kernel, presets[c_.preset], diag);
+        std::ostringstream os;
+        diag.Print(os);
+        ASSERT_TRUE(material_) << "preset " << c_.preset << " of '" << c_.kernel << "' failed:\n" << os.str();
+        ASSERT_EQ(diag.All().size(), 0u) << "preset " << c_.preset << " of '" << c_.kernel
+                                         << "' is not clean:\n"
+                                         << os.str();
+        wl_ = TestWavelengths(Lambdas[c_.lambdaIndex]);
+        const Incident &in = Incidents[c_.incident];
+        q_.wi = DirectionFromCosTheta(in.cosTheta, in.phi);
+        q_.wl = &wl_;
+        q_.etaOutside = 1;
+        q_.rayOptics = true;
+        q_.uv = Vec2(0.13 + 0.19 * c_.incident, 0.61 - 0.07 * c_.incident);
+        q_.pLocal = Vec3(q_.uv.x, q_.uv.y, 0) * 1e-3;
+    }
+
+    TestRng Rng(const char *test) const { return TestRng(SeedFor(c_.Name() + "/" + test)); }
+    std::optional<ScatterSample> Draw(TestRng &rng) const {
+        const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
+        return material_->Sample(q_, u0, Vec2(u1, u2));
+    }
+
+    ContractCase c_;
+    std::shared_ptr<Material> material_;
+    SampledWavelengths wl_;
+    ScatterQuery q_;
+};
+
+// χ² grid (style.md §2.6): 2N × N cells over (φ, cosθ), N odd.
+constexpr int GridN = 51, GridPhi = 2 * GridN, GridCos = GridN;
+
+int CellOf(const Vec3 &w) {
+    const double cosT = Clamp(w.z, -1.0, 1.0);
+    double phi = std::atan2(w.y, w.x);
+    if (phi < 0) phi += 2 * Pi;
+    const int ic = std::min(GridCos - 1, std::max(0, int((cosT + 1) * 0.5 * GridCos)));
+    const int ip = std::min(GridPhi - 1, std::max(0, int(phi / (2 * Pi) * GridPhi)));
+    return ic * GridPhi + ip;
+}
+
+// ∫cell Pdf dω (dω = dφ dcosθ) by composite Simpson with 5 × 5 points per cell. Also reports
+// the smallest pdf value seen and whether all values were finite.
+struct PdfGrid {
+    std::vector<double> cell;
+    double total = 0, minPdf = Infinity;
+    bool finite = true;
+};
+PdfGrid IntegratePdf(const Material &m, const ScatterQuery &q) {
+    constexpr int Sub = 4;  // Simpson intervals per cell and axis
+    const int nc = GridCos * Sub + 1, np = GridPhi * Sub + 1;
+    const double dc = 2.0 / (GridCos * Sub), dp = 2 * Pi / (GridPhi * Sub);
+    std::vector<double> v(std::size_t(nc) * np);
+    PdfGrid g;
+    for (int i = 0; i < nc; ++i)
+        for (int j = 0; j < np; ++j) {
+            const double p = m.Pdf(q, DirectionFromCosTheta(-1 + i * dc, j * dp));
+            if (!std::isfinite(p)) g.finite = false;
+            g.minPdf = std::min(g.minPdf, p);
+            v[std::size_t(i) * np + j] = p;
+        }
+    constexpr double W[Sub + 1] = {1, 4, 2, 4, 1};
+    g.cell.assign(std::size_t(GridCos) * GridPhi, 0);
+    for (int ci = 0; ci < GridCos; ++ci)
+        for (int pj = 0; pj < GridPhi; ++pj) {
+            double s = 0;
+            for (int a = 0; a <= Sub; ++a)
+                for (int b = 0; b <= Sub; ++b)
+                    s += W[a] * W[b] * v[std::size_t(ci * Sub + a) * np + (pj * Sub + b)];
+            const double integral = s * (dc / 3) * (dp / 3);
+            g.cell[std::size_t(ci) * GridPhi + pj] = integral;
+            g.total += integral;
+        }
+    return g;
+}
+
+TEST_P(MaterialContract, Chi2SamplingMatchesPdf) {
+    // Continuous samples are histogrammed over the sphere; near-delta samples and failures go to
+    // one extra cell whose expectation is the probability mass the pdf does not cover.
+    const long long m = material_->IsDeltaOnly() ? 20000 : 1000000;
+    TestRng rng = Rng("chi2");
+    std::vector<double> obs(std::size_t(GridCos) * GridPhi + 1, 0);
+    for (long long i = 0; i < m; ++i) {
+        auto s = Draw(rng);
+        if (!s || (s->flags & ScatterNearDelta)) obs.back() += 1;
+        else obs[std::size_t(CellOf(s->wo))] += 1;
+    }
+    PdfGrid g = IntegratePdf(*material_, q_);
+    ASSERT_TRUE(g.finite);
+    std::vector<double> ex(obs.size());
+    for (std::size_t i = 0; i + 1 < ex.size(); ++i) ex[i] = double(m) * g.cell[i];
+    ex.back() = double(m) * std::max(0.0, 1 - g.total);
+    std::vector<double> po, pe;
+    PreparePooled(obs, ex, &po, &pe);
+    Chi2Result r = Chi2Test(po, pe);
+    const double alpha = Alpha();
+    const bool ok = std::isfinite(r.pValue) && r.pValue >= alpha && r.observedInEmptyCells <= 1e-5 * double(m);
+    std::string where;
+    if (!ok) {
+        std::vector<double> o(obs.begin(), obs.end() - 1), e(ex.begin(), ex.end() - 1);
+        where = WriteChi2Data(c_.Name(), GridCos, GridPhi, o, e);
+    }
+    EXPECT_TRUE(ok) << material_->ToString() << "\n"
+                    << r.ToString() << ", alpha = " << alpha << ", samples outside the pdf's support = "
+                    << r.observedInEmptyCells << ", discrete/failed: observed " << obs.back() << ", expected "
+                    << ex.back() << "\ntables: " << where;
+}
+
+TEST_P(MaterialContract, PdfIntegratesToAtMostOne) {
+    PdfGrid g = IntegratePdf(*material_, q_);
+    ASSERT_TRUE(g.finite);
+    EXPECT_GE(g.minPdf, 0) << "negative pdf";
+    EXPECT_LE(g.total, 1 + 1e-3);
+    // If Sample never fails and never picks a discrete lobe, the pdf must integrate to one.
+    TestRng rng = Rng("norm");
+    bool allContinuous = true;
+    for (int i = 0; i < 10000 && allContinuous; ++i) {
+        auto s = Draw(rng);
+        if (!s || (s->flags & ScatterNearDelta)) allContinuous = false;
+    }
+    if (allContinuous) EXPECT_NEAR(g.total, 1, 1e-3);
+}
+
+TEST_P(MaterialContract, SampleWeightMatchesEval) {
+    TestRng rng = Rng("weight");
+    int continuous = 0;
+    for (int i = 0; i < 10000; ++i) {
+        auto s = Draw(rng);
+        if (!s) continue;
+        if (s->flags & ScatterNearDelta) {
+            EXPECT_GT(s->pdf, 0);
+            EXPECT_LE(s->pdf, 1 + 1e-12) << "a discrete lobe's selection probability";
+            if (material_->IsDeltaOnly()) {
+                // Ray-optics limit: nothing but deltas, so no finite density anywhere.
+                EXPECT_TRUE(material_->Eval(q_, s->wo).IsZero());
+                EXPECT_EQ(material_->Pdf(q_, s->wo), 0);
+            }
+            continue;
+        }
+        ++continuous;
+        ASSERT_FALSE(material_->IsDeltaOnly()) << "IsDeltaOnly() but Sample returned a continuous lobe";
+        const double pdf = material_->Pdf(q_, s->wo);
+        ASSERT_GT(s->pdf, 0);
+        EXPECT_NEAR(s->pdf, pdf, 1e-6 * s->pdf) << "pdf reported by Sample differs from Pdf()";
+        const SampledSpectrum f = material_->Eval(q_, s->wo);
+        for (int j = 0; j < wl_.Count(); ++j) {
+            const double expected = f[j] * std::abs(s->wo.z) / pdf;
+            EXPECT_NEAR(s->weight[j], expected, 1e-4 * std::abs(s->weight[j]) + 1e-14)
+                << "wavelength slot " << j << ", wo = " << ToString(s->wo);
+        }
+        if (HasFailure()) break;
+    }
+    if (!material_->IsDeltaOnly()) EXPECT_GT(continuous, 0) << "never sampled a continuous lobe";
+}
+
+TEST_P(MaterialContract, ImportanceVsUniformEstimate) {
+    // ∫ f(wi, wo)|cosθo| dωo over the continuous lobes, by the kernel's own sampling and by uniform
+    // sphere sampling; the two estimates must agree (Welch's t-test).
+    constexpr int n = 100000;
+    TestRng rng = Rng("importance");
+    Moments imp, uni;
+    for (int i = 0; i < n; ++i) {
+        auto s = Draw(rng);
+        imp.Add(s && !(s->flags & ScatterNearDelta) ? s->weight[0] : 0.0);
+    }
+    for (int i = 0; i < n; ++i) {
+        const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
+        uni.Add(material_->Eval(q_, wo)[0] * std::abs(wo.z) * 4 * Pi);
+    }
+    TTestResult t = WelchTTest(imp.mean, imp.VarianceOfMean(), imp.n - 1, uni.mean, uni.VarianceOfMean(), uni.n - 1);
+    EXPECT_GE(t.pValue, Alpha()) << material_->ToString() << "\nimportance " << imp.mean << " ± "
+                                 << std::sqrt(imp.VarianceOfMean()) << ", uniform " << uni.mean << " ± "
+                                 << std::sqrt(uni.VarianceOfMean()) << ": " << t.ToString();
+}
+
+TEST_P(MaterialContract, WhiteFurnace) {
+    // Albedo ≤ 1: the mean energy weight (a_j/p_j with the radiance scaling undone) may not
+    // significantly exceed 1 (one-sided t-test), per wavelength slot.
+    constexpr int n = 100000;
+    TestRng rng = Rng("furnace");
+    std::vector<Moments> e(std::size_t(wl_.Count()));
+    for (int i = 0; i < n; ++i) {
+        auto s = Draw(rng);
+        for (int j = 0; j < wl_.Count(); ++j) {
+            double x = 0;
+            // Companions of a dispersive sample follow the hero's direction and are dropped by the
+            // integrator (theory §0 D10); count them as absorbed (a lower bound).
+            if (s && (j == 0 || !(s->flags & ScatterDispersive))) x = EnergyWeight(*s, j);
+            e[std::size_t(j)].Add(x);
+        }
+    }
+    for (int j = 0; j < wl_.Count(); ++j) {
+        const Moments &mj = e[std::size_t(j)];
+        if (mj.mean <= 1) continue;
+        if (mj.VarianceOfMean() == 0) {
+            EXPECT_LE(mj.mean, 1 + 1e-12) << "slot " << j << ": every sample carries more energy than it received";
+            continue;
+        }
+        TTestResult t = MeanTTest(mj.mean, mj.VarianceOfMean(), mj.n - 1, 1.0);
+        EXPECT_GE(0.5 * t.pValue, Alpha()) << "slot " << j << ": albedo " << mj.mean << " ± "
+                                           << std::sqrt(mj.VarianceOfMean()) << " > 1 (" << t.ToString() << ")";
+    }
+}
+
+TEST_P(MaterialContract, Reciprocal) {
+    if (!material_->IsReciprocal()) GTEST_SKIP() << "kernel declares itself non-reciprocal";
+    TestRng rng = Rng("reciprocal");
+    // Continuous lobes: f(wi → wo) = f(wo → wi) for pairs on one side (a transmission pair would
+    // need the η² of the two media).
+    for (int i = 0; i < 2000; ++i) {
+        const Vec3 a = UniformSphere(rng.Uniform(), rng.Uniform());
+        Vec3 b = UniformSphere(rng.Uniform(), rng.Uniform());
+        if (a.z * b.z < 0) b.z = -b.z;
+        ScatterQuery qa = q_, qb = q_;
+        qa.wi = a;
+        qb.wi = b;
+        const SampledSpectrum fab = material_->Eval(qa, b), fba = material_->Eval(qb, a);
+        for (int j = 0; j < wl_.Count(); ++j)
+            ASSERT_NEAR(fab[j], fba[j], 1e-9 * std::max(std::abs(fab[j]), std::abs(fba[j])) + 1e-300)
+                << "wi = " << ToString(a) << ", wo = " << ToString(b) << ", slot " << j;
+    }
+    // Near-delta lobes: the energy a_j carried from wi to wo equals that carried back from wo to wi.
+    for (int i = 0; i < 200; ++i) {
+        auto s = Draw(rng);
+        if (!s || !(s->flags & ScatterNearDelta)) continue;
+        const double a = EnergyWeight(*s, 0) * s->pdf;
+        ScatterQuery back = q_;
+        back.wi = s->wo;
+        bool found = false;
+        for (int k = -1; k <= 256 && !found; ++k) {
+            const double u0 = k < 0 ? 0.0 : (k == 256 ? 1 - 1e-12 : (k + 0.5) / 256);
+            auto r = material_->Sample(back, u0, Vec2(0.5, 0.5));
+            if (!r || !(r->flags & ScatterNearDelta) || Length(r->wo - q_.wi) > 1e-8) continue;
+            found = true;
+            const double ab = EnergyWeight(*r, 0) * r->pdf;
+            EXPECT_NEAR(a, ab, 1e-9 * std::max(a, ab) + 1e-15)
+                << "lobe " << s->lobe << ": wi = " << ToString(q_.wi) << ", wo = " << ToString(s->wo);
+        }
+        EXPECT_TRUE(found) << "no discrete lobe leads from wo = " << ToString(s->wo) << " back to wi";
+        if (HasFailure()) break;
+    }
+}
+
+TEST_P(MaterialContract, FiniteEverywhere) {
+    TestRng rng = Rng("finite");
+    const SampledWavelengths line = LineWavelength(Lambdas[c_.lambdaIndex]);
+    for (int i = 0; i < 4000; ++i) {
+        ScatterQuery q = q_;
+        q.wl = (i % 2) ? &line : &wl_;
+        // Random incident directions, plus exactly grazing and nearly grazing ones.
+        switch (i % 8) {
+            case 0: q.wi = DirectionFromCosTheta(0, 2 * Pi * rng.Uniform()); break;
+            case 1: q.wi = DirectionFromCosTheta(1e-12, 2 * Pi * rng.Uniform()); break;
+            case 2: q.wi = DirectionFromCosTheta(-1e-12, 2 * Pi * rng.Uniform()); break;
+            case 3: q.wi = Vec3(0, 0, rng.Uniform() < 0.5 ? 1 : -1); break;
+            default: q.wi = UniformSphere(rng.Uniform(), rng.Uniform());
+        }
+        q.uv = Vec2(4 * rng.Uniform() - 2, 4 * rng.Uniform() - 2);
+        const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
+        const SampledSpectrum f = material_->Eval(q, wo);
+        const double pdf = material_->Pdf(q, wo);
+        ASSERT_TRUE(std::isfinite(pdf) && pdf >= 0) << "Pdf = " << pdf << " for wi = " << ToString(q.wi);
+        for (int j = 0; j < q.wl->Count(); ++j)
+            ASSERT_TRUE(std::isfinite(f[j]) && f[j] >= 0) << "Eval = " << f[j] << " for wi = " << ToString(q.wi);
+        const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
+        auto s = material_->Sample(q, u0, Vec2(u1, u2));
+        if (!s) continue;
+        ASSERT_TRUE(IsFinite(s->wo)) << "wi = " << ToString(q.wi);
+        ASSERT_NEAR(Length(s->wo), 1, 1e-9) << "wi = " << ToString(q.wi);
+        ASSERT_TRUE(std::isfinite(s->pdf) && s->pdf > 0) << "pdf = " << s->pdf;
+        ASSERT_TRUE(std::isfinite(s->eta) && s->eta > 0) << "eta = " << s->eta;
+        for (int j = 0; j < q.wl->Count(); ++j)
+            ASSERT_TRUE(std::isfinite(s->weight[j]) && s->weight[j] >= 0)
+                << "weight = " << s->weight[j] << " for wi = " << ToString(q.wi);
+        // The side of wo agrees with the lobe's flags.
+        if ((s->flags & ScatterReflection) && !(s->flags & ScatterTransmission))
+            ASSERT_GE(s->wo.z * q.wi.z, 0) << "a reflection lobe sent wo through the surface";
+        if ((s->flags & ScatterTransmission) && !(s->flags & ScatterReflection))
+            ASSERT_LE(s->wo.z * q.wi.z, 0) << "a transmission lobe kept wo on wi's side";
+    }
+}
+
+TEST_P(MaterialContract, DiscreteOrders) {
+    // Categorical χ² of the lobe choice against the probabilities each lobe reports, plus the
+    // geometry of every near-delta direction.
+    constexpr int n = 100000;
+    TestRng rng = Rng("discrete");
+    std::map<int, std::pair<double, double>> lobes;  // lobe → (count, stated probability)
+    double other = 0;
+    for (int i = 0; i < n; ++i) {
+        auto s = Draw(rng);
+        if (!s || !(s->flags & ScatterNearDelta)) {
+            other += 1;
+            continue;
+        }
+        auto [it, inserted] = lobes.try_emplace(s->lobe, 0.0, s->pdf);
+        it->second.first += 1;
+        ASSERT_NEAR(it->second.second, s->pdf, 1e-12) << "lobe " << s->lobe << " reports different probabilities";
+        const Vec3 &wi = q_.wi, &wo = s->wo;
+        if ((s->flags & ScatterReflection) && !(s->flags & ScatterTransmission)) {
+            // Law of reflection.
+            ASSERT_LT(Length(wo - Vec3(-wi.x, -wi.y, wi.z)), 1e-9) << "wi " << ToString(wi) << " wo " << ToString(wo);
+        } else if (s->flags & ScatterTransmission) {
+            // Snell: n_t·wo_t = −n_i·wi_t (tangential wave vector kept), wo on the other side.
+            ASSERT_LT(wo.z * wi.z, 0);
+            ASSERT_LT(std::hypot(s->eta * wo.x + wi.x, s->eta * wo.y + wi.y), 1e-9)
+                << "eta " << s->eta << " wi " << ToString(wi) << " wo " << ToString(wo);
+            ASSERT_NEAR(Length(wo), 1, 1e-12);
+        }
+    }
+    std::vector<double> obs, ex;
+    double stated = 0;
+    for (const auto &[lobe, cp] : lobes) {
+        obs.push_back(cp.first);
+        ex.push_back(n * cp.second);
+        stated += cp.second;
+    }
+    ASSERT_LE(stated, 1 + 1e-12) << "lobe probabilities sum to more than one";
+    obs.push_back(other);
+    ex.push_back(n * std::max(0.0, 1 - stated));
+    std::vector<double> po, pe;
+    PreparePooled(obs, ex, &po, &pe);
+    if (po.size() < 2) {
+        // One category: every sample must be in it.
+        EXPECT_EQ(po.empty() ? 0.0 : po[0], double(n));
+        return;
+    }
+    Chi2Result r = Chi2Test(po, pe);
+    EXPECT_TRUE(std::isfinite(r.pValue) && r.pValue >= Alpha() && r.observedInEmptyCells == 0)
+        << material_->ToString() << "\n"
+        << r.ToString() << ", alpha = " << Alpha();
+}
+
+INSTANTIATE_TEST_SUITE_P(AllKernels, MaterialContract, ::testing::ValuesIn(AllCases()),
+                         [](const ::testing::TestParamInfo<ContractCase> &info) { return info.param.Name(); });
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(MaterialContract);
+
+TEST(MaterialRegistry, EveryKernelHasTwoToFivePresets) {
+    ASSERT_FALSE(Registry<Material>::Entries().empty());
+    for (const auto &e : Registry<Material>::Entries()) {
+        const std::vector<ParamDict> presets = e.presets();
+        EXPECT_GE(presets.size(), 2u) << "material '" << e.name << "' declares no TestPresets()";
+        EXPECT_LE(presets.size(), 5u) << "material '" << e.name << "' declares too many presets";
+        for (std::size_t p = 0; p < presets.size(); ++p) {
+            Diagnostics diag;
+            auto m = BuildMaterial(e.name, presets[p], diag);
+            std::ostringstream os;
+            diag.Print(os);
+            EXPECT_TRUE(m && diag.All().empty()) << "preset " << p << " of '" << e.name << "':\n" << os.str();
+        }
+    }
+}
+
+TEST(MaterialRegistry, ExpectedKernelsAreRegistered) {
+    for (const char *name : {"diffuse", "conductor", "dielectric"})
+        EXPECT_NE(Registry<Material>::Find(name), nullptr) << name;
+}
+
+}  // namespace
+}  // namespace phasor::test
