@@ -4,8 +4,10 @@
 
 #include <atomic>
 #include <chrono>
+#include <cerrno>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <iostream>
 #include <sstream>
@@ -180,11 +182,10 @@ int Check(const CliOptions &o) {
 
 int Format(const CliOptions &o) {
     Diagnostics diag;
-    std::string text;
-    bool ok = FormatSceneFile(o.scene, diag, text);
+    auto text = FormatSceneFile(o.scene, diag);
     diag.Print(std::cerr, Colour());
-    if (!ok || diag.HasErrors()) return 1;
-    std::cout << text;
+    if (!text || diag.HasErrors()) return 1;
+    std::cout << *text;
     return 0;
 }
 

@@ -64,7 +64,9 @@ struct SampledWavelengths {
     std::array<double, NumWavelengths> lambda{};  // [m]
     std::array<double, NumWavelengths> pdf{};
     bool delta = false;
-    /// Drops the companions (a dispersive near-delta lobe was taken; theory §0 D10).
+    /// Drops the companions (a dispersive near-delta lobe was taken; theory §0 D10). The hero's
+    /// pdf is divided by NumWavelengths, so averaging L/pdf over all NumWavelengths entries
+    /// (skipping pdf 0, as the film does) stays unbiased. No-op for a delta sample.
     void TerminateSecondary();
     bool SecondaryTerminated() const;
     int Count() const { return delta ? 1 : NumWavelengths; }

@@ -55,8 +55,9 @@ class MetalIndexSpectrum final : public Spectrum {
 
 class ConductorMaterial final : public Material {
   public:
-    ConductorMaterial(std::shared_ptr<const Spectrum> eta, std::shared_ptr<const Spectrum> k)
-        : eta_(std::move(eta)), k_(std::move(k)) {}
+    ConductorMaterial(std::shared_ptr<const Spectrum> eta, std::shared_ptr<const Spectrum> k,
+                      std::optional<Metal> metal = std::nullopt)
+        : eta_(std::move(eta)), k_(std::move(k)), metal_(metal) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -118,7 +119,7 @@ class ConductorMaterial final : public Material {
             throw Error(dict.Loc("metal"),
                         "unknown metal '" + name + "'");  // schema choices catch this first
         return std::make_unique<ConductorMaterial>(std::make_shared<MetalIndexSpectrum>(*m, false, name),
-                                                   std::make_shared<MetalIndexSpectrum>(*m, true, name));
+                                                   std::make_shared<MetalIndexSpectrum>(*m, true, name), m);
     }
 
     static std::vector<ParamDict> TestPresets() {
@@ -165,12 +166,15 @@ class ConductorMaterial final : public Material {
         const double cosI = std::abs(q.wi.z);
         for (int i = 0; i < q.wl->Count(); ++i) {
             const double l = q.wl->lambda[i];
-            r[i] = FresnelComplex(cosI, q.etaOutside, Complex(eta_->Eval(l), k_->Eval(l)));
+            // A tabulated metal is evaluated once per wavelength (not once for n and once for κ).
+            const Complex n = metal_ ? MetalIndex(*metal_, l) : Complex(eta_->Eval(l), k_->Eval(l));
+            r[i] = FresnelComplex(cosI, q.etaOutside, n);
         }
         return r;
     }
 
     std::shared_ptr<const Spectrum> eta_, k_;
+    std::optional<Metal> metal_;  // set for `metal`: eta_/k_ are then views of MetalIndex()
 };
 
 PHASOR_EXPORT_PLUGIN(Material, ConductorMaterial)

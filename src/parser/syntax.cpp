@@ -59,8 +59,7 @@ class SyntaxParser {
         }
         // Comments after the last statement.
         Comments tail;
-        TakeLeading(Peek().offset, tail);
-        if (ci_ < comments_.size()) TakeLeading(~0u, tail);
+        TakeLeading(out.lexError ? toks_[std::min(i_, toks_.size() - 1)].offset : ~0u, tail);
         out.trailingComments = std::move(tail.leading);
         out.trailingBlankBefore = tail.blankBefore;
         return diag_.ErrorCount() == errorsBefore;
@@ -105,6 +104,7 @@ class SyntaxParser {
     FileLoc Loc(int line, int col, int length) const { return FileLoc{file_, line, col, std::max(1, length)}; }
     FileLoc Loc(const Token &t) const { return Loc(t.line, t.col, t.kind == Tok::End ? 1 : t.length); }
     FileLoc Loc(const Pos &p) const { return Loc(p.line, p.col, p.length); }
+    static std::string Where(const Token &t) { return std::to_string(t.line) + ":" + std::to_string(t.col); }
     static Pos PosOf(const Token &t) { return Pos{t.line, t.col, std::max(1, t.length)}; }
 
     [[noreturn]] void Fail(const Token &t, const std::string &msg, std::vector<Diagnostic> extra = {}) {
@@ -141,7 +141,12 @@ class SyntaxParser {
                 Peek();  // reports and throws LexAbort
                 return;
             }
-            if (t.kind == Tok::Ident && IsStatementKeyword(t.text) && t.text != "wscene" && StartsLine(i_)) return;
+            // A statement keyword starting a line, or a name starting a line followed by a string
+            // (a misspelled block keyword, reported as such).
+            if (t.kind == Tok::Ident && StartsLine(i_) &&
+                ((IsStatementKeyword(t.text) && t.text != "wscene") ||
+                 (!IsReservedWord(t.text) && i_ + 1 < toks_.size() && toks_[i_ + 1].kind == Tok::String)))
+                return;
             ++i_;
         }
         i_ = toks_.size() - 1;
@@ -552,7 +557,7 @@ class SyntaxParser {
                 e.kind = Expr::Kind::Paren;
                 e.kids.push_back(ParseExpr(false));
                 if (Peek().kind != Tok::RParen)
-                    Fail(Peek(), "expected ')' to close the '(' at " + Loc(t).ToString() + "; got " + Got(Peek()));
+                    Fail(Peek(), "expected ')' to close the '(' at " + Where(t) + "; got " + Got(Peek()));
                 Next();
                 e.pos = Span(t);
                 return e;
@@ -591,10 +596,10 @@ class SyntaxParser {
             const Token &t = Peek();
             if (t.kind == Tok::RBracket) break;
             if (t.kind == Tok::End)
-                Fail(t, "unexpected end of file: missing ']' to close the list opened at " + Loc(open).ToString());
+                Fail(t, "unexpected end of file: missing ']' to close the list opened at " + Where(open));
             if (t.kind == Tok::Comma) Fail(t, "expected a list item; got ','");
             if (t.kind == Tok::RBrace || (t.kind == Tok::Ident && IsStatementKeyword(t.text)))
-                Fail(t, "missing ']' to close the list opened at " + Loc(open).ToString());
+                Fail(t, "missing ']' to close the list opened at " + Where(open));
             e.kids.push_back(ParseExpr(true));
             if (Peek().kind == Tok::Comma) Next();
         }
@@ -620,7 +625,7 @@ class SyntaxParser {
             if (t.kind == Tok::RParen) break;
             if (t.kind == Tok::End)
                 Fail(t, "unexpected end of file: missing ')' to close the call to '" + name.text + "' opened at " +
-                            Loc(open).ToString());
+                            Where(open));
             std::string argName;
             Pos argPos;
             if (t.kind == Tok::Ident && Peek(1).kind == Tok::Assign) {

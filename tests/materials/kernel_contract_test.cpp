@@ -29,7 +29,7 @@ struct Incident {
     double cosTheta, phi;
 };
 // Normal, oblique, grazing (86° and 89.4°), and two from below the shading normal.
-constexpr Incident Incidents[] = {{1.0, 0.0},  {0.8, 0.7},   {0.4, 2.1},  {0.08, 3.9},
+constexpr Incident Incidents[] = {{1.0, 0.0},  {0.8, 0.7},  {0.4, 2.1}, {0.08, 3.9},
                                   {0.01, 5.2}, {-0.9, 1.3}, {-0.5, 4.4}};
 constexpr int NumLambdas = int(std::size(Lambdas)), NumIncidents = int(std::size(Incidents));
 // Statistical test kinds per instance (χ² sphere, importance vs uniform, furnace, discrete orders).
@@ -148,7 +148,8 @@ std::string WriteChi2Data(const std::string &name, int nCos, int nPhi, const std
     table("observed", obs);
     table("expected", ex);
     f << "fig, ax = plt.subplots(1, 3, figsize=(15, 4))\n"
-      << "for a, d, t in zip(ax, [observed, expected, (observed - expected) / np.sqrt(np.maximum(expected, 1))],\n"
+      << "for a, d, t in zip(ax, [observed, expected, (observed - expected) / np.sqrt(np.maximum(expected, "
+         "1))],\n"
       << "                   ['observed', 'expected', '(O-E)/sqrt(E)']):\n"
       << "    im = a.imshow(d, origin='lower', aspect='auto', extent=[0, 2 * np.pi, -1, 1]); a.set_title(t)\n"
       << "    fig.colorbar(im, ax=a)\n"
@@ -169,9 +170,9 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
         std::ostringstream os;
         diag.Print(os);
         ASSERT_TRUE(material_) << "preset " << c_.preset << " of '" << c_.kernel << "' failed:\n" << os.str();
-        ASSERT_EQ(diag.All().size(), 0u) << "preset " << c_.preset << " of '" << c_.kernel
-                                         << "' is not clean:\n"
-                                         << os.str();
+        ASSERT_EQ(diag.All().size(), 0u)
+            << "preset " << c_.preset << " of '" << c_.kernel << "' is not clean:\n"
+            << os.str();
         wl_ = TestWavelengths(Lambdas[c_.lambdaIndex]);
         const Incident &in = Incidents[c_.incident];
         q_.wi = DirectionFromCosTheta(in.cosTheta, in.phi);
@@ -249,8 +250,10 @@ TEST_P(MaterialContract, Chi2SamplingMatchesPdf) {
     std::vector<double> obs(std::size_t(GridCos) * GridPhi + 1, 0);
     for (long long i = 0; i < m; ++i) {
         auto s = Draw(rng);
-        if (!s || (s->flags & ScatterNearDelta)) obs.back() += 1;
-        else obs[std::size_t(CellOf(s->wo))] += 1;
+        if (!s || (s->flags & ScatterNearDelta))
+            obs.back() += 1;
+        else
+            obs[std::size_t(CellOf(s->wo))] += 1;
     }
     PdfGrid g = IntegratePdf(*material_, q_);
     ASSERT_TRUE(g.finite);
@@ -261,16 +264,18 @@ TEST_P(MaterialContract, Chi2SamplingMatchesPdf) {
     PreparePooled(obs, ex, &po, &pe);
     Chi2Result r = Chi2Test(po, pe);
     const double alpha = Alpha();
-    const bool ok = std::isfinite(r.pValue) && r.pValue >= alpha && r.observedInEmptyCells <= 1e-5 * double(m);
+    const bool ok =
+        std::isfinite(r.pValue) && r.pValue >= alpha && r.observedInEmptyCells <= 1e-5 * double(m);
     std::string where;
     if (!ok) {
         std::vector<double> o(obs.begin(), obs.end() - 1), e(ex.begin(), ex.end() - 1);
         where = WriteChi2Data(c_.Name(), GridCos, GridPhi, o, e);
     }
     EXPECT_TRUE(ok) << material_->ToString() << "\n"
-                    << r.ToString() << ", alpha = " << alpha << ", samples outside the pdf's support = "
-                    << r.observedInEmptyCells << ", discrete/failed: observed " << obs.back() << ", expected "
-                    << ex.back() << "\ntables: " << where;
+                    << r.ToString() << ", alpha = " << alpha
+                    << ", samples outside the pdf's support = " << r.observedInEmptyCells
+                    << ", discrete/failed: observed " << obs.back() << ", expected " << ex.back()
+                    << "\ntables: " << where;
 }
 
 TEST_P(MaterialContract, PdfIntegratesToAtMostOne) {
@@ -285,7 +290,9 @@ TEST_P(MaterialContract, PdfIntegratesToAtMostOne) {
         auto s = Draw(rng);
         if (!s || (s->flags & ScatterNearDelta)) allContinuous = false;
     }
-    if (allContinuous) EXPECT_NEAR(g.total, 1, 1e-3);
+    if (allContinuous) {
+        EXPECT_NEAR(g.total, 1, 1e-3);
+    }
 }
 
 TEST_P(MaterialContract, SampleWeightMatchesEval) {
@@ -317,13 +324,16 @@ TEST_P(MaterialContract, SampleWeightMatchesEval) {
         }
         if (HasFailure()) break;
     }
-    if (!material_->IsDeltaOnly()) EXPECT_GT(continuous, 0) << "never sampled a continuous lobe";
+    if (!material_->IsDeltaOnly()) {
+        EXPECT_GT(continuous, 0) << "never sampled a continuous lobe";
+    }
 }
 
 TEST_P(MaterialContract, ImportanceVsUniformEstimate) {
     // ∫ f(wi, wo)|cosθo| dωo over the continuous lobes, by the kernel's own sampling and by uniform
     // sphere sampling; the two estimates must agree (Welch's t-test).
-    constexpr int n = 100000;
+    // A delta-only kernel has nothing to estimate (Eval ≡ 0): a short run confirms it.
+    const int n = material_->IsDeltaOnly() ? 10000 : 100000;
     TestRng rng = Rng("importance");
     Moments imp, uni;
     for (int i = 0; i < n; ++i) {
@@ -334,7 +344,8 @@ TEST_P(MaterialContract, ImportanceVsUniformEstimate) {
         const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
         uni.Add(material_->Eval(q_, wo)[0] * std::abs(wo.z) * 4 * Pi);
     }
-    TTestResult t = WelchTTest(imp.mean, imp.VarianceOfMean(), imp.n - 1, uni.mean, uni.VarianceOfMean(), uni.n - 1);
+    TTestResult t =
+        WelchTTest(imp.mean, imp.VarianceOfMean(), imp.n - 1, uni.mean, uni.VarianceOfMean(), uni.n - 1);
     EXPECT_GE(t.pValue, Alpha()) << material_->ToString() << "\nimportance " << imp.mean << " ± "
                                  << std::sqrt(imp.VarianceOfMean()) << ", uniform " << uni.mean << " ± "
                                  << std::sqrt(uni.VarianceOfMean()) << ": " << t.ToString();
@@ -360,12 +371,14 @@ TEST_P(MaterialContract, WhiteFurnace) {
         const Moments &mj = e[std::size_t(j)];
         if (mj.mean <= 1) continue;
         if (mj.VarianceOfMean() == 0) {
-            EXPECT_LE(mj.mean, 1 + 1e-12) << "slot " << j << ": every sample carries more energy than it received";
+            EXPECT_LE(mj.mean, 1 + 1e-12)
+                << "slot " << j << ": every sample carries more energy than it received";
             continue;
         }
         TTestResult t = MeanTTest(mj.mean, mj.VarianceOfMean(), mj.n - 1, 1.0);
-        EXPECT_GE(0.5 * t.pValue, Alpha()) << "slot " << j << ": albedo " << mj.mean << " ± "
-                                           << std::sqrt(mj.VarianceOfMean()) << " > 1 (" << t.ToString() << ")";
+        EXPECT_GE(0.5 * t.pValue, Alpha())
+            << "slot " << j << ": albedo " << mj.mean << " ± " << std::sqrt(mj.VarianceOfMean()) << " > 1 ("
+            << t.ToString() << ")";
     }
 }
 
@@ -416,11 +429,20 @@ TEST_P(MaterialContract, FiniteEverywhere) {
         q.wl = (i % 2) ? &line : &wl_;
         // Random incident directions, plus exactly grazing and nearly grazing ones.
         switch (i % 8) {
-            case 0: q.wi = DirectionFromCosTheta(0, 2 * Pi * rng.Uniform()); break;
-            case 1: q.wi = DirectionFromCosTheta(1e-12, 2 * Pi * rng.Uniform()); break;
-            case 2: q.wi = DirectionFromCosTheta(-1e-12, 2 * Pi * rng.Uniform()); break;
-            case 3: q.wi = Vec3(0, 0, rng.Uniform() < 0.5 ? 1 : -1); break;
-            default: q.wi = UniformSphere(rng.Uniform(), rng.Uniform());
+            case 0:
+                q.wi = DirectionFromCosTheta(0, 2 * Pi * rng.Uniform());
+                break;
+            case 1:
+                q.wi = DirectionFromCosTheta(1e-12, 2 * Pi * rng.Uniform());
+                break;
+            case 2:
+                q.wi = DirectionFromCosTheta(-1e-12, 2 * Pi * rng.Uniform());
+                break;
+            case 3:
+                q.wi = Vec3(0, 0, rng.Uniform() < 0.5 ? 1 : -1);
+                break;
+            default:
+                q.wi = UniformSphere(rng.Uniform(), rng.Uniform());
         }
         q.uv = Vec2(4 * rng.Uniform() - 2, 4 * rng.Uniform() - 2);
         const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
@@ -428,7 +450,8 @@ TEST_P(MaterialContract, FiniteEverywhere) {
         const double pdf = material_->Pdf(q, wo);
         ASSERT_TRUE(std::isfinite(pdf) && pdf >= 0) << "Pdf = " << pdf << " for wi = " << ToString(q.wi);
         for (int j = 0; j < q.wl->Count(); ++j)
-            ASSERT_TRUE(std::isfinite(f[j]) && f[j] >= 0) << "Eval = " << f[j] << " for wi = " << ToString(q.wi);
+            ASSERT_TRUE(std::isfinite(f[j]) && f[j] >= 0)
+                << "Eval = " << f[j] << " for wi = " << ToString(q.wi);
         const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
         auto s = material_->Sample(q, u0, Vec2(u1, u2));
         if (!s) continue;
@@ -440,10 +463,12 @@ TEST_P(MaterialContract, FiniteEverywhere) {
             ASSERT_TRUE(std::isfinite(s->weight[j]) && s->weight[j] >= 0)
                 << "weight = " << s->weight[j] << " for wi = " << ToString(q.wi);
         // The side of wo agrees with the lobe's flags.
-        if ((s->flags & ScatterReflection) && !(s->flags & ScatterTransmission))
+        if ((s->flags & ScatterReflection) && !(s->flags & ScatterTransmission)) {
             ASSERT_GE(s->wo.z * q.wi.z, 0) << "a reflection lobe sent wo through the surface";
-        if ((s->flags & ScatterTransmission) && !(s->flags & ScatterReflection))
+        }
+        if ((s->flags & ScatterTransmission) && !(s->flags & ScatterReflection)) {
             ASSERT_LE(s->wo.z * q.wi.z, 0) << "a transmission lobe kept wo on wi's side";
+        }
     }
 }
 
@@ -462,11 +487,13 @@ TEST_P(MaterialContract, DiscreteOrders) {
         }
         auto [it, inserted] = lobes.try_emplace(s->lobe, 0.0, s->pdf);
         it->second.first += 1;
-        ASSERT_NEAR(it->second.second, s->pdf, 1e-12) << "lobe " << s->lobe << " reports different probabilities";
+        ASSERT_NEAR(it->second.second, s->pdf, 1e-12)
+            << "lobe " << s->lobe << " reports different probabilities";
         const Vec3 &wi = q_.wi, &wo = s->wo;
         if ((s->flags & ScatterReflection) && !(s->flags & ScatterTransmission)) {
             // Law of reflection.
-            ASSERT_LT(Length(wo - Vec3(-wi.x, -wi.y, wi.z)), 1e-9) << "wi " << ToString(wi) << " wo " << ToString(wo);
+            ASSERT_LT(Length(wo - Vec3(-wi.x, -wi.y, wi.z)), 1e-9)
+                << "wi " << ToString(wi) << " wo " << ToString(wo);
         } else if (s->flags & ScatterTransmission) {
             // Snell: n_t·wo_t = −n_i·wi_t (tangential wave vector kept), wo on the other side.
             ASSERT_LT(wo.z * wi.z, 0);
@@ -499,7 +526,9 @@ TEST_P(MaterialContract, DiscreteOrders) {
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKernels, MaterialContract, ::testing::ValuesIn(AllCases()),
-                         [](const ::testing::TestParamInfo<ContractCase> &info) { return info.param.Name(); });
+                         [](const ::testing::TestParamInfo<ContractCase> &info) {
+                             return info.param.Name();
+                         });
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(MaterialContract);
 
 TEST(MaterialRegistry, EveryKernelHasTwoToFivePresets) {

@@ -25,7 +25,9 @@ inline void AddFixtures(SceneDesc &desc) {
     checker.keyword = "Texture";
     checker.type = "checkerboard";
     checker.name = "contract_checker";
-    checker.params.Set("color0", Value::Number(0.1)).Set("color1", Value::Number(0.9)).Set("scale", Value::Number(4));
+    checker.params.Set("color0", Value::Number(0.1))
+        .Set("color1", Value::Number(0.9))
+        .Set("scale", Value::Number(4));
     desc.entities.push_back(checker);
     SceneEntity half;
     half.keyword = "Texture";

@@ -293,11 +293,11 @@ TEST(Parser, OverrideWithWrongDimensionCitesTheDefine) {
 
 TEST(Parser, UnusedOverrideIsAWarningOrStrictError) {
     const std::string src = "wscene 1\nDefine width = 1 m\nShape \"s\" {}\n";
-    Parsed p = Parse(src, {{"widht", "2 m"}});
+    Parsed p = Parse(src, {{"widt", "2 m"}});
     ASSERT_TRUE(p.desc) << p.Errors();
     EXPECT_EQ(p.diag->WarningCount(), 1u);
     EXPECT_NE(p.Errors().find("did you mean 'width'?"), std::string::npos) << p.Errors();
-    Parsed s = Parse(src, {{"widht", "2 m"}}, {}, /*strict=*/true);
+    Parsed s = Parse(src, {{"widt", "2 m"}}, {}, /*strict=*/true);
     EXPECT_FALSE(s.desc);
     EXPECT_EQ(s.diag->ErrorCount(), 1u);
 }
@@ -348,7 +348,7 @@ TEST(Parser, ErrorsInIncludedFilesCarryTheIncludeChain) {
     EXPECT_FALSE(p.desc);
     ASSERT_EQ(p.diag->All().size(), 1u) << p.Errors();
     const Diagnostic &d = p.diag->All()[0];
-    EXPECT_EQ(d.loc.ToString(), "b.wscene:2:18");
+    EXPECT_EQ(d.loc.ToString(), "b.wscene:2:19");
     ASSERT_EQ(d.notes.size(), 2u);
     EXPECT_EQ(d.notes[0].loc.ToString(), "a.wscene:2:1");
     EXPECT_EQ(d.notes[1].loc.ToString(), "main.wscene:2:1");
@@ -442,8 +442,8 @@ TEST(Parser, MisspelledKeywordSuggests) {
 }
 
 TEST(Parser, UndefinedVariableSuggestsAndUseBeforeDefine) {
-    Parsed p = Parse("wscene 1\nDefine width = 1 m\nShape \"s\" { a = $widht }\n");
-    EXPECT_NE(p.Errors().find("3:17: '$widht' is not defined; did you mean '$width'?"), std::string::npos)
+    Parsed p = Parse("wscene 1\nDefine width = 1 m\nShape \"s\" { a = $wdth }\n");
+    EXPECT_NE(p.Errors().find("3:17: '$wdth' is not defined; did you mean '$width'?"), std::string::npos)
         << p.Errors();
     Parsed q = Parse("wscene 1\nShape \"s\" { a = $w }\nDefine w = 1 m\n");
     EXPECT_NE(q.Errors().find("2:17: '$w' is used before its Define"), std::string::npos) << q.Errors();
@@ -451,7 +451,7 @@ TEST(Parser, UndefinedVariableSuggestsAndUseBeforeDefine) {
 
 TEST(Parser, DimensionErrors) {
     Parsed p = One("a = 1 m + 2 deg");
-    EXPECT_NE(p.Errors().find("2:23: cannot add a length (1 m) and an angle (2 deg)"), std::string::npos)
+    EXPECT_NE(p.Errors().find("2:30: cannot add a length (1 m) and an angle (2 deg)"), std::string::npos)
         << p.Errors();
     EXPECT_FALSE(One("a = 1 m < 1 K").desc);
     EXPECT_FALSE(One("a = sqrt(1 m)").desc);
@@ -473,7 +473,7 @@ TEST(Parser, DimensionErrors) {
 
 TEST(Parser, UnknownUnitSuggests) {
     Parsed p = One("a = 2 umm");
-    EXPECT_NE(p.Errors().find("2:25: unknown unit 'umm'; did you mean 'um'?"), std::string::npos) << p.Errors();
+    EXPECT_NE(p.Errors().find("2:28: unknown unit 'umm'; did you mean 'um'?"), std::string::npos) << p.Errors();
 }
 
 TEST(Parser, RenderRules) {

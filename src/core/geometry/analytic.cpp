@@ -18,9 +18,9 @@ Vec3 Column(const Transform &t, int c) {
 
 }  // namespace
 
-// ---- SphereShape ----------------------------------------------------------------------------
+// ---- AnalyticSphere ----------------------------------------------------------------------------
 
-SphereShape::SphereShape(const Vec3 &center, double radius, const Transform &rotation)
+AnalyticSphere::AnalyticSphere(const Vec3 &center, double radius, const Transform &rotation)
     : center_(center), radius_(radius), rotation_(rotation) {
     if (!(radius > 0) || !std::isfinite(radius))
         throw Error("sphere: the radius must be positive and finite, got " + std::to_string(radius));
@@ -31,7 +31,7 @@ SphereShape::SphereShape(const Vec3 &center, double radius, const Transform &rot
                 throw Error("sphere: the orientation is not a rotation");
 }
 
-SphereShape SphereShape::FromTransform(const Vec3 &center, double radius, const Transform &toWorld) {
+AnalyticSphere AnalyticSphere::FromTransform(const Vec3 &center, double radius, const Transform &toWorld) {
     // A similarity maps a sphere to a sphere: its linear part A satisfies AᵀA = s²·I.
     Vec3 c0 = Column(toWorld, 0), c1 = Column(toWorld, 1), c2 = Column(toWorld, 2);
     double s = std::cbrt(std::abs(Dot(c0, Cross(c1, c2))));
@@ -49,10 +49,10 @@ SphereShape SphereShape::FromTransform(const Vec3 &center, double radius, const 
     Transform::Mat rt{};
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) rt[i][j] = r[j][i];
-    return SphereShape(toWorld.Point(center), radius * s, Transform(r, rt));
+    return AnalyticSphere(toWorld.Point(center), radius * s, Transform(r, rt));
 }
 
-std::optional<double> SphereShape::Intersect(const Ray &ray, double tMin, double tMax) const {
+std::optional<double> AnalyticSphere::Intersect(const Ray &ray, double tMin, double tMax) const {
     // |o + t·d − c|² = r²  ⇔  a·t² + 2b·t + c = 0 with a = d·d, b = (o−c)·d, c = |o−c|² − r².
     Vec3 oc = ray.o - center_;
     double a = LengthSquared(ray.d);
@@ -80,7 +80,7 @@ std::optional<double> SphereShape::Intersect(const Ray &ray, double tMin, double
     return std::nullopt;
 }
 
-SurfaceInteraction SphereShape::Interaction(const Ray &ray, double t, unsigned, double, double) const {
+SurfaceInteraction AnalyticSphere::Interaction(const Ray &ray, double t, unsigned, double, double) const {
     SurfaceInteraction si;
     si.t = t;
     si.shape = this;
@@ -104,7 +104,7 @@ SurfaceInteraction SphereShape::Interaction(const Ray &ray, double t, unsigned, 
     return si;
 }
 
-Bounds3 SphereShape::Bounds() const {
+Bounds3 AnalyticSphere::Bounds() const {
     Vec3 r(radius_, radius_, radius_);
     Bounds3 b;
     b.Extend(center_ - r);
@@ -112,9 +112,9 @@ Bounds3 SphereShape::Bounds() const {
     return b;
 }
 
-double SphereShape::Area() const { return 4 * Pi * radius_ * radius_; }
+double AnalyticSphere::Area() const { return 4 * Pi * radius_ * radius_; }
 
-ShapeSample SphereShape::Sample(const Vec2 &u) const {
+ShapeSample AnalyticSphere::Sample(const Vec2 &u) const {
     // Uniform direction: z uniform in [−1, 1] (Archimedes), φ uniform.
     double z = 1 - 2 * u.x;
     double rr = SafeSqrt(1 - z * z);
@@ -127,16 +127,16 @@ ShapeSample SphereShape::Sample(const Vec2 &u) const {
     return s;
 }
 
-std::string SphereShape::ToString() const {
+std::string AnalyticSphere::ToString() const {
     std::ostringstream os;
     os.precision(17);
-    os << "SphereShape[center=" << phasor::ToString(center_) << " m, radius=" << radius_ << " m]";
+    os << "AnalyticSphere[center=" << phasor::ToString(center_) << " m, radius=" << radius_ << " m]";
     return os.str();
 }
 
-// ---- DiskShape ------------------------------------------------------------------------------
+// ---- AnalyticDisk ------------------------------------------------------------------------------
 
-DiskShape::DiskShape(double radius, const Transform &toWorld)
+AnalyticDisk::AnalyticDisk(double radius, const Transform &toWorld)
     : radius_(radius), toWorld_(toWorld), toLocal_(toWorld.Inverse()) {
     if (!(radius > 0) || !std::isfinite(radius))
         throw Error("disk: the radius must be positive and finite, got " + std::to_string(radius));
@@ -149,7 +149,7 @@ DiskShape::DiskShape(double radius, const Transform &toWorld)
     normal_ = Normalize(n);
 }
 
-std::optional<double> DiskShape::Intersect(const Ray &ray, double tMin, double tMax) const {
+std::optional<double> AnalyticDisk::Intersect(const Ray &ray, double tMin, double tMax) const {
     // In local space the disk lies in z = 0; t is invariant under the affine map because the
     // direction is mapped without renormalisation.
     Vec3 o = toLocal_.Point(ray.o), d = toLocal_.Vector(ray.d);
@@ -161,7 +161,7 @@ std::optional<double> DiskShape::Intersect(const Ray &ray, double tMin, double t
     return t;
 }
 
-SurfaceInteraction DiskShape::Interaction(const Ray &ray, double t, unsigned, double, double) const {
+SurfaceInteraction AnalyticDisk::Interaction(const Ray &ray, double t, unsigned, double, double) const {
     Vec3 o = toLocal_.Point(ray.o), d = toLocal_.Vector(ray.d);
     double x = o.x + t * d.x, y = o.y + t * d.y;
     SurfaceInteraction si;
@@ -178,7 +178,7 @@ SurfaceInteraction DiskShape::Interaction(const Ray &ray, double t, unsigned, do
     return si;
 }
 
-Bounds3 DiskShape::Bounds() const {
+Bounds3 AnalyticDisk::Bounds() const {
     // Exact box of an ellipse c + r·(cos φ·a + sin φ·b): half-extent r·√(a_i² + b_i²).
     Vec3 a = Column(toWorld_, 0), b = Column(toWorld_, 1);
     Vec3 c = toWorld_.Point(Vec3(0, 0, 0));
@@ -189,7 +189,7 @@ Bounds3 DiskShape::Bounds() const {
     return bb;
 }
 
-ShapeSample DiskShape::Sample(const Vec2 &u) const {
+ShapeSample AnalyticDisk::Sample(const Vec2 &u) const {
     // Uniform in the local disk (ρ = r√u); an affine map has a constant Jacobian, so the image
     // is uniform by area too.
     double rho = radius_ * std::sqrt(u.x), phi = 2 * Pi * u.y;
@@ -200,10 +200,10 @@ ShapeSample DiskShape::Sample(const Vec2 &u) const {
     return s;
 }
 
-std::string DiskShape::ToString() const {
+std::string AnalyticDisk::ToString() const {
     std::ostringstream os;
     os.precision(17);
-    os << "DiskShape[radius=" << radius_ << " m, center=" << phasor::ToString(toWorld_.Point(Vec3()))
+    os << "AnalyticDisk[radius=" << radius_ << " m, center=" << phasor::ToString(toWorld_.Point(Vec3()))
        << " m, normal=" << phasor::ToString(normal_) << ", area=" << area_ << " m^2]";
     return os.str();
 }

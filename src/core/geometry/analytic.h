@@ -13,13 +13,13 @@ namespace phasor {
 
 /// A sphere of radius `radius` [m] around `center` [m]. `rotation` orients the (u, v) =
 /// (φ/2π, θ/π) parameterisation: local z is the polar axis. Outward normal.
-class SphereShape : public Shape {
+class AnalyticSphere : public Shape {
   public:
     /// Throws phasor::Error if radius is not positive and finite or `rotation` is not a rotation.
-    SphereShape(const Vec3 &center, double radius, const Transform &rotation = Transform());
+    AnalyticSphere(const Vec3 &center, double radius, const Transform &rotation = Transform());
     /// A sphere built from a local sphere (center, radius) mapped by `toWorld`, which must be a
     /// similarity (rotation, uniform scale, translation); throws phasor::Error otherwise.
-    static SphereShape FromTransform(const Vec3 &center, double radius, const Transform &toWorld);
+    static AnalyticSphere FromTransform(const Vec3 &center, double radius, const Transform &toWorld);
 
     std::optional<double> Intersect(const Ray &ray, double tMin, double tMax) const override;
     SurfaceInteraction Interaction(const Ray &ray, double t, unsigned prim, double b1,
@@ -41,10 +41,10 @@ class SphereShape : public Shape {
 /// The disk x² + y² ≤ radius² in the local z = 0 plane, mapped to world space by an affine
 /// `toWorld` (a non-uniform scale makes it an ellipse). Outward normal = +z mapped as a normal.
 /// (u, v) = (φ/2π, ρ/radius).
-class DiskShape : public Shape {
+class AnalyticDisk : public Shape {
   public:
     /// Throws phasor::Error if radius is not positive and finite or toWorld is singular.
-    DiskShape(double radius, const Transform &toWorld);
+    AnalyticDisk(double radius, const Transform &toWorld);
 
     std::optional<double> Intersect(const Ray &ray, double tMin, double tMax) const override;
     SurfaceInteraction Interaction(const Ray &ray, double t, unsigned prim, double b1,

@@ -59,6 +59,15 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     scene->ctx_ = std::make_unique<BuildContext>(desc, diag);
     BuildContext &ctx = *scene->ctx_;
     ctx.BuildAll();
+    // Objects know their scene name (or, if unnamed, their plug-in type) for messages and output.
+    auto nameAll = [&](auto objects) {
+        for (auto &o : objects)
+            if (const SceneEntity *e = ctx.EntityOf(o.get())) o->name = e->name.empty() ? e->type : e->name;
+    };
+    nameAll(ctx.All<Shape>());
+    nameAll(ctx.All<Light>());
+    nameAll(ctx.All<Detector>());
+    nameAll(ctx.All<Integrator>());
 
     // Render block.
     const SceneEntity *renderEntity = ctx.RenderEntity();
@@ -98,6 +107,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
                 d.Validate(entry->schema(), diag);
                 try {
                     scene->integrator_ = std::shared_ptr<Integrator>(entry->create(d, ctx));
+                    scene->integrator_->name = integratorOverride;
                 } catch (const Error &e) {
                     diag.Report(e);
                 }
@@ -112,6 +122,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
             ParamDict d;
             d.Validate(entry->schema(), diag);
             scene->integrator_ = std::shared_ptr<Integrator>(entry->create(d, ctx));
+            scene->integrator_->name = "ray";
         }
     }
     if (render) render->ReportUnused(diag, "Render");

@@ -55,7 +55,10 @@ class TableSpectrum final : public Spectrum {
     }
 
     double Eval(double lambda) const override {
-        if (!(lambda >= lambda_.front()) || !(lambda <= lambda_.back())) return 0;
+        // A relative slack of 1e-12 at the ends absorbs unit-conversion round-off (400 · 1e-9 ≠ 400e-9).
+        const double slack = 1e-12 * lambda_.back();
+        if (!(lambda >= lambda_.front() - slack) || !(lambda <= lambda_.back() + slack)) return 0;
+        lambda = std::clamp(lambda, lambda_.front(), lambda_.back());
         auto it = std::upper_bound(lambda_.begin(), lambda_.end(), lambda);
         std::size_t i = std::min<std::size_t>(std::size_t(it - lambda_.begin()), lambda_.size() - 1) - 1;
         const double t = (lambda - lambda_[i]) / (lambda_[i + 1] - lambda_[i]);

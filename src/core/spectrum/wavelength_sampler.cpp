@@ -27,6 +27,7 @@
 //     works and yields black.
 #include <algorithm>
 #include <cmath>
+#include <tuple>
 
 #include "core/spectrum.h"
 

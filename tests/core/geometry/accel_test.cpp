@@ -55,10 +55,10 @@ struct TestScene {
             Vec3 c = off + RandomInBox(rng, Vec3(-3, -3, -3), Vec3(3, 3, 3));
             double r = 0.1 + 0.5 * rng.Uniform();
             spheres.push_back({c, r});
-            owned.push_back(std::make_unique<SphereShape>(c, r));
+            owned.push_back(std::make_unique<AnalyticSphere>(c, r));
         }
         diskToWorld = Transform::Translate(off + Vec3(0.5, -0.5, 0.2)) * Transform::Rotate(0.8, Vec3(1, 2, 0));
-        owned.push_back(std::make_unique<DiskShape>(diskRadius, diskToWorld));
+        owned.push_back(std::make_unique<AnalyticDisk>(diskRadius, diskToWorld));
         for (auto &s : owned) shapes.push_back(s.get());
     }
 
@@ -275,7 +275,7 @@ TEST(Accel, EmptySceneAndBounds) {
     Accel empty({});
     EXPECT_FALSE(empty.Intersect(Ray{Vec3(), Vec3(0, 0, 1)}));
     EXPECT_FALSE(empty.Occluded(Ray{Vec3(), Vec3(0, 0, 1)}, 0, Infinity));
-    SphereShape s(Vec3(1, 2, 3), 0.5);
+    AnalyticSphere s(Vec3(1, 2, 3), 0.5);
     Accel one({&s});
     EXPECT_EQ(one.Bounds().lo, Vec3(0.5, 1.5, 2.5));
     // tMin beyond the near root: the far root, in double precision.

@@ -35,7 +35,7 @@ TEST(Sphere, IntersectMatchesLongDoubleReference) {
     for (int i = 0; i < 20000; ++i) {
         Vec3 c = (i % 2 ? 100.0 : 10.0) * RandomInBall(rng);
         double r = 0.1 + 5 * rng.Uniform();
-        SphereShape s(c, r);
+        AnalyticSphere s(c, r);
         Vec3 o = c + (2 + 18 * rng.Uniform()) * r * RandomDirection(rng);
         Vec3 target = c + 0.95 * r * RandomInBall(rng);
         Ray ray{o, Normalize(target - o)};
@@ -51,7 +51,7 @@ TEST(Sphere, IntersectMatchesLongDoubleReference) {
 }
 
 TEST(Sphere, IntervalAndMisses) {
-    SphereShape s(Vec3(0, 0, 0), 1);
+    AnalyticSphere s(Vec3(0, 0, 0), 1);
     Ray ray{Vec3(0, 0, -5), Vec3(0, 0, 1)};
     EXPECT_DOUBLE_EQ(*s.Intersect(ray, 0, Infinity), 4);
     EXPECT_DOUBLE_EQ(*s.Intersect(ray, 4.5, Infinity), 6);  // near root excluded by tMin
@@ -62,7 +62,7 @@ TEST(Sphere, IntervalAndMisses) {
 }
 
 TEST(Sphere, InteractionAndFrame) {
-    SphereShape s(Vec3(1, 2, 3), 2);
+    AnalyticSphere s(Vec3(1, 2, 3), 2);
     Ray ray{Vec3(1, 2, 10), Vec3(0, 0, -1)};
     auto t = s.Intersect(ray, 0, Infinity);
     ASSERT_TRUE(t);
@@ -84,18 +84,18 @@ TEST(Sphere, InteractionAndFrame) {
 TEST(Sphere, FromTransformRequiresSimilarity) {
     Transform t = Transform::Translate(Vec3(1, 0, 0)) * Transform::Rotate(0.3, Vec3(1, 1, 0)) *
                   Transform::Scale(Vec3(2, 2, 2));
-    SphereShape s = SphereShape::FromTransform(Vec3(0, 0, 1), 0.5, t);
+    AnalyticSphere s = AnalyticSphere::FromTransform(Vec3(0, 0, 1), 0.5, t);
     EXPECT_NEAR(s.Radius(), 1, 1e-12);
     Vec3 c = t.Point(Vec3(0, 0, 1));
     EXPECT_NEAR(Length(s.Center() - c), 0, 1e-12);
-    EXPECT_THROW(SphereShape::FromTransform(Vec3(), 1, Transform::Scale(Vec3(1, 2, 1))), Error);
-    EXPECT_THROW(SphereShape(Vec3(), -1), Error);
+    EXPECT_THROW(AnalyticSphere::FromTransform(Vec3(), 1, Transform::Scale(Vec3(1, 2, 1))), Error);
+    EXPECT_THROW(AnalyticSphere(Vec3(), -1), Error);
 }
 
 // Uniform area sampling: z = n·ẑ is uniform on [−1, 1] and φ uniform (Archimedes); χ² on a
 // 10 × 20 grid of equal-area cells in (z, φ).
 TEST(Sphere, SamplingIsUniformByArea) {
-    SphereShape s(Vec3(0, 1, 0), 3);
+    AnalyticSphere s(Vec3(0, 1, 0), 3);
     TestRng rng(11);
     const int nz = 10, nphi = 20, n = 200000;
     std::vector<double> obs(nz * nphi, 0), expct(nz * nphi, double(n) / (nz * nphi));
@@ -116,7 +116,7 @@ TEST(Sphere, SamplingIsUniformByArea) {
 TEST(Disk, IntersectionAreaAndSampling) {
     Transform t = Transform::Translate(Vec3(0, 0, 2)) * Transform::Rotate(Radians(40), Vec3(1, 0, 0)) *
                   Transform::Scale(Vec3(2, 1, 1));
-    DiskShape d(0.5, t);
+    AnalyticDisk d(0.5, t);
     // Ellipse with semi-axes 1 and 0.5.
     EXPECT_NEAR(d.Area(), Pi * 0.5, 1e-14);
     // The ray through the world image of a local point hits at that point, within 1e-12.
@@ -151,7 +151,7 @@ TEST(Disk, IntersectionAreaAndSampling) {
 // χ² over 8 rings of equal area × 16 sectors.
 TEST(Disk, SamplingIsUniformByArea) {
     Transform t = Transform::Rotate(0.7, Vec3(0, 1, 1)) * Transform::Scale(Vec3(3, 1, 1));
-    DiskShape d(2, t);
+    AnalyticDisk d(2, t);
     Transform inv = t.Inverse();
     TestRng rng(5);
     const int nr = 8, ns = 16, n = 100000;

@@ -1,0 +1,139 @@
+// SPDX-License-Identifier: Apache-2.0
+// `dielectric`: kernel-specific properties beyond the generic contract suite.
+#include <gtest/gtest.h>
+
+#include "material_test_util.h"
+#include "materials/fresnel.h"
+
+namespace phasor::test {
+namespace {
+
+std::shared_ptr<Material> Dielectric(double ior, double cauchyB = 0) {
+    ParamDict d;
+    d.Set("ior", Value::Number(ior));
+    if (cauchyB != 0) d.Set("cauchy_b", Value::Number(cauchyB, Dim::Area()));
+    Diagnostics diag;
+    auto m = BuildMaterial("dielectric", d, diag);
+    EXPECT_TRUE(m && diag.All().empty());
+    return m;
+}
+
+ScatterQuery Query(const Vec3 &wi, const SampledWavelengths &wl) {
+    ScatterQuery q;
+    q.wi = wi;
+    q.wl = &wl;
+    return q;
+}
+
+TEST(Dielectric, LobeChoiceIsFresnelAtTheHero) {
+    auto m = Dielectric(1.5);
+    const SampledWavelengths wl = TestWavelengths(550e-9);
+    for (double cosI : {1.0, 0.7, 0.2, 0.02, -0.95, -0.8}) {
+        const ScatterQuery q = Query(DirectionFromCosTheta(cosI, 0.4), wl);
+        const double eta = cosI > 0 ? 1.5 : 1 / 1.5;
+        const double r = FresnelDielectric(std::abs(cosI), eta);
+        auto below = m->Sample(q, r * (1 - 1e-9), Vec2(0.5, 0.5));
+        auto above = m->Sample(q, r * (1 + 1e-9) + 1e-12, Vec2(0.5, 0.5));
+        ASSERT_TRUE(below && above);
+        EXPECT_EQ(below->lobe, 0);
+        EXPECT_TRUE(below->flags & ScatterReflection);
+        EXPECT_NEAR(below->pdf, r, 1e-15);
+        EXPECT_EQ(above->lobe, 1);
+        EXPECT_TRUE(above->flags & ScatterTransmission);
+        EXPECT_NEAR(above->pdf, 1 - r, 1e-15);
+        EXPECT_NEAR(above->eta, eta, 1e-15);
+        // Lossless: reflected + transmitted power = incident power (R + T = 1) at every slot.
+        for (int j = 0; j < NumWavelengths; ++j) {
+            EXPECT_NEAR(below->weight[j] * below->pdf + above->weight[j] * above->pdf * eta * eta, 1, 1e-14);
+        }
+        // Radiance scaling (η_i/η_t)² on refraction: a/p = T/T·(1/η²).
+        EXPECT_NEAR(above->weight[0], 1 / (eta * eta), 1e-14);
+    }
+}
+
+TEST(Dielectric, TotalInternalReflectionFromInside) {
+    auto m = Dielectric(1.5);
+    const SampledWavelengths wl = TestWavelengths(550e-9);
+    const ScatterQuery q = Query(DirectionFromCosTheta(-0.5, 1.0), wl);  // 60° > critical 41.8°
+    for (double u0 : {0.0, 0.5, 1 - 1e-12}) {
+        auto s = m->Sample(q, u0, Vec2(0.1, 0.9));
+        ASSERT_TRUE(s);
+        EXPECT_TRUE(s->flags & ScatterReflection);
+        EXPECT_EQ(s->pdf, 1);
+        EXPECT_EQ(s->weight[0], 1);
+        EXPECT_LT(Length(s->wo - ReflectLocal(q.wi)), 1e-15);
+    }
+}
+
+TEST(Dielectric, IndexMatchedPassesStraightThrough) {
+    auto m = Dielectric(1.0);
+    const SampledWavelengths wl = TestWavelengths(400e-9);
+    const ScatterQuery q = Query(DirectionFromCosTheta(0.3, 2.0), wl);
+    auto s = m->Sample(q, 0.0, Vec2(0.5, 0.5));
+    ASSERT_TRUE(s);
+    EXPECT_TRUE(s->flags & ScatterTransmission);
+    EXPECT_LT(Length(s->wo + q.wi), 1e-15);
+    EXPECT_EQ(s->weight[0], 1);
+}
+
+TEST(Dielectric, OutsideMediumSetsTheRelativeIndex) {
+    auto m = Dielectric(1.5);
+    const SampledWavelengths wl = TestWavelengths(550e-9);
+    ScatterQuery q = Query(DirectionFromCosTheta(0.6, 0.0), wl);
+    q.etaOutside = 1.33;  // glass under water
+    auto s = m->Sample(q, 0.999999, Vec2(0.5, 0.5));
+    ASSERT_TRUE(s);
+    EXPECT_NEAR(s->eta, 1.5 / 1.33, 1e-15);
+    EXPECT_NEAR(s->pdf, 1 - FresnelDielectric(0.6, 1.5 / 1.33), 1e-15);
+}
+
+TEST(Dielectric, CauchyDispersion) {
+    const double b = 0.0042e-12;  // 0.0042 µm²
+    auto m = Dielectric(1.5, b);
+    auto plain = Dielectric(1.5);
+    for (double lambda : {400e-9, 550e-9, 700e-9}) {
+        const SampledWavelengths wl = TestWavelengths(lambda);
+        const ScatterQuery q = Query(DirectionFromCosTheta(0.5, 0.3), wl);
+        auto s = m->Sample(q, 0.99, Vec2(0.5, 0.5));
+        ASSERT_TRUE(s);
+        const double n = 1.5 + b / (lambda * lambda);  // η(λ) = A + B/λ²
+        EXPECT_NEAR(s->eta, n, 1e-14) << lambda;
+        EXPECT_TRUE(s->flags & ScatterDispersive);
+        // The companions' weights use their own index: T(λ_j)/T(λ_hero)/η_j².
+        for (int j = 1; j < NumWavelengths; ++j) {
+            const double nj = 1.5 + b / Sqr(wl.lambda[j]);
+            const double expected =
+                (1 - FresnelDielectric(0.5, nj)) / (1 - FresnelDielectric(0.5, n)) / (nj * nj);
+            EXPECT_NEAR(s->weight[j], expected, 1e-14);
+        }
+        // Reflection is not dispersive (the mirror direction does not depend on λ).
+        auto r = m->Sample(q, 0.0, Vec2(0.5, 0.5));
+        ASSERT_TRUE(r);
+        EXPECT_FALSE(r->flags & ScatterDispersive);
+        // A constant index never flags dispersion.
+        auto p = plain->Sample(q, 0.99, Vec2(0.5, 0.5));
+        ASSERT_TRUE(p);
+        EXPECT_FALSE(p->flags & ScatterDispersive);
+    }
+}
+
+TEST(Dielectric, DeltaOnlyInTheRayLimit) {
+    auto m = Dielectric(1.5);
+    const SampledWavelengths wl = TestWavelengths(550e-9);
+    const ScatterQuery q = Query(DirectionFromCosTheta(0.5, 0.3), wl);
+    EXPECT_TRUE(m->IsDeltaOnly());
+    EXPECT_TRUE(m->Eval(q, ReflectLocal(q.wi)).IsZero());
+    EXPECT_EQ(m->Pdf(q, ReflectLocal(q.wi)), 0);
+}
+
+TEST(Dielectric, RejectsNonPositiveIndex) {
+    ParamDict d;
+    d.Set("ior", Value::Number(-1.2));
+    Diagnostics diag;
+    EXPECT_FALSE(BuildMaterial("dielectric", d, diag));
+    ASSERT_TRUE(diag.HasErrors());
+    EXPECT_NE(diag.All()[0].message.find("positive"), std::string::npos) << diag.All()[0].message;
+}
+
+}  // namespace
+}  // namespace phasor::test

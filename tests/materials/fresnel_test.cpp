@@ -1,0 +1,193 @@
+// SPDX-License-Identifier: Apache-2.0
+// fresnel.h and metal_ior.h: textbook identities and published values.
+#include "materials/fresnel.h"
+
+#include <gtest/gtest.h>
+
+#include "materials/metal_ior.h"
+
+namespace phasor {
+namespace {
+
+TEST(Fresnel, NormalIncidenceDielectric) {
+    for (double n : {1.0, 1.33, 1.5, 2.42, 1 / 1.5, 1 / 2.42}) {
+        const double expected = Sqr((n - 1) / (n + 1));  // ((n−1)/(n+1))²
+        EXPECT_NEAR(FresnelDielectric(1, n), expected, 1e-15) << n;
+        EXPECT_NEAR(FresnelComplex(1, 1, Complex(n, 0)), expected, 1e-15) << n;
+        // Only the ratio matters: n1 = 1.33 against n2 = 1.33·n.
+        EXPECT_NEAR(FresnelComplex(1, 1.33, Complex(1.33 * n, 0)), expected, 1e-14) << n;
+    }
+}
+
+TEST(Fresnel, BrewsterAngleKillsP) {
+    for (double eta : {1.33, 1.5, 2.42, 1 / 1.5}) {
+        const double thetaB = std::atan(eta);  // tanθ_B = n_t/n_i
+        const FresnelSP sp = FresnelDielectricSP(std::cos(thetaB), eta);
+        EXPECT_LT(sp.rp2, 1e-28) << eta;
+        EXPECT_GT(sp.rs2, 1e-3) << eta;
+        const FresnelCoefficients c = FresnelAmplitudes(std::cos(thetaB), 1, Complex(eta, 0));
+        EXPECT_LT(std::norm(c.rp), 1e-28) << eta;
+        // Just off the Brewster angle R_p is clearly non-zero: the test can fail.
+        EXPECT_GT(FresnelDielectricSP(std::cos(thetaB + 0.05), eta).rp2, 1e-5) << eta;
+    }
+}
+
+TEST(Fresnel, ReflectancePlusTransmittanceIsOne) {
+    // T from the amplitude transmission coefficients with the power factor n₂cosθ_t/(n₁cosθ_i)
+    // (theory §4.1) — an independent route to 1 − R.
+    for (double n1 : {1.0, 1.5})
+        for (double n2 : {1.0, 1.33, 1.5, 2.42}) {
+            for (int i = 0; i <= 100; ++i) {
+                const double cosI = 1e-3 + (1 - 1e-3) * i / 100.0;
+                const FresnelCoefficients c = FresnelAmplitudes(cosI, n1, Complex(n2, 0));
+                const double sin2T = (1 - cosI * cosI) * Sqr(n1 / n2);
+                if (sin2T >= 1) continue;  // total internal reflection: checked below
+                const double factor = (n2 * c.cosThetaT.real()) / (n1 * cosI);
+                const double r = 0.5 * (std::norm(c.rs) + std::norm(c.rp));
+                const double t = 0.5 * factor * (std::norm(c.ts) + std::norm(c.tp));
+                EXPECT_NEAR(r + t, 1, 1e-12) << n1 << " → " << n2 << ", cosθ = " << cosI;
+                EXPECT_NEAR(FresnelDielectric(cosI, n2 / n1), r, 1e-12);
+                // Each polarisation separately.
+                EXPECT_NEAR(std::norm(c.rs) + factor * std::norm(c.ts), 1, 1e-12);
+                EXPECT_NEAR(std::norm(c.rp) + factor * std::norm(c.tp), 1, 1e-12);
+            }
+        }
+}
+
+TEST(Fresnel, TotalInternalReflection) {
+    const double eta = 1 / 1.5;  // glass → air
+    const double critical = std::asin(eta);
+    for (double theta : {critical + 1e-6, critical + 0.1, 1.2, Pi / 2 - 1e-9}) {
+        EXPECT_EQ(FresnelDielectric(std::cos(theta), eta), 1) << theta;
+        EXPECT_NEAR(FresnelComplex(std::cos(theta), 1.5, Complex(1, 0)), 1, 1e-12) << theta;
+    }
+    EXPECT_LT(FresnelDielectric(std::cos(critical - 1e-3), eta), 1);
+    Vec3 wt;
+    EXPECT_FALSE(RefractLocal(Vec3(std::sin(1.2), 0, -std::cos(1.2)), eta, &wt));
+}
+
+TEST(Fresnel, GrazingIncidenceReflectsEverything) {
+    EXPECT_EQ(FresnelDielectric(0, 1.5), 1);
+    EXPECT_EQ(FresnelComplex(0, 1, Complex(0.2, 3.0)), 1);
+    EXPECT_EQ(FresnelComplex(0, 1, Complex(1, 0)), 0);  // no interface at all
+    EXPECT_EQ(FresnelDielectric(0, 1), 0);
+}
+
+// The classical real-arithmetic form of the conductor reflectances (Born & Wolf, Principles of
+// Optics, §14.2; the a², b² form): an independent check of the complex-arithmetic path.
+void BornWolfConductor(double cosI, double n, double k, double *rs, double *rp) {
+    const double sin2 = 1 - cosI * cosI, sinI = std::sqrt(sin2), tanI = sinI / cosI;
+    const double t0 = n * n - k * k - sin2;
+    const double a2pb2 = std::sqrt(t0 * t0 + 4 * n * n * k * k);
+    const double a = std::sqrt(0.5 * (a2pb2 + t0));
+    *rs = (a2pb2 - 2 * a * cosI + cosI * cosI) / (a2pb2 + 2 * a * cosI + cosI * cosI);
+    *rp = *rs * (a2pb2 - 2 * a * sinI * tanI + sin2 * tanI * tanI) /
+          (a2pb2 + 2 * a * sinI * tanI + sin2 * tanI * tanI);
+}
+
+TEST(Fresnel, ConductorMatchesBornWolf) {
+    const Complex indices[] = {{0.2, 3.0}, {1.2, 7.26}, {0.05, 4.15}, {1.8, 0.4}, {2.5, 1e-3}};
+    for (Complex n : indices)
+        for (int i = 1; i <= 99; ++i) {
+            const double cosI = i / 100.0;
+            double rs, rp;
+            BornWolfConductor(cosI, n.real(), n.imag(), &rs, &rp);
+            const FresnelCoefficients c = FresnelAmplitudes(cosI, 1, n);
+            EXPECT_NEAR(std::norm(c.rs), rs, 1e-12) << n << " cosθ = " << cosI;
+            EXPECT_NEAR(std::norm(c.rp), rp, 1e-12) << n << " cosθ = " << cosI;
+            EXPECT_NEAR(FresnelConductor(cosI, n), 0.5 * (rs + rp), 1e-12);
+        }
+}
+
+TEST(Fresnel, ConductorNormalIncidence) {
+    for (Complex n : {Complex(0.2, 3.0), Complex(1.2, 7.26), Complex(0.05, 4.15)}) {
+        const double expected = (Sqr(n.real() - 1) + Sqr(n.imag())) / (Sqr(n.real() + 1) + Sqr(n.imag()));
+        EXPECT_NEAR(FresnelConductor(1, n), expected, 1e-14) << n;
+    }
+    // A lossless limit matches the dielectric formula.
+    EXPECT_NEAR(FresnelConductor(0.6, Complex(1.5, 0)), FresnelDielectric(0.6, 1.5), 1e-14);
+}
+
+TEST(Fresnel, ConductorHasPrincipalAngleMinimumOfRp) {
+    // R_p of a metal dips at the principal angle (near 80° for Al) and is 1 at grazing; R_s
+    // increases monotonically (Born & Wolf §14.2).
+    const Complex n(1.2, 7.26);
+    double prevS = 0, minP = 1, minAt = 0;
+    for (int i = 0; i <= 900; ++i) {
+        const double theta = Radians(i * 0.1);
+        const FresnelCoefficients c = FresnelAmplitudes(std::cos(theta), 1, n);
+        EXPECT_GE(std::norm(c.rs), prevS - 1e-15);
+        prevS = std::norm(c.rs);
+        if (std::norm(c.rp) < minP) {
+            minP = std::norm(c.rp);
+            minAt = i * 0.1;
+        }
+    }
+    EXPECT_GT(minAt, 75);
+    EXPECT_LT(minAt, 89);
+    EXPECT_LT(minP, FresnelConductor(1, n) - 0.05);
+}
+
+TEST(MetalIor, TablesReproduceJohnsonChristyRows) {
+    // At a tabulated photon energy the interpolation returns the row exactly.
+    const double lambda = metal_detail::HcEvM / 2.01;  // 616.8 nm
+    EXPECT_NEAR(MetalIndex(Metal::Au, lambda).real(), 0.21, 1e-12);
+    EXPECT_NEAR(MetalIndex(Metal::Au, lambda).imag(), 3.272, 1e-12);
+    EXPECT_NEAR(MetalIndex(Metal::Ag, lambda).imag(), 4.152, 1e-12);
+    EXPECT_NEAR(MetalIndex(Metal::Cu, lambda).real(), 0.30, 1e-12);
+    // Half-way in energy between two rows.
+    const double mid = metal_detail::HcEvM / 0.5 / (2.50 + 2.63);
+    EXPECT_NEAR(MetalIndex(Metal::Au, mid).real(), 0.5 * (1.04 + 1.31), 1e-12);
+    // Clamped outside the table.
+    EXPECT_EQ(MetalIndex(Metal::Ag, 5e-6), MetalIndex(Metal::Ag, 3e-6));
+    EXPECT_EQ(MetalIndex(Metal::Ag, 5e-6), Complex(0.24, 14.08));
+    for (Metal m : {Metal::Al, Metal::Ag, Metal::Au, Metal::Cu})
+        for (double l = 200e-9; l < 2000e-9; l += 10e-9) {
+            const Complex n = MetalIndex(m, l);
+            EXPECT_GT(n.real(), 0);
+            EXPECT_GT(n.imag(), 0);
+        }
+}
+
+TEST(MetalIor, ReflectanceMatchesPublishedCurves) {
+    // Normal-incidence reflectance of evaporated metals (Bennett & Bennett; Handbook of Optics
+    // vol. IV, metals chapter): Al ≈ 91.5 % at 550 nm, Ag ≈ 98 %, Au ≈ 38 % at 450 nm and ≈ 97 % at
+    // 700 nm, Cu ≈ 55 % at 450 nm and ≈ 96 % at 700 nm.
+    auto r = [](Metal m, double l) { return FresnelConductor(1, MetalIndex(m, l)); };
+    EXPECT_NEAR(r(Metal::Al, 550e-9), 0.915, 0.01);
+    EXPECT_NEAR(r(Metal::Ag, 550e-9), 0.98, 0.01);
+    EXPECT_NEAR(r(Metal::Au, 450e-9), 0.39, 0.05);
+    EXPECT_NEAR(r(Metal::Au, 700e-9), 0.97, 0.015);
+    EXPECT_NEAR(r(Metal::Cu, 450e-9), 0.55, 0.06);
+    EXPECT_NEAR(r(Metal::Cu, 700e-9), 0.955, 0.02);
+    // Rakić's Al index at 550 nm: n ≈ 0.96, κ ≈ 6.46.
+    EXPECT_NEAR(MetalIndex(Metal::Al, 550e-9).real(), 0.96, 0.03);
+    EXPECT_NEAR(MetalIndex(Metal::Al, 550e-9).imag(), 6.46, 0.05);
+}
+
+TEST(Refraction, SnellAndReversibility) {
+    for (double eta : {1.5, 1.33, 1 / 1.5, 2.42})
+        for (int i = 0; i < 50; ++i) {
+            const double cosI = (i + 0.5) / 50, phi = 0.37 * i;
+            for (double side : {1.0, -1.0}) {
+                const double s = std::sqrt(1 - cosI * cosI);
+                const Vec3 w(s * std::cos(phi), s * std::sin(phi), side * cosI);
+                Vec3 wt;
+                if (!RefractLocal(w, eta, &wt)) {
+                    EXPECT_GE(s / eta, 1 - 1e-12);  // only under total internal reflection
+                    continue;
+                }
+                EXPECT_NEAR(Length(wt), 1, 1e-14);
+                EXPECT_LT(wt.z * w.z, 0);                                 // other side
+                EXPECT_NEAR(std::sqrt(1 - wt.z * wt.z) * eta, s, 1e-13);  // n_i sinθ_i = n_t sinθ_t
+                EXPECT_LT(Length(Vec3(eta * wt.x + w.x, eta * wt.y + w.y, 0)), 1e-14);
+                Vec3 back;
+                ASSERT_TRUE(RefractLocal(wt, 1 / eta, &back));
+                EXPECT_LT(Length(back - w), 1e-13);
+            }
+        }
+    EXPECT_EQ(ReflectLocal(Vec3(0.3, -0.4, 0.5)), Vec3(-0.3, 0.4, 0.5));
+}
+
+}  // namespace
+}  // namespace phasor
