@@ -48,8 +48,12 @@ class Scene {
     Bounds3 Bounds() const { return accel_->Bounds(); }
 
     std::optional<SurfaceInteraction> Intersect(const Ray &ray, double tMax = Infinity) const {
+        if (rayLog_) rayLog_->push_back(ray);
         return accel_->IntersectSurface(ray, 0, tMax);
     }
+    /// Benchmarks only: appends every ray the scene is asked to trace (intersection and shadow
+    /// rays) to `log`; single-threaded renders only. nullptr stops recording.
+    void RecordRays(std::vector<Ray> *log) { rayLog_ = log; }
     /// True if the segment from `from` (a surface point) to `to` is blocked.
     bool Occluded(const SurfaceInteraction &from, const Vec3 &to) const;
     bool OccludedDirection(const SurfaceInteraction &from, const Vec3 &dir) const;
@@ -65,6 +69,7 @@ class Scene {
     std::unique_ptr<WavelengthSampler> wavelengths_;
     RenderSettings settings_;
     std::unique_ptr<SceneDesc> ownedDesc_;
+    std::vector<Ray> *rayLog_ = nullptr;
 };
 
 }  // namespace phasor

@@ -183,7 +183,9 @@ class SyntaxParser {
             ++ci_;
         }
         prevLine_ = last_->line;
-        if (ci_ < comments_.size() && comments_[ci_].line == last_->line) {
+        // (Only if no other token follows on that line before the comment.)
+        uint32_t nextOffset = i_ < toks_.size() ? toks_[i_].offset : ~0u;
+        if (ci_ < comments_.size() && comments_[ci_].line == last_->line && comments_[ci_].offset < nextOffset) {
             c.trailing = comments_[ci_].text;
             c.hasTrailing = true;
             ++ci_;

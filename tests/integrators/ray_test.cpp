@@ -12,7 +12,7 @@ namespace {
 // Camera inside a sphere whose inner surface is diffuse (albedo a) and emits radiance Le:
 // every path sees Le·Σ aᵏ = Le/(1 − a) (style.md §2.6 furnace test).
 TEST(RayIntegrator, FurnaceClosedDiffuseSphere) {
-    for (double albedo : {0.5, 0.8}) {
+    for (double albedo : {0.0, 0.5, 0.8}) {  // 0: the camera reads the emitted radiance itself
         SceneBuilder b;
         b.Add("Material", "diffuse", "wall").Set("reflectance", Num(albedo));
         b.Add("Shape", "sphere", "room").Set("radius", Len(1)).Set("material", Ref("wall"));

@@ -109,22 +109,24 @@ class SobolSampler final : public Sampler {
         dim_ = 0;
     }
     double Get1D() override {
-        uint64_t h = Hash(pixelHash_, dim_++);
+        uint64_t h = DimensionHash();
         uint32_t i = OwenScramble(index_, uint32_t(h));
         return ToUnit(OwenScramble(Sobol0(i), uint32_t(h >> 32)));
     }
     Vec2 Get2D() override {
-        uint64_t h = Hash(pixelHash_, dim_);
-        uint64_t h2 = Hash(pixelHash_, dim_ + 1, 7);
-        dim_ += 2;
+        uint64_t h = DimensionHash();
+        uint32_t h2 = uint32_t(MixBits(h));
         uint32_t i = OwenScramble(index_, uint32_t(h));
-        return {ToUnit(OwenScramble(Sobol0(i), uint32_t(h >> 32))), ToUnit(OwenScramble(Sobol1(i), uint32_t(h2)))};
+        return {ToUnit(OwenScramble(Sobol0(i), uint32_t(h >> 32))), ToUnit(OwenScramble(Sobol1(i), h2))};
     }
     Vec2 GetPixel2D() override { return Get2D(); }
     std::unique_ptr<Sampler> Clone() const override { return std::make_unique<SobolSampler>(seed_); }
     std::string Name() const override { return "sobol"; }
 
   private:
+    // One well-mixed 64-bit value per (pixel, dimension): seeds the index shuffle and the scrambles.
+    uint64_t DimensionHash() { return MixBits(pixelHash_ ^ (0x9e3779b97f4a7c15ULL * ++dim_)); }
+
     uint64_t seed_, pixelHash_ = 0;
     uint32_t index_ = 0;
     uint64_t dim_ = 0;

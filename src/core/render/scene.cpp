@@ -157,11 +157,13 @@ bool Scene::Occluded(const SurfaceInteraction &from, const Vec3 &to) const {
     Vec3 od = to - o;
     double dist = Length(od);
     if (!(dist > 0)) return false;
+    if (rayLog_) rayLog_->push_back(Ray{o, od / dist});
     // Stop just short of the target so the light's own surface does not occlude it.
     return accel_->Occluded(Ray{o, od / dist}, 0, dist * (1 - 1e-7));
 }
 
 bool Scene::OccludedDirection(const SurfaceInteraction &from, const Vec3 &dir) const {
+    if (rayLog_) rayLog_->push_back(Ray{from.SpawnOrigin(dir), dir});
     return accel_->Occluded(Ray{from.SpawnOrigin(dir), dir}, 0, Infinity);
 }
 

@@ -26,8 +26,10 @@ double XAtRatio(double r, bool longSide) {
         const double mid = 0.5 * (lo + hi);
         const bool above = XRatio(mid) > r;
         // XRatio rises with x below x_p and falls above it.
-        if (longSide == above) hi = mid;
-        else lo = mid;
+        if (longSide == above)
+            hi = mid;
+        else
+            lo = mid;
     }
     return 0.5 * (lo + hi);
 }
@@ -46,7 +48,8 @@ class BlackbodySpectrum final : public Spectrum {
 
     static const Schema &GetSchema() {
         static const Schema s{
-            "spectrum", "blackbody",
+            "spectrum",
+            "blackbody",
             "Black-body emitter (Planck's law); normalised to 1 at its peak unless normalize = false.",
             {P::Number("temperature", "temperature", Dim::Temperature()).Required().Min(0, true),
              P::Bool("normalize", "scale to a peak value of 1 (else absolute radiance in W/(m²·sr·m))")

@@ -11,7 +11,9 @@ namespace phasor {
 class ConstantSpectrumPlugin {
   public:
     static const Schema &GetSchema() {
-        static const Schema s{"spectrum", "constant", "The same value at every wavelength.",
+        static const Schema s{"spectrum",
+                              "constant",
+                              "The same value at every wavelength.",
                               {P::Number("value", "the value").Required()}};
         return s;
     }

@@ -14,14 +14,18 @@ class D65Spectrum final : public Spectrum {
     explicit D65Spectrum(double scale) : scale_(scale) {}
 
     static const Schema &GetSchema() {
-        static const Schema s{"spectrum", "d65", "CIE standard illuminant D65, equal to `scale` at 560 nm.",
+        static const Schema s{"spectrum",
+                              "d65",
+                              "CIE standard illuminant D65, equal to `scale` at 560 nm.",
                               {P::Number("scale", "value at 560 nm").Default(Value::Number(1)).Min(0)}};
         return s;
     }
     static std::unique_ptr<Spectrum> Create(const ParamDict &d, BuildContext &) {
         return std::make_unique<D65Spectrum>(d.GetNumber("scale"));
     }
-    static std::vector<ParamDict> TestPresets() { return {ParamDict(), ParamDict().Set("scale", Value::Number(2))}; }
+    static std::vector<ParamDict> TestPresets() {
+        return {ParamDict(), ParamDict().Set("scale", Value::Number(2))};
+    }
 
     double Eval(double lambda) const override { return scale_ * 0.01 * CieD65(lambda); }
     double MaxValue() const override {

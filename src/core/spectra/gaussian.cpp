@@ -7,16 +7,18 @@
 namespace phasor {
 
 const Schema &GaussianSpectrum::GetSchema() {
-    static const Schema s{
-        "spectrum", "gaussian", "Gaussian band given by its centre, full width at half maximum and peak value.",
-        {P::Length("center", "centre wavelength").Required().Min(0, true),
-         P::Length("fwhm", "full width at half maximum").Required().Min(0, true),
-         P::Number("peak", "value at the centre").Default(Value::Number(1)).Min(0)}};
+    static const Schema s{"spectrum",
+                          "gaussian",
+                          "Gaussian band given by its centre, full width at half maximum and peak value.",
+                          {P::Length("center", "centre wavelength").Required().Min(0, true),
+                           P::Length("fwhm", "full width at half maximum").Required().Min(0, true),
+                           P::Number("peak", "value at the centre").Default(Value::Number(1)).Min(0)}};
     return s;
 }
 
 std::unique_ptr<Spectrum> GaussianSpectrum::Create(const ParamDict &d, BuildContext &) {
-    return std::make_unique<GaussianSpectrum>(d.GetNumber("center"), d.GetNumber("fwhm"), d.GetNumber("peak"));
+    return std::make_unique<GaussianSpectrum>(d.GetNumber("center"), d.GetNumber("fwhm"),
+                                              d.GetNumber("peak"));
 }
 
 std::vector<ParamDict> GaussianSpectrum::TestPresets() {

@@ -17,7 +17,8 @@ class LineSpectrum final : public Spectrum {
 
     static const Schema &GetSchema() {
         static const Schema s{
-            "spectrum", "line",
+            "spectrum",
+            "line",
             "Emission line: a discrete line of integrated strength `power`, or, with fwhm > 0, a "
             "Gaussian of that integral.",
             {P::Length("wavelength", "vacuum wavelength of the line").Required().Min(0, true),
@@ -30,7 +31,8 @@ class LineSpectrum final : public Spectrum {
         return s;
     }
     static std::unique_ptr<Spectrum> Create(const ParamDict &d, BuildContext &) {
-        const double lambda = d.GetNumber("wavelength"), power = d.GetNumber("power"), fwhm = d.GetNumber("fwhm");
+        const double lambda = d.GetNumber("wavelength"), power = d.GetNumber("power"),
+                     fwhm = d.GetNumber("fwhm");
         if (fwhm > 0) return GaussianSpectrum::WithIntegral(lambda, fwhm, power);
         return std::make_unique<LineSpectrum>(lambda, power);
     }

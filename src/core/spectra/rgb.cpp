@@ -21,48 +21,53 @@ namespace {
 constexpr int SmitsBins = 10;
 constexpr double SmitsLo = 380e-9, SmitsHi = 720e-9;  // [m]
 using Basis = std::array<double, SmitsBins>;
-// Smits (1999), Table 1: basis spectra (numbers from the paper).
-constexpr Basis SmitsWhite = {1.0000, 1.0000, 0.9999, 0.9993, 0.9992, 0.9998, 1.0000, 1.0000, 1.0000, 1.0000};
-constexpr Basis SmitsCyan = {0.9710, 0.9426, 1.0007, 1.0007, 1.0007, 1.0007, 0.1564, 0.0000, 0.0000, 0.0000};
-constexpr Basis SmitsMagenta = {1.0000, 1.0000, 0.9685, 0.2229, 0.0000, 0.0458, 0.8369, 1.0000, 1.0000, 0.9959};
-constexpr Basis SmitsYellow = {0.0001, 0.0000, 0.1088, 0.6651, 1.0000, 1.0000, 0.9996, 0.9586, 0.9685, 0.9840};
-constexpr Basis SmitsRed = {0.1012, 0.0515, 0.0000, 0.0000, 0.0000, 0.0000, 0.8325, 1.0149, 1.0149, 1.0149};
-constexpr Basis SmitsGreen = {0.0000, 0.0000, 0.0273, 0.7937, 1.0000, 0.9418, 0.1719, 0.0000, 0.0000, 0.0025};
-constexpr Basis SmitsBlue = {1.0000, 1.0000, 0.8916, 0.3323, 0.0000, 0.0000, 0.0003, 0.0369, 0.0483, 0.0496};
+// Smits (1999): the published basis spectra (numbers from the paper), one row per colour.
+enum SmitsColour { White, Cyan, Magenta, Yellow, Red, Green, Blue };
+// clang-format off
+constexpr Basis SmitsBasis[7] = {
+    {1.0000, 1.0000, 0.9999, 0.9993, 0.9992, 0.9998, 1.0000, 1.0000, 1.0000, 1.0000},  // white
+    {0.9710, 0.9426, 1.0007, 1.0007, 1.0007, 1.0007, 0.1564, 0.0000, 0.0000, 0.0000},  // cyan
+    {1.0000, 1.0000, 0.9685, 0.2229, 0.0000, 0.0458, 0.8369, 1.0000, 1.0000, 0.9959},  // magenta
+    {0.0001, 0.0000, 0.1088, 0.6651, 1.0000, 1.0000, 0.9996, 0.9586, 0.9685, 0.9840},  // yellow
+    {0.1012, 0.0515, 0.0000, 0.0000, 0.0000, 0.0000, 0.8325, 1.0149, 1.0149, 1.0149},  // red
+    {0.0000, 0.0000, 0.0273, 0.7937, 1.0000, 0.9418, 0.1719, 0.0000, 0.0000, 0.0025},  // green
+    {1.0000, 1.0000, 0.8916, 0.3323, 0.0000, 0.0000, 0.0003, 0.0369, 0.0483, 0.0496},  // blue
+};
+// clang-format on
 
-// Smits (1999), §3: white × the smallest component, the secondary between the two larger ones ×
+// Smits (1999): white × the smallest component, the secondary between the two larger ones ×
 // (middle − smallest), the primary of the largest × (largest − middle).
 Basis SmitsUplift(double r, double g, double b) {
     Basis out{};
-    auto add = [&](const Basis &basis, double w) {
-        for (int i = 0; i < SmitsBins; ++i) out[i] += w * basis[i];
+    auto add = [&](SmitsColour c, double w) {
+        for (int i = 0; i < SmitsBins; ++i) out[i] += w * SmitsBasis[c][i];
     };
     if (r <= g && r <= b) {
-        add(SmitsWhite, r);
+        add(White, r);
         if (g <= b) {
-            add(SmitsCyan, g - r);
-            add(SmitsBlue, b - g);
+            add(Cyan, g - r);
+            add(Blue, b - g);
         } else {
-            add(SmitsCyan, b - r);
-            add(SmitsGreen, g - b);
+            add(Cyan, b - r);
+            add(Green, g - b);
         }
     } else if (g <= r && g <= b) {
-        add(SmitsWhite, g);
+        add(White, g);
         if (r <= b) {
-            add(SmitsMagenta, r - g);
-            add(SmitsBlue, b - r);
+            add(Magenta, r - g);
+            add(Blue, b - r);
         } else {
-            add(SmitsMagenta, b - g);
-            add(SmitsRed, r - b);
+            add(Magenta, b - g);
+            add(Red, r - b);
         }
     } else {
-        add(SmitsWhite, b);
+        add(White, b);
         if (r <= g) {
-            add(SmitsYellow, r - b);
-            add(SmitsGreen, g - r);
+            add(Yellow, r - b);
+            add(Green, g - r);
         } else {
-            add(SmitsYellow, g - b);
-            add(SmitsRed, r - g);
+            add(Yellow, g - b);
+            add(Red, r - g);
         }
     }
     for (double &v : out) v = std::clamp(v, 0.0, 1.0);
@@ -76,16 +81,19 @@ class RgbSpectrum final : public Spectrum {
     explicit RgbSpectrum(const Vec3 &rgb) : rgb_(rgb), bins_(SmitsUplift(rgb.x, rgb.y, rgb.z)) {}
 
     static const Schema &GetSchema() {
-        static const Schema s{"spectrum", "rgb",
-                              "Linear RGB reflectance/albedo uplifted to a smooth spectrum in [0, 1] (Smits 1999).",
-                              {P::Vector("color", "linear RGB components, each in [0, 1]").Required().Min(0).Max(1)}};
+        static const Schema s{
+            "spectrum",
+            "rgb",
+            "Linear RGB reflectance/albedo uplifted to a smooth spectrum in [0, 1] (Smits 1999).",
+            {P::Vector("color", "linear RGB components, each in [0, 1]").Required().Min(0).Max(1)}};
         return s;
     }
     static std::unique_ptr<Spectrum> Create(const ParamDict &d, BuildContext &) {
         const Vec3 c = d.GetVector("color");
         for (int i = 0; i < 3; ++i)
             if (!(c[i] >= 0 && c[i] <= 1))
-                throw Error(d.Loc("color"), "rgb colour components must lie in [0, 1]; got " + spectra::Num(c[i]));
+                throw Error(d.Loc("color"),
+                            "rgb colour components must lie in [0, 1]; got " + spectra::Num(c[i]));
         return std::make_unique<RgbSpectrum>(c);
     }
     static std::vector<ParamDict> TestPresets() {
@@ -106,7 +114,8 @@ class RgbSpectrum final : public Spectrum {
     double MaxValue() const override { return *std::max_element(bins_.begin(), bins_.end()); }
     std::pair<double, double> Support() const override { return {0, Infinity}; }
     std::string ToString() const override {
-        return "rgb([" + spectra::Num(rgb_.x) + " " + spectra::Num(rgb_.y) + " " + spectra::Num(rgb_.z) + "])";
+        return "rgb([" + spectra::Num(rgb_.x) + " " + spectra::Num(rgb_.y) + " " + spectra::Num(rgb_.z) +
+               "])";
     }
 
   private:

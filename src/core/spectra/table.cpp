@@ -19,7 +19,8 @@ class TableSpectrum final : public Spectrum {
 
     static const Schema &GetSchema() {
         static const Schema s{
-            "spectrum", "table",
+            "spectrum",
+            "table",
             "Tabulated spectrum: linear interpolation between samples, 0 outside the table.",
             {P::NumberList("wavelengths", "sample wavelengths, strictly increasing", Dim::Length())
                  .Required()
@@ -31,17 +32,19 @@ class TableSpectrum final : public Spectrum {
         std::vector<double> lambda = d.GetNumbers("wavelengths"), values = d.GetNumbers("values");
         if (lambda.size() != values.size())
             throw Error(d.Loc("values"), "table has " + std::to_string(lambda.size()) + " wavelengths but " +
-                                             std::to_string(values.size()) + " values; the counts must match");
+                                             std::to_string(values.size()) +
+                                             " values; the counts must match");
         if (lambda.empty()) throw Error(d.Loc("wavelengths"), "table needs at least one sample");
         for (std::size_t i = 1; i < lambda.size(); ++i)
             if (!(lambda[i] > lambda[i - 1]))
-                throw Error(d.Loc("wavelengths"),
-                            "table wavelengths must strictly increase: entry " + std::to_string(i + 1) + " (" +
-                                spectra::Nm(lambda[i]) + ") is not greater than entry " + std::to_string(i) +
-                                " (" + spectra::Nm(lambda[i - 1]) + ")");
+                throw Error(d.Loc("wavelengths"), "table wavelengths must strictly increase: entry " +
+                                                      std::to_string(i + 1) + " (" + spectra::Nm(lambda[i]) +
+                                                      ") is not greater than entry " + std::to_string(i) +
+                                                      " (" + spectra::Nm(lambda[i - 1]) + ")");
         if (lambda.size() == 1) {
-            ctx.Diag().Warning(d.Loc("wavelengths"),
-                               "table has a single sample; it is treated as a constant " + spectra::Num(values[0]));
+            ctx.Diag().Warning(
+                d.Loc("wavelengths"),
+                "table has a single sample; it is treated as a constant " + spectra::Num(values[0]));
             return std::make_unique<ConstantSpectrum>(values[0]);
         }
         return std::make_unique<TableSpectrum>(std::move(lambda), std::move(values));

@@ -70,9 +70,9 @@ double Blackbody(double lambda, double T) {
     // Planck's law, spectral radiance per unit wavelength:
     //   B(λ, T) = 2hc² / λ⁵ / (exp(hc / (λ k T)) − 1)   [W/(m²·sr·m)]
     // with the exact SI 2019 constants.
-    constexpr double h = 6.62607015e-34;   // Planck constant [J·s]
-    constexpr double c = 299792458.0;      // speed of light [m/s]
-    constexpr double kB = 1.380649e-23;    // Boltzmann constant [J/K]
+    constexpr double h = 6.62607015e-34;  // Planck constant [J·s]
+    constexpr double c = 299792458.0;     // speed of light [m/s]
+    constexpr double kB = 1.380649e-23;   // Boltzmann constant [J/K]
     const double x = h * c / (lambda * kB * T);
     const double denom = std::expm1(x);
     if (!std::isfinite(denom)) return 0;  // deep Wien tail underflows to 0

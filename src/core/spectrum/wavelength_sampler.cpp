@@ -183,7 +183,8 @@ SampledWavelengths WavelengthSampler::Sample(double u) const {
             // First cell whose upper CDF value exceeds ui (cells of zero mass are skipped).
             auto it = std::upper_bound(cdf_.begin(), cdf_.end(), ui);
             std::size_t k = std::size_t(std::clamp<std::ptrdiff_t>(it - cdf_.begin(), 1,
-                                                                   std::ptrdiff_t(cdf_.size()) - 1)) - 1;
+                                                                   std::ptrdiff_t(cdf_.size()) - 1)) -
+                            1;
             const double c0 = cdf_[k], c1 = cdf_[k + 1], a = grid_[k], b = grid_[k + 1];
             const double t = c1 > c0 ? (ui - c0) / (c1 - c0) : 0.5;
             wl.lambda[i] = std::clamp(a + t * (b - a), a, b);
@@ -210,8 +211,8 @@ SampledWavelengths WavelengthSampler::Sample(double u) const {
 double WavelengthSampler::Pdf(double lambda) const {
     if (grid_.size() < 2 || !(lambda >= grid_.front()) || !(lambda <= grid_.back())) return 0;
     auto it = std::upper_bound(grid_.begin(), grid_.end(), lambda);
-    std::size_t k = std::size_t(std::clamp<std::ptrdiff_t>(it - grid_.begin(), 1,
-                                                           std::ptrdiff_t(grid_.size()) - 1)) - 1;
+    std::size_t k =
+        std::size_t(std::clamp<std::ptrdiff_t>(it - grid_.begin(), 1, std::ptrdiff_t(grid_.size()) - 1)) - 1;
     return continuousProb_ * (cdf_[k + 1] - cdf_[k]) / (grid_[k + 1] - grid_[k]);
 }
 

@@ -36,8 +36,9 @@ Value Kelvin(double v) { return Value::Number(v, Dim::Temperature()); }
 
 TEST(SpectrumPlugins, AllRegisteredWithTheMainParameterFirst) {
     const std::vector<std::pair<std::string, std::string>> expected = {
-        {"constant", "value"}, {"blackbody", "temperature"}, {"line", "wavelength"}, {"gaussian", "center"},
-        {"table", "wavelengths"}, {"rgb", "color"}, {"d65", "scale"}};
+        {"constant", "value"},  {"blackbody", "temperature"}, {"line", "wavelength"},
+        {"gaussian", "center"}, {"table", "wavelengths"},     {"rgb", "color"},
+        {"d65", "scale"}};
     for (const auto &[name, first] : expected) {
         const PluginEntry<Spectrum> *e = Registry<Spectrum>::Find(name);
         ASSERT_NE(e, nullptr) << name;
@@ -72,8 +73,10 @@ TEST(SpectrumPlugins, BlackbodyNormalisedToItsPeak) {
     Built n = Make("blackbody", ParamDict().Set("temperature", Kelvin(T)));
     EXPECT_NEAR(n.spectrum->Eval(b / T), 1.0, 1e-12);
     EXPECT_EQ(n.spectrum->MaxValue(), 1.0);
-    EXPECT_NEAR(n.spectrum->Eval(400e-9) / n.spectrum->Eval(700e-9), Blackbody(400e-9, T) / Blackbody(700e-9, T), 1e-12);
-    Built a = Make("blackbody", ParamDict().Set("temperature", Kelvin(T)).Set("normalize", Value::Bool(false)));
+    EXPECT_NEAR(n.spectrum->Eval(400e-9) / n.spectrum->Eval(700e-9),
+                Blackbody(400e-9, T) / Blackbody(700e-9, T), 1e-12);
+    Built a =
+        Make("blackbody", ParamDict().Set("temperature", Kelvin(T)).Set("normalize", Value::Bool(false)));
     EXPECT_DOUBLE_EQ(a.spectrum->Eval(500e-9), Blackbody(500e-9, T));
     // Support: the spectrum is ≥ 1e-6 of its peak inside and below it outside.
     auto [lo, hi] = n.spectrum->Support();
@@ -101,7 +104,9 @@ TEST(SpectrumPlugins, LineIsDiscrete) {
 }
 
 TEST(SpectrumPlugins, LineWithWidthIsAGaussianOfTheSamePower) {
-    Built b = Make("line", ParamDict().Set("wavelength", Nm(632.8)).Set("power", Value::Number(3)).Set("fwhm", Nm(0.002)));
+    Built b =
+        Make("line",
+             ParamDict().Set("wavelength", Nm(632.8)).Set("power", Value::Number(3)).Set("fwhm", Nm(0.002)));
     const Spectrum &s = *b.spectrum;
     EXPECT_FALSE(s.LineWavelength());
     auto [lo, hi] = s.Support();
@@ -114,7 +119,8 @@ TEST(SpectrumPlugins, LineWithWidthIsAGaussianOfTheSamePower) {
 }
 
 TEST(SpectrumPlugins, Gaussian) {
-    Built b = Make("gaussian", ParamDict().Set("center", Nm(550)).Set("fwhm", Nm(40)).Set("peak", Value::Number(2)));
+    Built b = Make("gaussian",
+                   ParamDict().Set("center", Nm(550)).Set("fwhm", Nm(40)).Set("peak", Value::Number(2)));
     EXPECT_DOUBLE_EQ(b.spectrum->Eval(550e-9), 2.0);
     EXPECT_NEAR(b.spectrum->Eval(570e-9), 1.0, 1e-12);
     EXPECT_NEAR(b.spectrum->Eval(530e-9), 1.0, 1e-12);
@@ -135,7 +141,8 @@ Value List(std::vector<double> v) {
 }
 
 TEST(SpectrumPlugins, TableInterpolates) {
-    Built b = Make("table", ParamDict().Set("wavelengths", NmList({400, 500, 700})).Set("values", List({1, 3, 2})));
+    Built b =
+        Make("table", ParamDict().Set("wavelengths", NmList({400, 500, 700})).Set("values", List({1, 3, 2})));
     EXPECT_DOUBLE_EQ(b.spectrum->Eval(400e-9), 1.0);
     EXPECT_NEAR(b.spectrum->Eval(450e-9), 2.0, 1e-12);
     EXPECT_DOUBLE_EQ(b.spectrum->Eval(600e-9), 2.5);

@@ -31,9 +31,12 @@ TEST(Cie1931, TableChecksumsMatchThePublishedTable) {
 
 TEST(Cie1931, IntegralsOfTheInterpolatedFunctions) {
     // Integrals of the piecewise-linear x̄, ȳ, z̄ [nm]: the sums minus half the end values.
-    const double ix = Trapezoid([](double l) { return CieXyz(l).x; }, CieLambdaMin, CieLambdaMax, 0.25e-9) * 1e9;
-    const double iy = Trapezoid([](double l) { return CieXyz(l).y; }, CieLambdaMin, CieLambdaMax, 0.25e-9) * 1e9;
-    const double iz = Trapezoid([](double l) { return CieXyz(l).z; }, CieLambdaMin, CieLambdaMax, 0.25e-9) * 1e9;
+    const double ix =
+        Trapezoid([](double l) { return CieXyz(l).x; }, CieLambdaMin, CieLambdaMax, 0.25e-9) * 1e9;
+    const double iy =
+        Trapezoid([](double l) { return CieXyz(l).y; }, CieLambdaMin, CieLambdaMax, 0.25e-9) * 1e9;
+    const double iz =
+        Trapezoid([](double l) { return CieXyz(l).z; }, CieLambdaMin, CieLambdaMax, 0.25e-9) * 1e9;
     std::printf("  ∫x̄ = %.7f nm, ∫ȳ = %.7f nm, ∫z̄ = %.7f nm\n", ix, iy, iz);
     EXPECT_NEAR(ix, 106.8654694896 - 0.5 * (0.0001299 + 1.251141e-6), 1e-7);
     EXPECT_NEAR(iy, 106.8569171012 - 0.5 * (3.917e-6 + 4.5181e-7), 1e-7);
@@ -42,8 +45,8 @@ TEST(Cie1931, IntegralsOfTheInterpolatedFunctions) {
 }
 
 TEST(Cie1931, PointValuesAndRange) {
-    EXPECT_DOUBLE_EQ(CieXyz(555e-9).y, 1.0);     // ȳ peaks at 1 at 555 nm
-    EXPECT_DOUBLE_EQ(CieXyz(600e-9).x, 1.0622);  // tabulated value
+    EXPECT_DOUBLE_EQ(CieXyz(555e-9).y, 1.0);                             // ȳ peaks at 1 at 555 nm
+    EXPECT_DOUBLE_EQ(CieXyz(600e-9).x, 1.0622);                          // tabulated value
     EXPECT_NEAR(CieXyz(600.5e-9).x, 0.5 * (1.0622 + 1.0607352), 1e-12);  // linear interpolation
     EXPECT_EQ(CieXyz(359.9e-9), Vec3());
     EXPECT_EQ(CieXyz(830.1e-9), Vec3());
@@ -64,7 +67,8 @@ TEST(Srgb, MatricesMatchRec709D65) {
     // XYZ → linear sRGB derived exactly from the Rec. 709 primaries and the D65 white
     // (0.3127, 0.3290) (SMPTE RP 177 procedure); IEC 61966-2-1 prints this matrix rounded to 4
     // digits (3.2406, −1.5372, −0.4986 / −0.9689, 1.8758, 0.0415 / 0.0557, −0.2040, 1.0570).
-    const Vec3 c0 = XyzToLinearSrgb({1, 0, 0}), c1 = XyzToLinearSrgb({0, 1, 0}), c2 = XyzToLinearSrgb({0, 0, 1});
+    const Vec3 c0 = XyzToLinearSrgb({1, 0, 0}), c1 = XyzToLinearSrgb({0, 1, 0}),
+               c2 = XyzToLinearSrgb({0, 0, 1});
     EXPECT_NEAR(c0.x, 3.2409699, 1e-6);
     EXPECT_NEAR(c1.x, -1.5373832, 1e-6);
     EXPECT_NEAR(c2.x, -0.4986108, 1e-6);
@@ -100,7 +104,8 @@ TEST(CieD65, IsTheSrgbWhite) {
     xyz = xyz / xyz.y;
     const Vec3 rgb = XyzToLinearSrgb(xyz);
     const double residual = std::max({std::abs(rgb.x - 1), std::abs(rgb.y - 1), std::abs(rgb.z - 1)});
-    std::printf("  D65 → linear sRGB = (%.6f, %.6f, %.6f), max residual %.2e\n", rgb.x, rgb.y, rgb.z, residual);
+    std::printf("  D65 → linear sRGB = (%.6f, %.6f, %.6f), max residual %.2e\n", rgb.x, rgb.y, rgb.z,
+                residual);
     EXPECT_LT(residual, 1e-3);
 }
 
@@ -112,8 +117,10 @@ TEST(Blackbody, PeakObeysWiensLaw) {
         const double g = 0.5 * (std::sqrt(5.0) - 1);
         for (int it = 0; it < 200 && hi - lo > 1e-13 * hi; ++it) {
             const double m1 = hi - g * (hi - lo), m2 = lo + g * (hi - lo);
-            if (Blackbody(m1, T) < Blackbody(m2, T)) lo = m1;
-            else hi = m2;
+            if (Blackbody(m1, T) < Blackbody(m2, T))
+                lo = m1;
+            else
+                hi = m2;
         }
         const double lambdaMax = 0.5 * (lo + hi);
         EXPECT_NEAR(lambdaMax * T / b, 1.0, 1e-4) << "T = " << T;
@@ -145,8 +152,10 @@ TEST(Blackbody, StefanBoltzmann) {
 
 TEST(SensorResponse, FlatSpectrumReadsOne) {
     const SensorResponse cie(SensorResponse::Kind::CieXyz), rad(SensorResponse::Kind::Radiometric);
-    const double iy = Trapezoid([&](double l) { return cie.Channels(l).y; }, CieLambdaMin, CieLambdaMax, 0.5e-9);
-    const double ii = Trapezoid([&](double l) { return cie.Intensity(l); }, CieLambdaMin, CieLambdaMax, 0.5e-9);
+    const double iy =
+        Trapezoid([&](double l) { return cie.Channels(l).y; }, CieLambdaMin, CieLambdaMax, 0.5e-9);
+    const double ii =
+        Trapezoid([&](double l) { return cie.Intensity(l); }, CieLambdaMin, CieLambdaMax, 0.5e-9);
     EXPECT_NEAR(iy, 1.0, 1e-12);
     EXPECT_NEAR(ii, 1.0, 1e-12);
     EXPECT_EQ(rad.Channels(1e-6), Vec3(1, 1, 1));

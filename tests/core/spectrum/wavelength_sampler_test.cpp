@@ -53,8 +53,10 @@ test::Chi2Result Chi2Entry(const WavelengthSampler &ws, int which, const std::ve
         const double l = wl.lambda[which];
         auto it = std::upper_bound(edges.begin(), edges.end(), l);
         const long b = long(it - edges.begin()) - 1;
-        if (wl.delta || b < 0 || b >= bins) observed[bins] += 1;
-        else observed[b] += 1;
+        if (wl.delta || b < 0 || b >= bins)
+            observed[bins] += 1;
+        else
+            observed[b] += 1;
     }
     double inside = 0;
     for (int b = 0; b < bins; ++b) {
@@ -115,7 +117,8 @@ TEST(WavelengthSampler, LinesAreChosenWithTheirProbability) {
     // Expected masses: line strength · scale · (x̄+ȳ+z̄), the continuum's ∫ band · (x̄+ȳ+z̄) dλ.
     double cont = 0;
     const double h = 0.01e-9;
-    for (double l = CieLambdaMin; l < CieLambdaMax; l += h) cont += band.Eval(l + h / 2) * Cie.Importance(l + h / 2) * h;
+    for (double l = CieLambdaMin; l < CieLambdaMax; l += h)
+        cont += band.Eval(l + h / 2) * Cie.Importance(l + h / 2) * h;
     const double mGreen = 1.5 * 2e-8 * Cie.Importance(532e-9), mRed = 1e-8 * Cie.Importance(632.8e-9);
     const double total = cont + mGreen + mRed;  // the 1064 nm line is invisible to the CIE observer
     const std::vector<double> probs = {cont / total, mGreen / total, mRed / total};
@@ -152,7 +155,8 @@ TEST(WavelengthSampler, InfraredLaserRendersDeterministically) {
     EXPECT_EQ(ws.Pdf(1e-6), 0.0);
     test::TestRng rng(3);
     for (int s = 0; s < 1000; ++s) {
-        const SampledWavelengths wl = ws.Sample(s == 0 ? 0.0 : (s == 1 ? std::nextafter(1.0, 0.0) : rng.Uniform()));
+        const SampledWavelengths wl =
+            ws.Sample(s == 0 ? 0.0 : (s == 1 ? std::nextafter(1.0, 0.0) : rng.Uniform()));
         ASSERT_TRUE(wl.delta);
         ASSERT_EQ(wl.Count(), 1);
         ASSERT_EQ(wl.lambda[0], 1e-6);
@@ -259,8 +263,8 @@ TEST(WavelengthSampler, EstimatorIsUnbiasedCie) {
     ref = ref * h / 3 + 3 * 1e-8 * g(532e-9);
     for (bool heroOnly : {false, true}) {
         const test::TTestResult t = EstimatorTTest(ws, emitters, g, ref, heroOnly, 11 + heroOnly);
-        EXPECT_GE(t.pValue, test::SidakAlpha(0.01, 2)) << (heroOnly ? "hero only: " : "hero+companions: ")
-                                                       << t.ToString() << " reference " << ref;
+        EXPECT_GE(t.pValue, test::SidakAlpha(0.01, 2))
+            << (heroOnly ? "hero only: " : "hero+companions: ") << t.ToString() << " reference " << ref;
     }
 }
 
