@@ -109,9 +109,12 @@ class GltfBuilder {
     std::string Json(bool embedded) const {
         std::string s = "{\n\"asset\":{\"version\":\"2.0\",\"generator\":\"phasor_make_assets\"},\n";
         s += "\"scene\":0,\n\"scenes\":[{\"nodes\":[";
-        for (std::size_t i = 0; i < sceneNodes_.size(); ++i) s += (i ? "," : "") + std::to_string(sceneNodes_[i]);
-        s += "]}],\n\"nodes\":[\n" + JoinLines(nodes_) + "\n],\n\"meshes\":[\n" + JoinLines(meshes_) + "\n],\n";
-        s += "\"accessors\":[\n" + JoinLines(accessors_) + "\n],\n\"bufferViews\":[\n" + JoinLines(views_) + "\n],\n";
+        for (std::size_t i = 0; i < sceneNodes_.size(); ++i)
+            s += (i ? "," : "") + std::to_string(sceneNodes_[i]);
+        s += "]}],\n\"nodes\":[\n" + JoinLines(nodes_) + "\n],\n\"meshes\":[\n" + JoinLines(meshes_) +
+             "\n],\n";
+        s += "\"accessors\":[\n" + JoinLines(accessors_) + "\n],\n\"bufferViews\":[\n" + JoinLines(views_) +
+             "\n],\n";
         s += "\"buffers\":[{\"byteLength\":" + std::to_string(bin_.size());
         if (embedded) s += ",\"uri\":\"data:application/octet-stream;base64," + Base64(bin_) + "\"";
         s += "}]\n}\n";
@@ -130,7 +133,9 @@ class GltfBuilder {
         while (bin.size() % 4) bin.push_back(0);
         uint32_t total = uint32_t(12 + 8 + json.size() + 8 + bin.size());
         std::ofstream out(path, std::ios::binary);
-        auto u32 = [&](uint32_t v) { out.write(reinterpret_cast<const char *>(&v), 4); };  // little endian host
+        auto u32 = [&](uint32_t v) {
+            out.write(reinterpret_cast<const char *>(&v), 4);
+        };                 // little endian host
         u32(0x46546C67u);  // "glTF"
         u32(2);
         u32(total);
@@ -147,12 +152,14 @@ class GltfBuilder {
     int AddView(const void *data, std::size_t bytes, int target) {
         while (bin_.size() % 4) bin_.push_back(0);
         std::size_t offset = bin_.size();
-        bin_.insert(bin_.end(), static_cast<const uint8_t *>(data), static_cast<const uint8_t *>(data) + bytes);
+        bin_.insert(bin_.end(), static_cast<const uint8_t *>(data),
+                    static_cast<const uint8_t *>(data) + bytes);
         views_.push_back("{\"buffer\":0,\"byteOffset\":" + std::to_string(offset) + ",\"byteLength\":" +
                          std::to_string(bytes) + ",\"target\":" + std::to_string(target) + "}");
         return int(views_.size() - 1);
     }
-    int AddAccessor(int view, int componentType, std::size_t count, const std::string &type, const std::string &extra) {
+    int AddAccessor(int view, int componentType, std::size_t count, const std::string &type,
+                    const std::string &extra) {
         accessors_.push_back("{\"bufferView\":" + std::to_string(view) + ",\"componentType\":" +
                              std::to_string(componentType) + ",\"count\":" + std::to_string(count) +
                              ",\"type\":\"" + type + "\"" + extra + "}");
@@ -186,20 +193,22 @@ GltfBuilder TestAsset() {
     int i32 = b.AddIndices(std::vector<uint32_t>{0, 1, 2, 0, 2, 3}, kUInt);
     int strip = b.AddFloats({0, 0, 0, 1, 0, 0, 0, 1, 0, 1, 1, 0}, 3, true);
 
-    int m0 = b.AddMesh("quad_u16", {b.Primitive({{"POSITION", quad}, {"NORMAL", nUp}, {"TEXCOORD_0", uv}}, i16)});
+    int m0 =
+        b.AddMesh("quad_u16", {b.Primitive({{"POSITION", quad}, {"NORMAL", nUp}, {"TEXCOORD_0", uv}}, i16)});
     int m1 = b.AddMesh("quad_u8", {b.Primitive({{"POSITION", quad}, {"NORMAL", nUp}}, i8),
                                    b.Primitive({{"POSITION", quad}}, -1, 0)});  // POINTS: skipped
     int m2 = b.AddMesh("quad_u32", {b.Primitive({{"POSITION", quad}, {"NORMAL", nTilt}}, i32)});
     int m3 = b.AddMesh("strip", {b.Primitive({{"POSITION", strip}, {"NORMAL", nUp}}, -1, 5)});
 
     // parent: T(1,2,3)·R_z(180°)·S(2); child: matrix = T(0,0,1)·R_x(90°) (column-major).
-    int parent = b.AddNode("parent", "\"children\":[1],\"translation\":[1,2,3],\"rotation\":[0,0,1,0],"
-                                     "\"scale\":[2,2,2]");
-    b.AddNode("child", "\"mesh\":" + std::to_string(m0) +
-                           ",\"matrix\":[1,0,0,0, 0,0,1,0, 0,-1,0,0, 0,0,1,1]");
+    int parent = b.AddNode("parent",
+                           "\"children\":[1],\"translation\":[1,2,3],\"rotation\":[0,0,1,0],"
+                           "\"scale\":[2,2,2]");
+    b.AddNode("child",
+              "\"mesh\":" + std::to_string(m0) + ",\"matrix\":[1,0,0,0, 0,0,1,0, 0,-1,0,0, 0,0,1,1]");
     int plain = b.AddNode("plain", "\"mesh\":" + std::to_string(m1));
-    int scaled = b.AddNode("scaled", "\"mesh\":" + std::to_string(m2) +
-                                         ",\"matrix\":[1,0,0,0, 0,2,0,0, 0,0,3,0, -1,0,0,1]");
+    int scaled = b.AddNode(
+        "scaled", "\"mesh\":" + std::to_string(m2) + ",\"matrix\":[1,0,0,0, 0,2,0,0, 0,0,3,0, -1,0,0,1]");
     int mirrored = b.AddNode("mirrored", "\"mesh\":" + std::to_string(m3) + ",\"scale\":[-1,1,1]");
     b.AddNode("orphan", "\"mesh\":" + std::to_string(m0));  // not in the scene: ignored
     b.SetSceneNodes({parent, plain, scaled, mirrored});
@@ -250,7 +259,8 @@ GltfBuilder TorusKnot() {
     GltfBuilder b;
     int p = b.AddFloats(pos, 3, true), n = b.AddFloats(nrm, 3, false), t = b.AddFloats(uv, 2, false);
     int ix = b.AddIndices(idx, kUShort);
-    int mesh = b.AddMesh("torus_knot", {b.Primitive({{"POSITION", p}, {"NORMAL", n}, {"TEXCOORD_0", t}}, ix)});
+    int mesh =
+        b.AddMesh("torus_knot", {b.Primitive({{"POSITION", p}, {"NORMAL", n}, {"TEXCOORD_0", t}}, ix)});
     // Root: scale 0.15 (the knot spans about ±0.5 units) and a 30° tilt about x; child: lift.
     double half = phasor::Radians(30) / 2;
     int root = b.AddNode("knot_root", "\"children\":[1],\"rotation\":[" + Num(std::sin(half)) + ",0,0," +
@@ -260,18 +270,20 @@ GltfBuilder TorusKnot() {
     return b;
 }
 
-/// A cube [-1,1]³ with each face extruded outwards by 0.8 and shrunk to half size: a "jack"
-/// that Catmull–Clark turns into a smooth six-lobed blob. 32 vertices, 30 quads.
+/// A cube [-1,1]³ with each face extruded outwards by 1.3 and shrunk to 0.45: a "jack"
+/// that Catmull–Clark turns into a smooth six-lobed blob; scaled by 0.7 so that the refined
+/// surface spans about ±1.55. 32 vertices, 30 quads.
 bool WriteJackCage(const std::string &path) {
     std::vector<Vec3> v;
     std::vector<std::vector<int>> faces;
     for (int i = 0; i < 8; ++i) v.push_back(Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
-    const int cube[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    const int cube[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                            {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto &f : cube) {
         Vec3 c = (v[f[0]] + v[f[1]] + v[f[2]] + v[f[3]]) / 4;
         Vec3 nrm = phasor::Normalize(phasor::Cross(v[f[1]] - v[f[0]], v[f[2]] - v[f[0]]));
         int base = int(v.size());
-        for (int k = 0; k < 4; ++k) v.push_back(c + 0.8 * nrm + 0.5 * (v[f[k]] - c));
+        for (int k = 0; k < 4; ++k) v.push_back(c + 1.3 * nrm + 0.45 * (v[f[k]] - c));
         for (int k = 0; k < 4; ++k) {
             int k1 = (k + 1) % 4;
             faces.push_back({f[k], f[k1], base + k1, base + k});  // side wall
@@ -280,8 +292,10 @@ bool WriteJackCage(const std::string &path) {
     }
     std::ofstream out(path);
     out << "# phasor subdivision cage: cube with extruded faces (generated by phasor_make_assets)\n";
-    for (const Vec3 &p : v) out << "v " << Num(p.x) << " " << Num(p.y) << " " << Num(p.z) << "\n";
-    for (const auto &f : faces) out << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << " " << f[3] + 1 << "\n";
+    for (const Vec3 &p : v)
+        out << "v " << Num(0.7 * p.x) << " " << Num(0.7 * p.y) << " " << Num(0.7 * p.z) << "\n";
+    for (const auto &f : faces)
+        out << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << " " << f[3] + 1 << "\n";
     return bool(out);
 }
 
@@ -295,7 +309,8 @@ int main(int argc, char **argv) {
     std::string dir = argv[1];
     if (!dir.empty() && dir.back() != '/') dir += '/';
     GltfBuilder test = TestAsset();
-    bool ok = test.WriteGltf(dir + "test_node_transform.gltf") && test.WriteGlb(dir + "test_node_transform.glb") &&
+    bool ok = test.WriteGltf(dir + "test_node_transform.gltf") &&
+              test.WriteGlb(dir + "test_node_transform.glb") &&
               TorusKnot().WriteGlb(dir + "torus_knot.glb") && WriteJackCage(dir + "jack_cage.obj");
     if (!ok) {
         std::cerr << "phasor_make_assets: cannot write to " << dir << "\n";

@@ -112,7 +112,7 @@ class DiffuseMaterial final : public Material {
     }
 
     double Pdf(const ScatterQuery &q, const Vec3 &wo) const override {
-        return SameSide(q.wi, wo) ? std::abs(wo.z) * InvPi * 1.02 : 0;
+        return SameSide(q.wi, wo) ? std::abs(wo.z) * InvPi : 0;
     }
 
     bool IsDeltaOnly() const override { return false; }

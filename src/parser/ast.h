@@ -4,6 +4,7 @@
 // comments).
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -89,9 +90,10 @@ struct FileAst {
 
 /// Parses one file into `out`, reporting lexical and syntax errors to `diag` (positions in
 /// `fileName`). Returns false if any error was reported. `notes` are attached to every error
-/// (the include chain).
+/// (the include chain). With `onStmt`, each statement is handed over as soon as it is parsed
+/// (and not stored in out.stmts), so a large file never exists as a whole tree.
 bool ParseFileAst(const std::string &text, const std::string &fileName, Diagnostics &diag, FileAst &out,
-                  const std::vector<Diagnostic> &notes = {});
+                  const std::vector<Diagnostic> &notes = {}, const std::function<void(Stmt &)> &onStmt = {});
 
 /// Parses a single value expression (a command-line `-D` value) placed at (line, col) of the
 /// pseudo-file `fileName`. Returns false after reporting an error.

@@ -3,6 +3,8 @@
 
 #include <array>
 #include <cstdio>
+#include <iterator>
+#include <memory>
 
 namespace phasor::wscene {
 
@@ -54,71 +56,68 @@ class Lexer {
   public:
     Lexer(std::string_view text, int line, int col) : s_(text), line_(line), col_(col) {}
 
-    TokenStream Run() {
-        TokenStream out;
-        // A UTF-8 byte-order mark is ignored.
-        if (s_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;
-        bool space = true;
-        Tok prev = Tok::End;
-        std::size_t prevEnd = 0;
-        for (;;) {
-            space = SkipSpaceAndComments(out.comments) || space;
-            if (error_) { out.tokens.push_back(std::move(errorTok_)); return out; }
-            if (pos_ >= s_.size()) {
-                Token end;
-                end.kind = Tok::End;
-                end.line = line_;
-                end.col = col_;
-                end.offset = end.endOffset = (uint32_t)pos_;
-                end.spaceBefore = true;
-                out.tokens.push_back(end);
-                return out;
-            }
-            Token t;
-            bool unitAllowed = (prev == Tok::Number || prev == Tok::RBracket);
-            if (unitAllowed && space && ScanUnitAfterSpace(t, prevEnd)) {
-                // (t filled in)
-            } else if (!LexToken(t)) {
-                out.tokens.push_back(std::move(errorTok_));
-                return out;
-            }
-            t.spaceBefore = space;
-            space = false;
-            t.spaceAfter = t.endOffset >= s_.size() || IsSpaceOrComment(s_[t.endOffset]);
-            prev = t.kind;
-            prevEnd = t.endOffset;
-            out.tokens.push_back(std::move(t));
-            // A unit may be attached to a number or a ']' directly ("150um", "[0 0 1]m").
-            if ((prev == Tok::Number || prev == Tok::RBracket) && pos_ < s_.size() &&
-                (IsAsciiLetter(s_[pos_]) || MicroSign(s_, pos_))) {
-                Token u;
-                if (!LexAttachedUnit(u)) {
-                    out.tokens.push_back(std::move(errorTok_));
-                    return out;
-                }
-                u.spaceBefore = false;
-                u.spaceAfter = u.endOffset >= s_.size() || IsSpaceOrComment(s_[u.endOffset]);
-                out.tokens.back().spaceAfter = false;
-                prev = Tok::Unit;
-                prevEnd = u.endOffset;
-                out.tokens.push_back(std::move(u));
-            }
-            if (prev == Tok::Number || prev == Tok::Imag || prev == Tok::Unit) {
-                // An attached unit is reported together with its number ("0x10").
-                std::size_t n = out.tokens.size();
-                const Token &from = (prev == Tok::Unit && !out.tokens.back().spaceBefore && n >= 2 &&
-                                     out.tokens[n - 2].kind == Tok::Number)
-                                        ? out.tokens[n - 2]
-                                        : out.tokens.back();
-                if (!CheckAfterNumber(from)) {
-                    out.tokens.push_back(std::move(errorTok_));
-                    return out;
-                }
-            }
+    // Appends the next token (a number with an attached unit gives two) to `tokens`; returns false
+    // once End or Error was appended.
+    bool Step(std::deque<Token> &tokens, std::deque<Comment> &comments) {
+        if (done_) return false;
+        if (first_) {
+            first_ = false;
+            // A UTF-8 byte-order mark is ignored.
+            if (s_.substr(0, 3) == "\xEF\xBB\xBF") pos_ = 3;
         }
+        space_ = SkipSpaceAndComments(comments) || space_;
+        if (error_) return Finish(tokens, std::move(errorTok_));
+        if (pos_ >= s_.size()) {
+            Token end;
+            end.kind = Tok::End;
+            end.line = line_;
+            end.col = col_;
+            end.offset = end.endOffset = (uint32_t)pos_;
+            end.spaceBefore = true;
+            return Finish(tokens, std::move(end));
+        }
+        Token t;
+        bool unitAllowed = (prev_ == Tok::Number || prev_ == Tok::RBracket);
+        if (unitAllowed && space_ && ScanUnitAfterSpace(t, prevEnd_)) {
+            // (t filled in)
+        } else if (!LexToken(t)) {
+            return Finish(tokens, std::move(errorTok_));
+        }
+        t.spaceBefore = space_;
+        space_ = false;
+        t.spaceAfter = t.endOffset >= s_.size() || IsSpaceOrComment(s_[t.endOffset]);
+        prev_ = t.kind;
+        prevEnd_ = t.endOffset;
+        tokens.push_back(std::move(t));
+        Token *from = &tokens.back();
+        // A unit may be attached to a number or a ']' directly ("150um", "[0 0 1]m").
+        if ((prev_ == Tok::Number || prev_ == Tok::RBracket) && pos_ < s_.size() &&
+            (IsAsciiLetter(s_[pos_]) || MicroSign(s_, pos_))) {
+            Token u;
+            LexAttachedUnit(u);
+            u.spaceBefore = false;
+            u.spaceAfter = u.endOffset >= s_.size() || IsSpaceOrComment(s_[u.endOffset]);
+            tokens.back().spaceAfter = false;
+            bool afterNumber = prev_ == Tok::Number;
+            prev_ = Tok::Unit;
+            prevEnd_ = u.endOffset;
+            tokens.push_back(std::move(u));
+            // An attached unit is reported together with its number ("0x10").
+            from = afterNumber ? &tokens[tokens.size() - 2] : &tokens.back();
+        }
+        if (prev_ == Tok::Number || prev_ == Tok::Imag || prev_ == Tok::Unit) {
+            if (!CheckAfterNumber(*from)) return Finish(tokens, std::move(errorTok_));
+        }
+        return true;
     }
 
   private:
+    bool Finish(std::deque<Token> &tokens, Token t) {
+        tokens.push_back(std::move(t));
+        done_ = true;
+        return false;
+    }
+
     static bool IsSpaceOrComment(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '#'; }
 
     void Advance(std::size_t n = 1) {
@@ -159,7 +158,7 @@ class Lexer {
     }
 
     // Skips whitespace and comments; returns true if anything was skipped.
-    bool SkipSpaceAndComments(std::vector<Comment> &comments) {
+    bool SkipSpaceAndComments(std::deque<Comment> &comments) {
         bool skipped = false;
         while (pos_ < s_.size()) {
             char c = s_[pos_];
@@ -485,7 +484,9 @@ class Lexer {
     std::string_view s_;
     std::size_t pos_ = 0;
     int line_, col_;
-    bool error_ = false;
+    bool error_ = false, done_ = false, first_ = true, space_ = true;
+    Tok prev_ = Tok::End;
+    std::size_t prevEnd_ = 0;
     Token errorTok_;
 };
 
@@ -524,8 +525,28 @@ const char *Describe(Tok t) {
     return "a token";
 }
 
+struct TokenSource::Impl {
+    Lexer lexer;
+};
+
+TokenSource::TokenSource(std::string_view text, int firstLine, int firstCol)
+    : impl_(std::make_unique<Impl>(Impl{Lexer(text, firstLine, firstCol)})) {}
+TokenSource::~TokenSource() = default;
+
+bool TokenSource::More(std::deque<Token> &tokens, std::deque<Comment> &comments) {
+    return impl_->lexer.Step(tokens, comments);
+}
+
 TokenStream Tokenize(std::string_view text, int firstLine, int firstCol) {
-    return Lexer(text, firstLine, firstCol).Run();
+    TokenSource src(text, firstLine, firstCol);
+    std::deque<Token> tokens;
+    std::deque<Comment> comments;
+    while (src.More(tokens, comments)) {
+    }
+    TokenStream out;
+    out.tokens.assign(std::make_move_iterator(tokens.begin()), std::make_move_iterator(tokens.end()));
+    out.comments.assign(std::make_move_iterator(comments.begin()), std::make_move_iterator(comments.end()));
+    return out;
 }
 
 bool IsStatementKeyword(std::string_view w) {

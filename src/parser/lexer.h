@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstdint>
+#include <deque>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -52,6 +54,20 @@ struct Comment {
 struct TokenStream {
     std::vector<Token> tokens;  // always ends with End or Error
     std::vector<Comment> comments;
+};
+
+/// An incremental lexer over one text (which must outlive it).
+class TokenSource {
+  public:
+    explicit TokenSource(std::string_view text, int firstLine = 1, int firstCol = 1);
+    ~TokenSource();
+    /// Appends the next token(s) to `tokens` and any comments before them to `comments`. Returns
+    /// false once the final token (End or Error) has been appended.
+    bool More(std::deque<Token> &tokens, std::deque<Comment> &comments);
+
+  private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
 };
 
 /// Lexes a whole text. `firstLine`/`firstCol` place the text inside a larger file (used for

@@ -110,9 +110,8 @@ class Resolver {
     void ProcessFile(const std::string &text, const std::string &file) {
         diag_.AddSource(file, text);
         FileAst ast;
-        wscene::ParseFileAst(text, file, diag_, ast, ChainOf(file));
-        if (ast.lexError) lostNames_ = true;
-        for (const Stmt &st : ast.stmts) {
+        // Statements are resolved as they are parsed (no whole-file tree).
+        wscene::ParseFileAst(text, file, diag_, ast, ChainOf(file), [&](Stmt &st) {
             if (diag_.TooManyErrors()) return;
             switch (st.kind) {
                 case Stmt::Kind::Header: CheckHeader(st, file); break;
@@ -120,7 +119,8 @@ class Resolver {
                 case Stmt::Kind::Define: DoDefine(st, file); break;
                 case Stmt::Kind::Block: DoBlock(st, file); break;
             }
-        }
+        });
+        if (ast.lexError) lostNames_ = true;
     }
 
     void CheckHeader(const Stmt &st, const std::string &file) {

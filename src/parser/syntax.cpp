@@ -3,6 +3,8 @@
 // error skips to the next statement keyword that starts a line; a lexical error stops the file.
 #include <algorithm>
 #include <array>
+#include <deque>
+#include <functional>
 #include <string_view>
 
 #include "core/units.h"
@@ -33,24 +35,30 @@ struct LexAbort {};     // thrown after a lexical error was reported
 
 class SyntaxParser {
   public:
-    SyntaxParser(std::string_view text, const TokenStream &ts, const std::string &file, Diagnostics &diag,
+    SyntaxParser(std::string_view text, int line, int col, const std::string &file, Diagnostics &diag,
                  const std::vector<Diagnostic> &notes)
-        : text_(text), toks_(ts.tokens), comments_(ts.comments), file_(file), diag_(diag), notes_(notes) {}
+        : text_(text), src_(text, line, col), file_(file), diag_(diag), notes_(notes) {}
 
-    bool ParseFile(FileAst &out) {
+    // Parses the file; each statement goes to `onStmt` if given, else into out.stmts.
+    bool ParseFile(FileAst &out, const std::function<void(Stmt &)> &onStmt) {
+        auto emit = [&](Stmt &st) {
+            if (onStmt) onStmt(st);
+            else out.stmts.push_back(std::move(st));
+        };
         std::size_t errorsBefore = diag_.ErrorCount();
         try {
-            ParseHeader(out);
+            ParseHeader(out, emit);
             while (Peek().kind != Tok::End) {
                 if (diag_.TooManyErrors()) break;
+                Compact();
                 std::size_t start = i_;
                 Stmt st;
                 try {
                     ParseStatement(st);
-                    out.stmts.push_back(std::move(st));
+                    emit(st);
                 } catch (const SyntaxError &) {
                     out.syntaxError = true;
-                    if (st.broken) out.stmts.push_back(std::move(st));
+                    if (st.broken) emit(st);
                     Recover(start);
                 }
             }
@@ -59,7 +67,8 @@ class SyntaxParser {
         }
         // Comments after the last statement.
         Comments tail;
-        TakeLeading(out.lexError ? toks_[std::min(i_, toks_.size() - 1)].offset : ~0u, tail);
+        if (!out.lexError) Fill(~std::size_t(0));
+        TakeLeading(out.lexError ? At(i_).offset : ~0u, tail);
         out.trailingComments = std::move(tail.leading);
         out.trailingBlankBefore = tail.blankBefore;
         return diag_.ErrorCount() == errorsBefore;
@@ -79,12 +88,38 @@ class SyntaxParser {
 
   private:
     // ---- tokens ----------------------------------------------------------------------------
+    // Lexes until token `g` (a global index) exists or the input ended.
+    void Fill(std::size_t g) {
+        while (!exhausted_ && base_ + toks_.size() <= g) exhausted_ = !src_.More(toks_, comments_);
+    }
+    // Token `g`; past the end, the final End/Error token.
+    const Token &At(std::size_t g) {
+        Fill(g);
+        if (g >= base_ + toks_.size()) return toks_.back();
+        return toks_[g - base_];
+    }
+    // Forgets tokens and comments before the previous token (called between statements).
+    void Compact() {
+        while (base_ + 1 < i_ && toks_.size() > 1) {
+            toks_.pop_front();
+            ++base_;
+        }
+        while (cbase_ < ci_ && !comments_.empty()) {
+            comments_.pop_front();
+            ++cbase_;
+        }
+    }
+    bool HaveComment() {
+        return ci_ - cbase_ < comments_.size();
+    }
+    const Comment &CurComment() { return comments_[ci_ - cbase_]; }
+
     const Token &Peek(std::size_t k = 0) {
-        std::size_t j = std::min(i_ + k, toks_.size() - 1);
+        std::size_t j = i_ + k;
         // Never look past an error token; report it when reached.
         for (std::size_t m = i_; m < j; ++m)
-            if (toks_[m].kind == Tok::Error) { j = m; break; }
-        const Token &t = toks_[j];
+            if (At(m).kind == Tok::Error || At(m).kind == Tok::End) { j = m; break; }
+        const Token &t = At(j);
         if (t.kind == Tok::Error && j == i_) LexFail(t);
         return t;
     }
@@ -133,9 +168,9 @@ class SyntaxParser {
 
     // Skips to the next statement keyword that starts a line (or the end).
     void Recover(std::size_t start) {
-        if (i_ == start) ++i_;
-        while (i_ < toks_.size()) {
-            const Token &t = toks_[i_];
+        if (i_ == start && At(i_).kind != Tok::End && At(i_).kind != Tok::Error) ++i_;
+        for (;;) {
+            const Token &t = At(i_);
             if (t.kind == Tok::End) return;
             if (t.kind == Tok::Error) {
                 Peek();  // reports and throws LexAbort
@@ -145,19 +180,18 @@ class SyntaxParser {
             // (a misspelled block keyword, reported as such).
             if (t.kind == Tok::Ident && StartsLine(i_) &&
                 ((IsStatementKeyword(t.text) && t.text != "wscene") ||
-                 (!IsReservedWord(t.text) && i_ + 1 < toks_.size() && toks_[i_ + 1].kind == Tok::String)))
+                 (!IsReservedWord(t.text) && At(i_ + 1).kind == Tok::String)))
                 return;
             ++i_;
         }
-        i_ = toks_.size() - 1;
     }
-    bool StartsLine(std::size_t k) const { return k == 0 || toks_[k - 1].line < toks_[k].line; }
+    bool StartsLine(std::size_t k) { return k == 0 || At(k - 1).line < At(k).line; }
 
     // ---- comments --------------------------------------------------------------------------
     // Moves comments before `offset` into c.leading, recording empty lines.
     void TakeLeading(uint32_t offset, Comments &c) {
-        while (ci_ < comments_.size() && comments_[ci_].offset < offset) {
-            const Comment &cm = comments_[ci_];
+        while (HaveComment() && CurComment().offset < offset) {
+            const Comment &cm = CurComment();
             if (cm.line > prevLine_ + 1 && prevLine_ > 0) {
                 if (c.leading.empty()) c.blankBefore = true;
                 else c.leading.push_back("\n");
@@ -178,22 +212,22 @@ class SyntaxParser {
     // becomes the trailing comment.
     void EndItem(Comments &c) {
         if (!last_) return;
-        while (ci_ < comments_.size() && comments_[ci_].offset < last_->offset) {
-            c.leading.push_back(comments_[ci_].text);
+        while (HaveComment() && CurComment().offset < last_->offset) {
+            c.leading.push_back(CurComment().text);
             ++ci_;
         }
         prevLine_ = last_->line;
         // (Only if no other token follows on that line before the comment.)
-        uint32_t nextOffset = i_ < toks_.size() ? toks_[i_].offset : ~0u;
-        if (ci_ < comments_.size() && comments_[ci_].line == last_->line && comments_[ci_].offset < nextOffset) {
-            c.trailing = comments_[ci_].text;
+        uint32_t nextOffset = At(i_).offset;  // lexes the comments before the next token
+        if (HaveComment() && CurComment().line == last_->line && CurComment().offset < nextOffset) {
+            c.trailing = CurComment().text;
             c.hasTrailing = true;
             ++ci_;
         }
     }
 
     // ---- statements ------------------------------------------------------------------------
-    void ParseHeader(FileAst &out) {
+    void ParseHeader(FileAst &out, const std::function<void(Stmt &)> &emit) {
         const Token &t = Peek();
         if (!IsIdent(t, "wscene")) {
             if (t.kind == Tok::End) {
@@ -214,7 +248,7 @@ class SyntaxParser {
         if (v.kind != Tok::Number) {
             diag_.Error(Loc(v), "expected the format version after 'wscene' (e.g. wscene 1); got " + Got(v), notes_);
             out.syntaxError = true;
-            out.stmts.push_back(std::move(st));
+            emit(st);
             return;
         }
         Next();
@@ -226,7 +260,7 @@ class SyntaxParser {
             Next();
         }
         EndItem(st.comments);
-        out.stmts.push_back(std::move(st));
+        emit(st);
     }
 
     void ParseStatement(Stmt &st) {
@@ -652,8 +686,11 @@ class SyntaxParser {
     }
 
     std::string_view text_;
-    const std::vector<Token> &toks_;
-    const std::vector<Comment> &comments_;
+    TokenSource src_;
+    std::deque<Token> toks_;  // tokens base_ … base_ + size - 1 (global indices)
+    std::deque<Comment> comments_;  // comments cbase_ …
+    std::size_t base_ = 0, cbase_ = 0;
+    bool exhausted_ = false;
     const std::string &file_;
     Diagnostics &diag_;
     const std::vector<Diagnostic> &notes_;
@@ -667,18 +704,16 @@ class SyntaxParser {
 }  // namespace
 
 bool ParseFileAst(const std::string &text, const std::string &fileName, Diagnostics &diag, FileAst &out,
-                  const std::vector<Diagnostic> &notes) {
-    TokenStream ts = Tokenize(text);
-    SyntaxParser p(text, ts, fileName, diag, notes);
-    return p.ParseFile(out);
+                  const std::vector<Diagnostic> &notes, const std::function<void(Stmt &)> &onStmt) {
+    SyntaxParser p(text, 1, 1, fileName, diag, notes);
+    return p.ParseFile(out, onStmt);
 }
 
 bool ParseExprAst(const std::string &text, const std::string &fileName, int line, int col, Diagnostics &diag,
                   Expr &out) {
-    TokenStream ts = Tokenize(text, line, col);
     std::vector<Diagnostic> noNotes;
-    SyntaxParser p(text, ts, fileName, diag, noNotes);
-    if (ts.tokens.size() == 1 && ts.tokens[0].kind == Tok::End) {
+    SyntaxParser p(text, line, col, fileName, diag, noNotes);
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
         diag.Error(FileLoc{fileName, line, col, 1}, "empty value");
         return false;
     }

@@ -46,6 +46,9 @@ struct ContractCase {
     }
 };
 
+// gtest prints the case by name instead of its bytes.
+void PrintTo(const ContractCase &c, std::ostream *os) { *os << c.Name(); }
+
 std::vector<ContractCase> AllCases() {
     std::vector<ContractCase> cases;
     for (const auto &e : Registry<Material>::Entries()) {
@@ -266,6 +269,7 @@ TEST_P(MaterialContract, Chi2SamplingMatchesPdf) {
     std::vector<double> po, pe;
     PreparePooled(obs, ex, &po, &pe);
     Chi2Result r = Chi2Test(po, pe);
+    RecordProperty("chi2_p", std::to_string(r.pValue));
     const double alpha = Alpha();
     const bool ok =
         std::isfinite(r.pValue) && r.pValue >= alpha && r.observedInEmptyCells <= 1e-5 * double(m);
@@ -349,6 +353,7 @@ TEST_P(MaterialContract, ImportanceVsUniformEstimate) {
     }
     TTestResult t =
         WelchTTest(imp.mean, imp.VarianceOfMean(), imp.n - 1, uni.mean, uni.VarianceOfMean(), uni.n - 1);
+    RecordProperty("t_p", std::to_string(t.pValue));
     EXPECT_GE(t.pValue, Alpha()) << material_->ToString() << "\nimportance " << imp.mean << " ± "
                                  << std::sqrt(imp.VarianceOfMean()) << ", uniform " << uni.mean << " ± "
                                  << std::sqrt(uni.VarianceOfMean()) << ": " << t.ToString();
@@ -529,6 +534,7 @@ TEST_P(MaterialContract, DiscreteOrders) {
         return;
     }
     Chi2Result r = Chi2Test(po, pe);
+    RecordProperty("chi2_p", std::to_string(r.pValue));
     EXPECT_TRUE(std::isfinite(r.pValue) && r.pValue >= Alpha() && r.observedInEmptyCells == 0)
         << material_->ToString() << "\n"
         << r.ToString() << ", alpha = " << Alpha();

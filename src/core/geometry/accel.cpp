@@ -45,10 +45,10 @@ class FtzDazScope {
 /// hands the callbacks a pointer to it).
 struct QueryContext {
     RTCIntersectContext context;
-    const Ray *ray = nullptr;    // the caller's double-precision ray (null: use Embree's float ray)
-    double tMin = 0, tMax = 0;   // the caller's interval
-    float tMaxF = 0;             // tMax as handed to Embree (tfar still equal → no hit so far)
-    double analyticT = 0;        // double t of the last accepted analytic hit
+    const Ray *ray = nullptr;   // the caller's double-precision ray (null: use Embree's float ray)
+    double tMin = 0, tMax = 0;  // the caller's interval
+    float tMaxF = 0;            // tMax as handed to Embree (tfar still equal → no hit so far)
+    double analyticT = 0;       // double t of the last accepted analytic hit
 };
 
 float ToFloat(double v) {
@@ -165,7 +165,8 @@ struct Accel::Impl {
     }
 };
 
-Accel::Accel(std::vector<const Shape *> shapes) : impl_(std::make_unique<Impl>()), shapes_(std::move(shapes)) {
+Accel::Accel(std::vector<const Shape *> shapes)
+    : impl_(std::make_unique<Impl>()), shapes_(std::move(shapes)) {
     FtzDazScope ftz;
     Impl &im = *impl_;
     im.device = rtcNewDevice(nullptr);
@@ -188,10 +189,12 @@ Accel::Accel(std::vector<const Shape *> shapes) : impl_(std::make_unique<Impl>()
             if (mesh->positions.size() > 0xFFFFFFFFull || mesh->TriangleCount() > 0xFFFFFFFFull)
                 throw Error("accelerator: mesh " + std::to_string(i) + " is too large for Embree");
             geom = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
-            auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(
-                geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), mesh->positions.size()));
-            auto *idx = static_cast<unsigned *>(rtcSetNewGeometryBuffer(
-                geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), mesh->TriangleCount()));
+            auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                                   RTC_FORMAT_FLOAT3, 3 * sizeof(float),
+                                                                   mesh->positions.size()));
+            auto *idx = static_cast<unsigned *>(
+                rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
+                                        3 * sizeof(unsigned), mesh->TriangleCount()));
             if (!v || !idx) {
                 rtcReleaseGeometry(geom);
                 im.Check("allocating mesh buffers");
@@ -249,7 +252,8 @@ std::optional<Hit> Accel::Intersect(const Ray &ray, double tMin, double tMax) co
     if (const TriangleMesh *mesh = shape->Mesh()) {
         // Recompute t and the barycentrics of the winning triangle in double precision.
         const uint32_t *idx = &mesh->indices[3 * std::size_t(hit.prim)];
-        auto th = RayTrianglePlane(ray, mesh->positions[idx[0]], mesh->positions[idx[1]], mesh->positions[idx[2]]);
+        auto th =
+            RayTrianglePlane(ray, mesh->positions[idx[0]], mesh->positions[idx[1]], mesh->positions[idx[2]]);
         if (th) {
             hit.t = th->t;
             hit.b1 = th->b1;

@@ -40,8 +40,9 @@ AnalyticSphere AnalyticSphere::FromTransform(const Vec3 &center, double radius, 
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j)
             if (std::abs(Dot(cols[i], cols[j]) - (i == j ? 1 : 0)) > 1e-9)
-                throw Error("sphere: to_world must be a rotation, uniform scale and translation "
-                            "(a non-uniform scale or shear would make an ellipsoid)");
+                throw Error(
+                    "sphere: to_world must be a rotation, uniform scale and translation "
+                    "(a non-uniform scale or shear would make an ellipsoid)");
     Transform::Mat r{};
     for (int i = 0; i < 3; ++i)
         for (int j = 0; j < 3; ++j) r[i][j] = cols[j][i];
@@ -53,7 +54,8 @@ AnalyticSphere AnalyticSphere::FromTransform(const Vec3 &center, double radius, 
 }
 
 std::optional<double> AnalyticSphere::Intersect(const Ray &ray, double tMin, double tMax) const {
-    // |o + t·d − c|² = r²  ⇔  a·t² + 2b·t + c = 0 with a = d·d, b = (o−c)·d, c = |o−c|² − r².
+    // |o + t·d − c|² = r²  ⇔  a·t² + 2b·t + c = 0 with a = d·d, b = (o−c)·d,
+    // c = |o−c|² − r².
     Vec3 oc = ray.o - center_;
     double a = LengthSquared(ray.d);
     double b = Dot(oc, ray.d);

@@ -17,18 +17,18 @@ namespace phasor {
 namespace {
 
 /// Images are not needed for geometry; skip decoding them entirely.
-bool IgnoreImage(tinygltf::Image *, const int, std::string *, std::string *, int, int,
-                 const unsigned char *, int, void *) {
+bool IgnoreImage(tinygltf::Image *, const int, std::string *, std::string *, int, int, const unsigned char *,
+                 int, void *) {
     return true;
 }
 
 const char *ModeName(int mode) {
     switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-    default: return "unknown";
+        case TINYGLTF_MODE_POINTS: return "POINTS";
+        case TINYGLTF_MODE_LINE: return "LINES";
+        case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+        case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+        default: return "unknown";
     }
 }
 
@@ -44,12 +44,15 @@ class GltfReader {
         if (index < 0 || index >= int(model_.accessors.size()))
             Fail(std::string(what) + ": accessor " + std::to_string(index) + " does not exist");
         const tinygltf::Accessor &acc = model_.accessors[index];
-        int expectType = comps == 1 ? TINYGLTF_TYPE_SCALAR : comps == 2 ? TINYGLTF_TYPE_VEC2 : TINYGLTF_TYPE_VEC3;
+        int expectType = comps == 1   ? TINYGLTF_TYPE_SCALAR
+                         : comps == 2 ? TINYGLTF_TYPE_VEC2
+                                      : TINYGLTF_TYPE_VEC3;
         if (acc.type != expectType)
             Fail(std::string(what) + ": accessor " + std::to_string(index) + " has the wrong type");
         if (acc.sparse.isSparse) Fail(std::string(what) + ": sparse accessors are not supported");
         int compSize = tinygltf::GetComponentSizeInBytes(uint32_t(acc.componentType));
-        if (compSize <= 0) Fail(std::string(what) + ": unknown component type " + std::to_string(acc.componentType));
+        if (compSize <= 0)
+            Fail(std::string(what) + ": unknown component type " + std::to_string(acc.componentType));
         if (acc.componentType != TINYGLTF_COMPONENT_TYPE_FLOAT && !allowIntegers)
             Fail(std::string(what) + ": the component type must be FLOAT");
         std::vector<double> out(acc.count * comps, 0.0);
@@ -67,9 +70,11 @@ class GltfReader {
         // Overflow-safe bounds check of the last element against the view and the buffer.
         std::size_t viewEnd = view.byteOffset + view.byteLength;
         if (viewEnd < view.byteOffset || viewEnd > data.size())
-            Fail(std::string(what) + ": buffer view " + std::to_string(acc.bufferView) + " exceeds its buffer");
+            Fail(std::string(what) + ": buffer view " + std::to_string(acc.bufferView) +
+                 " exceeds its buffer");
         std::size_t last = acc.byteOffset + std::size_t(stride) * (acc.count - 1) + elemSize;
-        if (acc.count > (SIZE_MAX - elemSize - acc.byteOffset) / std::size_t(stride) || last > view.byteLength)
+        if (acc.count > (SIZE_MAX - elemSize - acc.byteOffset) / std::size_t(stride) ||
+            last > view.byteLength)
             Fail(std::string(what) + ": accessor " + std::to_string(index) + " exceeds its buffer view");
         const unsigned char *base = data.data() + view.byteOffset + acc.byteOffset;
         for (std::size_t i = 0; i < acc.count; ++i) {
@@ -87,15 +92,46 @@ class GltfReader {
         // Normalised integers map to [0, 1] or [−1, 1] (glTF 2.0 §3.11, "animation" table).
         bool n = acc.normalized;
         switch (acc.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT: { float v; std::memcpy(&v, p, 4); return v; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: { uint8_t v = *p; return n ? v / 255.0 : v; }
-        case TINYGLTF_COMPONENT_TYPE_BYTE: { int8_t v; std::memcpy(&v, p, 1); return n ? std::max(v / 127.0, -1.0) : v; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t v; std::memcpy(&v, p, 2); return n ? v / 65535.0 : v; }
-        case TINYGLTF_COMPONENT_TYPE_SHORT: { int16_t v; std::memcpy(&v, p, 2); return n ? std::max(v / 32767.0, -1.0) : v; }
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t v; std::memcpy(&v, p, 4); return v; }
-        case TINYGLTF_COMPONENT_TYPE_INT: { int32_t v; std::memcpy(&v, p, 4); return v; }
-        case TINYGLTF_COMPONENT_TYPE_DOUBLE: { double v; std::memcpy(&v, p, 8); return v; }
-        default: return 0;
+            case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+                float v;
+                std::memcpy(&v, p, 4);
+                return v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: {
+                uint8_t v = *p;
+                return n ? v / 255.0 : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_BYTE: {
+                int8_t v;
+                std::memcpy(&v, p, 1);
+                return n ? std::max(v / 127.0, -1.0) : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+                uint16_t v;
+                std::memcpy(&v, p, 2);
+                return n ? v / 65535.0 : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_SHORT: {
+                int16_t v;
+                std::memcpy(&v, p, 2);
+                return n ? std::max(v / 32767.0, -1.0) : v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+                uint32_t v;
+                std::memcpy(&v, p, 4);
+                return v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_INT: {
+                int32_t v;
+                std::memcpy(&v, p, 4);
+                return v;
+            }
+            case TINYGLTF_COMPONENT_TYPE_DOUBLE: {
+                double v;
+                std::memcpy(&v, p, 8);
+                return v;
+            }
+            default: return 0;
         }
     }
 };
@@ -184,15 +220,18 @@ std::optional<TriangleMesh> ReadPrimitive(const GltfReader &r, const tinygltf::P
     // Vertex order: the index accessor (unsigned byte/short/int) or 0, 1, 2, …
     std::vector<uint32_t> order;
     if (prim.indices >= 0) {
-        int ct = prim.indices < int(r.model_.accessors.size()) ? r.model_.accessors[prim.indices].componentType : 0;
+        int ct = prim.indices < int(r.model_.accessors.size())
+                     ? r.model_.accessors[prim.indices].componentType
+                     : 0;
         if (ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
             ct != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
             r.Fail(where + ": indices must be unsigned byte, short or int");
         std::vector<double> idx = r.Read(prim.indices, 1, (where + " indices").c_str(), true);
         order.reserve(idx.size());
         for (double v : idx) {
-            if (v >= double(nv)) r.Fail(where + ": index " + std::to_string(uint64_t(v)) + " is out of range (" +
-                                        std::to_string(nv) + " vertices)");
+            if (v >= double(nv))
+                r.Fail(where + ": index " + std::to_string(uint64_t(v)) + " is out of range (" +
+                       std::to_string(nv) + " vertices)");
             order.push_back(uint32_t(v));
         }
     } else {
@@ -202,7 +241,8 @@ std::optional<TriangleMesh> ReadPrimitive(const GltfReader &r, const tinygltf::P
 
     // Triangles (glTF 2.0 §3.7.2.1, "topology types").
     if (mode == TINYGLTF_MODE_TRIANGLES) {
-        if (order.size() % 3 != 0) r.Fail(where + ": the vertex count of a TRIANGLES primitive is not a multiple of 3");
+        if (order.size() % 3 != 0)
+            r.Fail(where + ": the vertex count of a TRIANGLES primitive is not a multiple of 3");
         m.indices = std::move(order);
     } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
         for (std::size_t i = 0; i + 2 < order.size(); ++i) {
@@ -264,7 +304,8 @@ TriangleMesh LoadGltf(const std::string &path, std::string *skipped) {
     }
     if (!ok) {
         while (!err.empty() && (err.back() == '\n' || err.back() == ' ')) err.pop_back();
-        throw Error(path + ": cannot read the glTF file: " + (err.empty() ? std::string("unknown error") : err));
+        throw Error(path +
+                    ": cannot read the glTF file: " + (err.empty() ? std::string("unknown error") : err));
     }
 
     GltfReader r(path, model);
@@ -272,19 +313,21 @@ TriangleMesh LoadGltf(const std::string &path, std::string *skipped) {
 
     // Depth-first over the node tree; `depth` guards against cycles in a corrupt file.
     std::function<void(int, const Transform &, std::size_t)> visit = [&](int ni, const Transform &parent,
-                                                                          std::size_t depth) {
+                                                                         std::size_t depth) {
         if (ni < 0 || ni >= int(model.nodes.size())) r.Fail("node " + std::to_string(ni) + " does not exist");
         if (depth > model.nodes.size()) r.Fail("the node hierarchy contains a cycle");
         const tinygltf::Node &node = model.nodes[ni];
         Transform local;
         if (!NodeTransform(node, &local, r)) {
             if (skipped)
-                *skipped += (skipped->empty() ? "" : "; ") + ("node '" + node.name + "' (singular transform)");
+                *skipped +=
+                    (skipped->empty() ? "" : "; ") + ("node '" + node.name + "' (singular transform)");
             return;
         }
         Transform world = parent * local;
         if (node.mesh >= 0) {
-            if (node.mesh >= int(model.meshes.size())) r.Fail("mesh " + std::to_string(node.mesh) + " does not exist");
+            if (node.mesh >= int(model.meshes.size()))
+                r.Fail("mesh " + std::to_string(node.mesh) + " does not exist");
             const tinygltf::Mesh &mesh = model.meshes[node.mesh];
             for (std::size_t pi = 0; pi < mesh.primitives.size(); ++pi) {
                 std::optional<TriangleMesh> m = ReadPrimitive(r, mesh.primitives[pi], mesh.name, pi, skipped);

@@ -32,8 +32,8 @@ inline std::optional<TriangleHit> RayTrianglePlane(const Ray &ray, const Vec3 &p
 }
 
 /// Ray–triangle intersection with t in (tMin, tMax), double precision (Möller–Trumbore).
-inline std::optional<TriangleHit> RayTriangle(const Ray &ray, const Vec3 &p0, const Vec3 &p1,
-                                              const Vec3 &p2, double tMin, double tMax) {
+inline std::optional<TriangleHit> RayTriangle(const Ray &ray, const Vec3 &p0, const Vec3 &p1, const Vec3 &p2,
+                                              double tMin, double tMax) {
     auto h = RayTrianglePlane(ray, p0, p1, p2);
     if (!h || h->b1 < 0 || h->b2 < 0 || h->b1 + h->b2 > 1) return std::nullopt;
     if (!(h->t > tMin && h->t < tMax)) return std::nullopt;

@@ -54,11 +54,9 @@ void TriangleMesh::Validate(const std::string &what) const {
         throw Error(what + ": " + std::to_string(uvs.size()) + " uvs for " +
                     std::to_string(positions.size()) + " positions");
     for (std::size_t i = 0; i < positions.size(); ++i)
-        if (!IsFinite(positions[i]))
-            throw Error(what + ": position " + std::to_string(i) + " is not finite");
+        if (!IsFinite(positions[i])) throw Error(what + ": position " + std::to_string(i) + " is not finite");
     for (std::size_t i = 0; i < normals.size(); ++i)
-        if (!IsFinite(normals[i]))
-            throw Error(what + ": normal " + std::to_string(i) + " is not finite");
+        if (!IsFinite(normals[i])) throw Error(what + ": normal " + std::to_string(i) + " is not finite");
     for (std::size_t i = 0; i < indices.size(); ++i)
         if (indices[i] >= positions.size())
             throw Error(what + ": index " + std::to_string(indices[i]) + " (triangle " +
@@ -139,8 +137,7 @@ MeshShape::MeshShape(TriangleMesh mesh) : mesh_(std::move(mesh)) {
     area_ = sum;
 }
 
-SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, double b1,
-                                          double b2) const {
+SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, double b1, double b2) const {
     const uint32_t *idx = &mesh_.indices[3 * std::size_t(prim)];
     const Vec3 &p0 = mesh_.positions[idx[0]], &p1 = mesh_.positions[idx[1]], &p2 = mesh_.positions[idx[2]];
     double b0 = 1 - b1 - b2;

@@ -124,7 +124,8 @@ class ObjReader {
             if (tok.size() != 4) Fail("'vn' needs 3 coordinates");
             d.vn.push_back({Number(tok[1], "x"), Number(tok[2], "y"), Number(tok[3], "z")});
         } else if (key == "f") {
-            if (tok.size() < 4) Fail("a face needs at least 3 vertices, got " + std::to_string(tok.size() - 1));
+            if (tok.size() < 4)
+                Fail("a face needs at least 3 vertices, got " + std::to_string(tok.size() - 1));
             for (std::size_t i = 1; i < tok.size(); ++i) {
                 std::string_view c = tok[i];
                 Corner k;
@@ -137,7 +138,8 @@ class ObjReader {
                     if (!t.empty() && wantAttributes) k.vt = Index(t, d.vt.size(), "texture coordinate");
                     if (s2 != std::string_view::npos) {
                         std::string_view nrm = rest.substr(s2 + 1);
-                        if (nrm.find('/') != std::string_view::npos) Fail("malformed face vertex '" + std::string(c) + "'");
+                        if (nrm.find('/') != std::string_view::npos)
+                            Fail("malformed face vertex '" + std::string(c) + "'");
                         if (nrm.empty()) Fail("malformed face vertex '" + std::string(c) + "'");
                         if (wantAttributes) k.vn = Index(nrm, d.vn.size(), "normal");
                     } else if (t.empty()) {

@@ -45,7 +45,8 @@ PolyMesh CubeCage() {
     PolyMesh m;
     for (int i = 0; i < 8; ++i) m.positions.push_back(Vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
     // Vertex i has x = bit 0, y = bit 1, z = bit 2. Faces counter-clockwise seen from outside.
-    const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4}, {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    const int faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                             {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
     for (const auto &f : faces) {
         m.faceSizes.push_back(4);
         for (int v : f) m.faceIndices.push_back(v);
@@ -55,7 +56,8 @@ PolyMesh CubeCage() {
 
 TriangleMesh SubdivideCatmullClark(const PolyMesh &cage, int levels) {
     // Validate the cage (OpenSubdiv asserts rather than reports on some malformed input).
-    if (levels < 0 || levels > 10) throw Error("subdivision: levels must be in [0, 10], got " + std::to_string(levels));
+    if (levels < 0 || levels > 10)
+        throw Error("subdivision: levels must be in [0, 10], got " + std::to_string(levels));
     if (cage.faceSizes.empty()) throw Error("subdivision: the cage has no faces");
     std::size_t total = 0;
     for (std::size_t f = 0; f < cage.faceSizes.size(); ++f) {
@@ -91,7 +93,8 @@ TriangleMesh SubdivideCatmullClark(const PolyMesh &cage, int levels) {
         Far::SetWarningCallback(OsdWarningCallback);
         refiner.reset(Factory::Create(desc, Factory::Options(Sdc::SCHEME_CATMARK, sdcOptions)));
         if (!refiner || !osdError.empty())
-            throw Error("subdivision: invalid cage topology: " + (osdError.empty() ? std::string("rejected") : osdError));
+            throw Error("subdivision: invalid cage topology: " +
+                        (osdError.empty() ? std::string("rejected") : osdError));
         Far::TopologyRefiner::UniformOptions uniform(levels);
         uniform.fullTopologyInLastLevel = true;  // needed by PrimvarRefiner::Limit
         refiner->RefineUniform(uniform);
@@ -100,7 +103,8 @@ TriangleMesh SubdivideCatmullClark(const PolyMesh &cage, int levels) {
 
     // Positions, level by level (double precision).
     std::vector<Point3> src(cage.positions.size());
-    for (std::size_t i = 0; i < src.size(); ++i) src[i] = {cage.positions[i].x, cage.positions[i].y, cage.positions[i].z};
+    for (std::size_t i = 0; i < src.size(); ++i)
+        src[i] = {cage.positions[i].x, cage.positions[i].y, cage.positions[i].z};
     Far::PrimvarRefinerReal<double> primvar(*refiner);
     for (int level = 1; level <= levels; ++level) {
         std::vector<Point3> dst(refiner->GetLevel(level).GetNumVertices());

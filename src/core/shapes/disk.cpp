@@ -12,10 +12,13 @@ class DiskShape final : public AnalyticDisk {
     using AnalyticDisk::AnalyticDisk;
 
     static const Schema &GetSchema() {
-        static const Schema s{
-            "shape", "disk", "Analytic disk in the object-space plane z = 0, normal +z.",
-            {P::Length("radius", "radius in object space").Default(Value::Number(1, Dim::Length())).Min(0, true),
-             shape_common::ToWorldParam(), shape_common::MaterialParam()}};
+        static const Schema s{"shape",
+                              "disk",
+                              "Analytic disk in the object-space plane z = 0, normal +z.",
+                              {P::Length("radius", "radius in object space")
+                                   .Default(Value::Number(1, Dim::Length()))
+                                   .Min(0, true),
+                               shape_common::ToWorldParam(), shape_common::MaterialParam()}};
         return s;
     }
     static std::unique_ptr<Shape> Create(const ParamDict &d, BuildContext &ctx) {

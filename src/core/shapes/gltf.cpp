@@ -13,11 +13,14 @@ class GltfShape final : public MeshShape {
     using MeshShape::MeshShape;
 
     static const Schema &GetSchema() {
-        static const Schema s{
-            "shape", "gltf", "Triangle mesh from a glTF 2.0 file (.gltf or .glb), node transforms applied.",
-            {P::File("file", "the .gltf or .glb file").Required(),
-             P::Length("units", "length of one glTF unit").Default(Value::Number(1, Dim::Length())).Min(0, true),
-             shape_common::ToWorldParam(), shape_common::MaterialParam()}};
+        static const Schema s{"shape",
+                              "gltf",
+                              "Triangle mesh from a glTF 2.0 file (.gltf or .glb), node transforms applied.",
+                              {P::File("file", "the .gltf or .glb file").Required(),
+                               P::Length("units", "length of one glTF unit")
+                                   .Default(Value::Number(1, Dim::Length()))
+                                   .Min(0, true),
+                               shape_common::ToWorldParam(), shape_common::MaterialParam()}};
         return s;
     }
     static std::unique_ptr<Shape> Create(const ParamDict &d, BuildContext &ctx) {
@@ -30,7 +33,8 @@ class GltfShape final : public MeshShape {
             m.Transform(toWorld);
             return std::make_unique<GltfShape>(std::move(m));
         });
-        if (!skipped.empty()) ctx.Diag().Warning(d.Loc("file"), path + ": skipped non-triangle primitives: " + skipped);
+        if (!skipped.empty())
+            ctx.Diag().Warning(d.Loc("file"), path + ": skipped non-triangle primitives: " + skipped);
         return shape_common::Finish(std::move(shape), d, ctx);
     }
     std::string ToString() const override { return "gltf " + MeshShape::ToString(); }

@@ -10,7 +10,9 @@ class ObjShape final : public MeshShape {
     using MeshShape::MeshShape;
 
     static const Schema &GetSchema() {
-        static const Schema s{"shape", "obj", "Triangle mesh from a Wavefront OBJ file.",
+        static const Schema s{"shape",
+                              "obj",
+                              "Triangle mesh from a Wavefront OBJ file.",
                               {P::File("file", "the .obj file").Required(), shape_common::ToWorldParam(),
                                shape_common::MaterialParam()}};
         return s;

@@ -16,7 +16,8 @@
 namespace phasor::shape_common {
 
 inline ParamSpec MaterialParam() {
-    return P::Ref("material", "material", "surface material (none: the shape only bounds a light or is black)");
+    return P::Ref("material", "material",
+                  "surface material (none: the shape only bounds a light or is black)");
 }
 inline ParamSpec ToWorldParam() {
     return P::Transform("to_world", "object-to-world transform (default: identity)");

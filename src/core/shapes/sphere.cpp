@@ -13,11 +13,15 @@ class SphereShape final : public AnalyticSphere {
     explicit SphereShape(const AnalyticSphere &s) : AnalyticSphere(s) {}
 
     static const Schema &GetSchema() {
-        static const Schema s{
-            "shape", "sphere", "Analytic sphere (double-precision intersection, uniform area sampling).",
-            {P::Vector("center", "centre in object space", Dim::Length()).Default(Value::Vector(Vec3(), Dim::Length())),
-             P::Length("radius", "radius in object space").Default(Value::Number(1, Dim::Length())).Min(0, true),
-             shape_common::ToWorldParam(), shape_common::MaterialParam()}};
+        static const Schema s{"shape",
+                              "sphere",
+                              "Analytic sphere (double-precision intersection, uniform area sampling).",
+                              {P::Vector("center", "centre in object space", Dim::Length())
+                                   .Default(Value::Vector(Vec3(), Dim::Length())),
+                               P::Length("radius", "radius in object space")
+                                   .Default(Value::Number(1, Dim::Length()))
+                                   .Min(0, true),
+                               shape_common::ToWorldParam(), shape_common::MaterialParam()}};
         return s;
     }
     static std::unique_ptr<Shape> Create(const ParamDict &d, BuildContext &ctx) {
@@ -29,7 +33,8 @@ class SphereShape final : public AnalyticSphere {
         return shape_common::Finish(std::move(shape), d, ctx);
     }
     static std::vector<ParamDict> TestPresets() {
-        return {ParamDict(), ParamDict().Set("radius", Value::Number(0.25, Dim::Length()))
+        return {ParamDict(), ParamDict()
+                                 .Set("radius", Value::Number(0.25, Dim::Length()))
                                  .Set("center", Value::Vector(Vec3(0.1, -0.2, 3), Dim::Length()))};
     }
 };

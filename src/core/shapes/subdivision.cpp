@@ -14,7 +14,9 @@ class SubdivisionShape final : public MeshShape {
 
     static const Schema &GetSchema() {
         static const Schema s{
-            "shape", "subdivision", "Catmull–Clark subdivision surface of an OBJ cage (OpenSubdiv).",
+            "shape",
+            "subdivision",
+            "Catmull–Clark subdivision surface of an OBJ cage (OpenSubdiv).",
             {P::File("file", "the cage as an .obj file (polygons are kept, not triangulated)"),
              P::String("cage", "a built-in cage instead of `file`").Choices({"cube"}),
              P::Integer("levels", "uniform refinement levels").Default(Value::Integer(3)).Min(0).Max(8),
@@ -23,7 +25,8 @@ class SubdivisionShape final : public MeshShape {
     }
     static std::unique_ptr<Shape> Create(const ParamDict &d, BuildContext &ctx) {
         if (d.Has("file") == d.Has("cage"))
-            throw Error(d.EntityLoc(), "subdivision: give exactly one of 'file' (an OBJ cage) or 'cage = \"cube\"'");
+            throw Error(d.EntityLoc(),
+                        "subdivision: give exactly one of 'file' (an OBJ cage) or 'cage = \"cube\"'");
         int levels = d.GetInt("levels");
         Transform toWorld = ctx.GetTransform(d, "to_world");
         std::string param = d.Has("file") ? "file" : "cage";

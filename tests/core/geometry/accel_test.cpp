@@ -27,7 +27,8 @@ Vec3 RandomDirection(TestRng &rng) {
     return Vec3(r * std::cos(phi), r * std::sin(phi), z);
 }
 Vec3 RandomInBox(TestRng &rng, const Vec3 &lo, const Vec3 &hi) {
-    return Vec3(Lerp(rng.Uniform(), lo.x, hi.x), Lerp(rng.Uniform(), lo.y, hi.y), Lerp(rng.Uniform(), lo.z, hi.z));
+    return Vec3(Lerp(rng.Uniform(), lo.x, hi.x), Lerp(rng.Uniform(), lo.y, hi.y),
+                Lerp(rng.Uniform(), lo.z, hi.z));
 }
 
 /// A test scene: shape 0 a soup of random triangles, shapes 1…nSpheres spheres, then a disk.
@@ -57,7 +58,8 @@ struct TestScene {
             spheres.push_back({c, r});
             owned.push_back(std::make_unique<AnalyticSphere>(c, r));
         }
-        diskToWorld = Transform::Translate(off + Vec3(0.5, -0.5, 0.2)) * Transform::Rotate(0.8, Vec3(1, 2, 0));
+        diskToWorld =
+            Transform::Translate(off + Vec3(0.5, -0.5, 0.2)) * Transform::Rotate(0.8, Vec3(1, 2, 0));
         owned.push_back(std::make_unique<AnalyticDisk>(diskRadius, diskToWorld));
         for (auto &s : owned) shapes.push_back(s.get());
     }
@@ -68,13 +70,18 @@ struct TestScene {
         Vec3 target;
         std::size_t s = std::min<std::size_t>(shapes.size() - 1, std::size_t(rng.Uniform() * shapes.size()));
         if (s == 0) {
-            std::size_t tri = std::min<std::size_t>(mesh.TriangleCount() - 1, std::size_t(rng.Uniform() * mesh.TriangleCount()));
+            std::size_t tri = std::min<std::size_t>(mesh.TriangleCount() - 1,
+                                                    std::size_t(rng.Uniform() * mesh.TriangleCount()));
             double b1 = rng.Uniform(), b2 = rng.Uniform();
-            if (b1 + b2 > 1) { b1 = 1 - b1; b2 = 1 - b2; }
+            if (b1 + b2 > 1) {
+                b1 = 1 - b1;
+                b2 = 1 - b2;
+            }
             target = (1 - b1 - b2) * mesh.positions[3 * tri] + b1 * mesh.positions[3 * tri + 1] +
                      b2 * mesh.positions[3 * tri + 2];
         } else if (s <= spheres.size()) {
-            target = spheres[s - 1].first + 0.95 * spheres[s - 1].second * RandomDirection(rng) * rng.Uniform();
+            target =
+                spheres[s - 1].first + 0.95 * spheres[s - 1].second * RandomDirection(rng) * rng.Uniform();
         } else {
             double rho = diskRadius * std::sqrt(rng.Uniform()), phi = 2 * Pi * rng.Uniform();
             target = diskToWorld.Point(Vec3(rho * std::cos(phi), rho * std::sin(phi), 0));
@@ -94,7 +101,8 @@ struct TestScene {
         std::vector<RefHit> hits;
         const LD edgeEps = 1e-6L;
         for (std::size_t i = 0; i < mesh.TriangleCount(); ++i) {
-            const Vec3 &p0 = mesh.positions[3 * i], &p1 = mesh.positions[3 * i + 1], &p2 = mesh.positions[3 * i + 2];
+            const Vec3 &p0 = mesh.positions[3 * i], &p1 = mesh.positions[3 * i + 1],
+                       &p2 = mesh.positions[3 * i + 2];
             // Plane hit including slightly outside the triangle, to flag edge cases.
             test::LVec e1 = test::Sub(test::L(p1), test::L(p0)), e2 = test::Sub(test::L(p2), test::L(p0));
             test::LVec d = test::L(ray.d), s = test::Sub(test::L(ray.o), test::L(p0)), md{-d.x, -d.y, -d.z};
@@ -111,7 +119,8 @@ struct TestScene {
         for (std::size_t k = 0; k < spheres.size(); ++k) {
             auto [c, r] = spheres[k];
             test::LVec oc = test::Sub(test::L(ray.o), test::L(c)), d = test::L(ray.d);
-            LD b = test::LDot(oc, d), cc = test::LDot(oc, oc) - LD(r) * r, disc = b * b - test::LDot(d, d) * cc;
+            LD b = test::LDot(oc, d), cc = test::LDot(oc, oc) - LD(r) * r,
+               disc = b * b - test::LDot(d, d) * cc;
             bool grazing = fabsl(disc) < 1e-6L * r * r;
             if (disc < 0 && !grazing) continue;
             LD sq = sqrtl(std::max<LD>(disc, 0));
@@ -183,7 +192,9 @@ void CheckAgainstReference(const Vec3 &offset, uint64_t seed) {
 }
 
 TEST(Accel, HitsMatchDoublePrecisionReferenceNearOrigin) { CheckAgainstReference(Vec3(0, 0, 0), 101); }
-TEST(Accel, HitsMatchDoublePrecisionReferenceFarFromOrigin) { CheckAgainstReference(Vec3(120, -40, 75), 202); }
+TEST(Accel, HitsMatchDoublePrecisionReferenceFarFromOrigin) {
+    CheckAgainstReference(Vec3(120, -40, 75), 202);
+}
 
 TEST(Accel, OccludedAgreesWithIntersect) {
     TestScene scene(Vec3(3, 1, -2), 200, 8, 303);
@@ -328,8 +339,8 @@ TEST(Accel, LargeMeshBuild) {
     std::size_t hits = accel.RawIntersectCount(rays);
     auto t4 = std::chrono::steady_clock::now();
     using S = std::chrono::duration<double>;
-    std::printf("subdivide %.2f s, BVH build %.2f s, %.2f Mrays/s (1 thread, %zu hits)\n",
-                S(t1 - t0).count(), S(t2 - t1).count(), rays.size() / S(t4 - t3).count() / 1e6, hits);
+    std::printf("subdivide %.2f s, BVH build %.2f s, %.2f Mrays/s (1 thread, %zu hits)\n", S(t1 - t0).count(),
+                S(t2 - t1).count(), rays.size() / S(t4 - t3).count() / 1e6, hits);
     EXPECT_GT(hits, rays.size() / 2);
 }
 

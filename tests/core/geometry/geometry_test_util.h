@@ -24,8 +24,8 @@ inline std::string AssetPath(const std::string &name) {
 /// A per-process scratch directory for files the tests write.
 inline std::filesystem::path ScratchDir() {
     static std::filesystem::path dir = [] {
-        auto d = std::filesystem::temp_directory_path() /
-                 ("phasor_geometry_test_" + std::to_string(::getpid()));
+        auto d =
+            std::filesystem::temp_directory_path() / ("phasor_geometry_test_" + std::to_string(::getpid()));
         std::filesystem::create_directories(d);
         return d;
     }();

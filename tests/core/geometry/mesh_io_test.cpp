@@ -58,7 +58,8 @@ TEST(Obj, LoadsPolygonsAttributesAndNegativeIndices) {
 }
 
 TEST(Obj, NormalsDroppedUnlessEveryCornerHasOne) {
-    TriangleMesh m = LoadObj(WriteScratch("partial.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3\n"));
+    TriangleMesh m =
+        LoadObj(WriteScratch("partial.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2 3\n"));
     EXPECT_TRUE(m.normals.empty());
     EXPECT_TRUE(m.uvs.empty());
     EXPECT_EQ(m.positions.size(), 3u);
@@ -70,24 +71,20 @@ TEST(Obj, BadLinesNameFileAndLine) {
         std::string body, reason;
     };
     std::vector<Case> cases = {
-        {"v 1 2\n", "needs 3 coordinates"},
-        {"v 1 2 abc\n", "expected a number"},
-        {"v 1 2 nan\n", "not finite"},
-        {"vn 1 0\n", "needs 3 coordinates"},
-        {"f 1 2\n", "at least 3 vertices"},
-        {"f 1 2 x\n", "expected an integer"},
-        {"f 1 2 9\n", "out of range"},
-        {"f 1 2 0\n", "index 0 is invalid"},
+        {"v 1 2\n", "needs 3 coordinates"}, {"v 1 2 abc\n", "expected a number"},
+        {"v 1 2 nan\n", "not finite"},      {"vn 1 0\n", "needs 3 coordinates"},
+        {"f 1 2\n", "at least 3 vertices"}, {"f 1 2 x\n", "expected an integer"},
+        {"f 1 2 9\n", "out of range"},      {"f 1 2 0\n", "index 0 is invalid"},
         {"f 1/1 2 3\n", "out of range"},  // no vt defined
-        {"f 1// 2 3\n", "malformed"},
-        {"f -4 2 3\n", "out of range"},
+        {"f 1// 2 3\n", "malformed"},       {"f -4 2 3\n", "out of range"},
     };
     for (std::size_t i = 0; i < cases.size(); ++i) {
         std::string name = "bad" + std::to_string(i) + ".obj";
         std::string path = WriteScratch(name, head + cases[i].body);
         ExpectError([&] { LoadObj(path); }, {name + ":4:", cases[i].reason});
     }
-    ExpectError([&] { LoadObjPolygons(WriteScratch("dup.obj", head + "f 1 2 1\n")); }, {"dup.obj:4:", "twice"});
+    ExpectError([&] { LoadObjPolygons(WriteScratch("dup.obj", head + "f 1 2 1\n")); },
+                {"dup.obj:4:", "twice"});
     ExpectError([&] { LoadObj(WriteScratch("nofaces.obj", head)); }, {"nofaces.obj", "no faces"});
     ExpectError([&] { LoadObj("/nonexistent/missing_mesh.obj"); }, {"missing_mesh.obj", "cannot open"});
 }
@@ -99,21 +96,23 @@ TEST(Obj, BadLinesNameFileAndLine) {
 /// (identity), node "scaled" (matrix diag(1,2,3) + T(−1,0,0)), node "mirrored" (scale −1 in x:
 /// the strip's winding is reversed); node "orphan" is not in the scene.
 void ExpectTestAsset(const TriangleMesh &m) {
-    std::vector<Vec3> pos = {{1, 2, 5},  {-1, 2, 5}, {-1, 2, 7}, {1, 2, 7},   // child
-                             {0, 0, 0},  {1, 0, 0},  {1, 1, 0},  {0, 1, 0},   // plain
-                             {-1, 0, 0}, {0, 0, 0},  {0, 2, 0},  {-1, 2, 0},  // scaled
-                             {0, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {-1, 1, 0}}; // mirrored strip
+    std::vector<Vec3> pos = {{1, 2, 5},  {-1, 2, 5}, {-1, 2, 7}, {1, 2, 7},    // child
+                             {0, 0, 0},  {1, 0, 0},  {1, 1, 0},  {0, 1, 0},    // plain
+                             {-1, 0, 0}, {0, 0, 0},  {0, 2, 0},  {-1, 2, 0},   // scaled
+                             {0, 0, 0},  {-1, 0, 0}, {0, 1, 0},  {-1, 1, 0}};  // mirrored strip
     ASSERT_EQ(m.positions.size(), pos.size());
     for (std::size_t i = 0; i < pos.size(); ++i)
-        EXPECT_NEAR(Length(m.positions[i] - pos[i]), 0, 1e-15) << "vertex " << i << ": " << ToString(m.positions[i]);
-    EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3, 4, 5, 6, 4, 6, 7, 8, 9, 10, 8, 10, 11,
-                                                12, 14, 13, 13, 14, 15}));
+        EXPECT_NEAR(Length(m.positions[i] - pos[i]), 0, 1e-15)
+            << "vertex " << i << ": " << ToString(m.positions[i]);
+    EXPECT_EQ(m.indices, (std::vector<uint32_t>{0, 1, 2,  0, 2,  3,  4,  5,  6,  4,  6,  7,
+                                                8, 9, 10, 8, 10, 11, 12, 14, 13, 13, 14, 15}));
     ASSERT_EQ(m.normals.size(), pos.size());
     // Normals by the inverse transpose: (0.6, 0, 0.8) under diag(1,2,3) → ∝ (0.6, 0, 0.8/3).
     Vec3 tilted = Normalize(Vec3(double(0.6f), 0, double(0.8f) / 3));
     for (std::size_t i = 0; i < pos.size(); ++i) {
         Vec3 expect = i < 4 ? Vec3(0, 1, 0) : (i >= 8 && i < 12 ? tilted : Vec3(0, 0, 1));
-        EXPECT_NEAR(Length(m.normals[i] - expect), 0, 1e-15) << "normal " << i << ": " << ToString(m.normals[i]);
+        EXPECT_NEAR(Length(m.normals[i] - expect), 0, 1e-15)
+            << "normal " << i << ": " << ToString(m.normals[i]);
     }
     // Every triangle is wound counter-clockwise about its vertex normals.
     for (std::size_t t = 0; t < m.TriangleCount(); ++t) {
@@ -178,9 +177,11 @@ TEST(Gltf, CorruptAndMissingFilesThrowWithFileName) {
         {"truncated.glb", glb.substr(0, 100), ""},
         {"garbage.gltf", "{ this is not json", ""},
         {"empty.gltf", "", ""},
-        {"huge_count.gltf", replaced("\"count\":4,\"type\":\"VEC3\",\"min\"", "\"count\":4000,\"type\":\"VEC3\",\"min\""), ""},
+        {"huge_count.gltf",
+         replaced("\"count\":4,\"type\":\"VEC3\",\"min\"", "\"count\":4000,\"type\":\"VEC3\",\"min\""), ""},
         {"bad_indices.gltf", replaced("\"indices\":5", "\"indices\":0"), "indices"},
-        {"no_buffer.gltf", "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":12,\"uri\":\"missing.bin\"}]}", ""},
+        {"no_buffer.gltf",
+         "{\"asset\":{\"version\":\"2.0\"},\"buffers\":[{\"byteLength\":12,\"uri\":\"missing.bin\"}]}", ""},
         {"cycle.gltf", replaced("{\"name\":\"child\",", "{\"name\":\"child\",\"children\":[0],"), ""},
         {"bad_node.gltf", replaced("\"children\":[1]", "\"children\":[42]"), ""},
     };

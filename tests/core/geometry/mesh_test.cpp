@@ -48,7 +48,8 @@ TEST(TriangleMesh, MirroringTransformKeepsWindingConsistent) {
     m.normals.assign(4, Vec3(0, 0, 1));
     m.Transform(Transform::Scale(Vec3(-1, 2, 1)));
     EXPECT_EQ(m.positions[1], Vec3(-1, 0, 0));
-    const Vec3 &p0 = m.positions[m.indices[0]], &p1 = m.positions[m.indices[1]], &p2 = m.positions[m.indices[2]];
+    const Vec3 &p0 = m.positions[m.indices[0]], &p1 = m.positions[m.indices[1]],
+               &p2 = m.positions[m.indices[2]];
     Vec3 ng = Cross(p1 - p0, p2 - p0);
     EXPECT_GT(Dot(ng, m.normals[0]), 0);
     EXPECT_NEAR(Length(m.normals[0]), 1, 1e-15);

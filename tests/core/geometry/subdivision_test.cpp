@@ -42,7 +42,7 @@ TEST(Subdivision, CubeBoundsConvergeToLimit) {
         TriangleMesh m = SubdivideCatmullClark(CubeCage(), level);
         Bounds3 b = m.Bounds();
         double ext = MaxAbsX(m);
-        EXPECT_NEAR(b.hi.y, ext, 1e-14);   // cubic symmetry
+        EXPECT_NEAR(b.hi.y, ext, 1e-14);  // cubic symmetry
         EXPECT_NEAR(-b.lo.z, ext, 1e-14);
         EXPECT_LE(ext, prevExtent + 1e-15) << "bounds must not grow, level " << level;
         EXPECT_GT(ext, limit - 1e-14) << "control points lie outside the limit surface";
