@@ -104,20 +104,19 @@ Chi2Result Chi2Test(const std::vector<double> &observed, const std::vector<doubl
             r.observedInEmptyCells += (long long)observed[i];
             continue;
         }
-        if (expected[i] < minExpected) {
-            poolO += observed[i];
-            poolE += expected[i];
-            if (poolE >= minExpected) {
-                r.chi2 += (poolO - poolE) * (poolO - poolE) / poolE;
-                ++cells;
-                poolO = poolE = 0;
-            }
-            continue;
+        // Cells come in increasing expected count: small ones are pooled until the pool reaches
+        // minExpected; a pool still short when the large cells begin is merged into the first
+        // of them, so no tested cell has E < minExpected.
+        poolO += observed[i];
+        poolE += expected[i];
+        if (poolE >= minExpected) {
+            r.chi2 += (poolO - poolE) * (poolO - poolE) / poolE;
+            ++cells;
+            poolO = poolE = 0;
         }
-        r.chi2 += (observed[i] - expected[i]) * (observed[i] - expected[i]) / expected[i];
-        ++cells;
     }
     if (poolE > 0) {
+        // Only possible when every cell together is below minExpected.
         r.chi2 += (poolO - poolE) * (poolO - poolE) / poolE;
         ++cells;
     }
