@@ -38,8 +38,8 @@ class GltfReader {
 
     [[noreturn]] void Fail(const std::string &reason) const { throw Error(path_ + ": " + reason); }
 
-    /// Reads accessor `index` as `count × comps` doubles. `types` lists the allowed accessor
-    /// types; integer components are converted as the glTF spec says (normalised or not).
+    /// Reads accessor `index` (type SCALAR, VEC2 or VEC3 for comps = 1, 2, 3) as `count × comps`
+    /// doubles; integer components are converted as the glTF spec says (normalised or not).
     std::vector<double> Read(int index, int comps, const char *what, bool allowIntegers) const {
         if (index < 0 || index >= int(model_.accessors.size()))
             Fail(std::string(what) + ": accessor " + std::to_string(index) + " does not exist");

@@ -77,11 +77,27 @@ uint32_t ReverseBits(uint32_t v) {
 
 // Sobol' dimension 0 (van der Corput) and dimension 1 (primitive polynomial x + 1).
 uint32_t Sobol0(uint32_t i) { return ReverseBits(i); }
+// Its generator matrix is applied a byte at a time through four 256-entry tables (the XOR of the
+// columns selected by each byte), instead of a loop over the 32 bits of the index.
+struct Sobol1Tables {
+    uint32_t t[4][256];
+    Sobol1Tables() {
+        uint32_t column[32];
+        uint32_t v = 1u << 31;
+        for (int b = 0; b < 32; ++b, v ^= v >> 1) column[b] = v;
+        for (int k = 0; k < 4; ++k)
+            for (int byte = 0; byte < 256; ++byte) {
+                uint32_t r = 0;
+                for (int bit = 0; bit < 8; ++bit)
+                    if (byte & (1 << bit)) r ^= column[8 * k + bit];
+                t[k][byte] = r;
+            }
+    }
+};
+const Sobol1Tables kSobol1;
 uint32_t Sobol1(uint32_t i) {
-    uint32_t r = 0;
-    for (uint32_t v = 1u << 31; i; i >>= 1, v ^= v >> 1)
-        if (i & 1) r ^= v;
-    return r;
+    return kSobol1.t[0][i & 0xff] ^ kSobol1.t[1][(i >> 8) & 0xff] ^ kSobol1.t[2][(i >> 16) & 0xff] ^
+           kSobol1.t[3][i >> 24];
 }
 
 // Hash-based approximation of a nested uniform (Owen) scramble: a permutation of the bits

@@ -21,15 +21,22 @@ inline std::string AssetPath(const std::string &name) {
     return std::string(PHASOR_SOURCE_DIR) + "/scenes/assets/" + name;
 }
 
-/// A per-process scratch directory for files the tests write.
+/// A per-process scratch directory for files the tests write; removed at exit.
 inline std::filesystem::path ScratchDir() {
-    static std::filesystem::path dir = [] {
-        auto d =
-            std::filesystem::temp_directory_path() / ("phasor_geometry_test_" + std::to_string(::getpid()));
+    struct Holder {
+        std::filesystem::path dir;
+        ~Holder() {
+            std::error_code ec;
+            std::filesystem::remove_all(dir, ec);
+        }
+    };
+    static Holder holder{[] {
+        auto d = std::filesystem::temp_directory_path() /
+                 ("phasor_geometry_test_" + std::to_string(::getpid()));
         std::filesystem::create_directories(d);
         return d;
-    }();
-    return dir;
+    }()};
+    return holder.dir;
 }
 
 inline std::string WriteScratch(const std::string &name, const std::string &content) {
