@@ -27,7 +27,8 @@ test: build
 
 # Unit tests under AddressSanitizer + UndefinedBehaviorSanitizer (separate build tree).
 sanitize: deps
-	@cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DPHASOR_SANITIZE=ON -DPHASOR_BUILD_BENCH=OFF > /dev/null
+	@cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug "-DCMAKE_CXX_FLAGS_DEBUG=-O1 -g" \
+	  -DPHASOR_SANITIZE=ON -DPHASOR_BUILD_BENCH=OFF > /dev/null
 	@cmake --build build-asan -j $(JOBS)
 	@cd build-asan && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
 	  ctest --output-on-failure -j $(JOBS) -L unit --timeout 1800

@@ -18,12 +18,13 @@ std::string GenerateScene(int n) {
     s.reserve(std::size_t(n) * 110);
     int materials = n / 100 + 1;
     for (int m = 0; m < materials; ++m)
-        s += "Material \"diffuse\" \"m" + std::to_string(m) + "\" { reflectance = 0." + std::to_string(1 + m % 8) +
-             " }\n";
+        s += "Material \"diffuse\" \"m" + std::to_string(m) + "\" { reflectance = 0." +
+             std::to_string(1 + m % 8) + " }\n";
     for (int i = materials; i < n; ++i) {
-        s += "Shape \"sphere\" \"s" + std::to_string(i) + "\" {\n    center = [" + std::to_string(i % 100) + " " +
-             std::to_string((i / 100) % 100) + " " + std::to_string(i / 10000) + "] * $pitch\n    radius = $r / 2 + " +
-             std::to_string(i % 7) + " um\n    material = @m" + std::to_string(i % materials) + "  # comment\n}\n";
+        s += "Shape \"sphere\" \"s" + std::to_string(i) + "\" {\n    center = [" + std::to_string(i % 100) +
+             " " + std::to_string((i / 100) % 100) + " " + std::to_string(i / 10000) +
+             "] * $pitch\n    radius = $r / 2 + " + std::to_string(i % 7) + " um\n    material = @m" +
+             std::to_string(i % materials) + "  # comment\n}\n";
     }
     return s;
 }
@@ -33,7 +34,8 @@ void BM_Parse100k(benchmark::State &state) {
     for (auto _ : state) {
         Diagnostics diag;
         std::optional<SceneDesc> desc = ParseSceneString(text, "bench.wscene", DefineList{}, diag);
-        if (!desc || desc->entities.size() != std::size_t(state.range(0))) state.SkipWithError("parse failed");
+        if (!desc || desc->entities.size() != std::size_t(state.range(0)))
+            state.SkipWithError("parse failed");
         benchmark::DoNotOptimize(desc);
     }
     state.SetBytesProcessed(int64_t(state.iterations()) * int64_t(text.size()));

@@ -40,8 +40,8 @@ struct Expr {
     std::vector<Expr> kids;
     std::vector<std::string> argNames;
     std::vector<Pos> argNamePos;
-    Pos pos;       // span of the whole expression (clipped to its first line)
-    Pos opPos;     // Unary/Binary: the operator
+    Pos pos;    // span of the whole expression (clipped to its first line)
+    Pos opPos;  // Unary/Binary: the operator
 };
 
 /// Comments attached to an item: the lines before it and the comment ending its line.
@@ -72,8 +72,8 @@ struct Stmt {
     std::string name;
     Pos namePos;
     bool hasName = false;
-    Expr value;  // Define
-    std::vector<ParamNode> params;  // Block
+    Expr value;                                // Define
+    std::vector<ParamNode> params;             // Block
     std::vector<std::string> closingComments;  // Block: comments before '}'
     bool closingBlankBefore = false;
     Comments comments;

@@ -13,8 +13,8 @@ namespace phasor {
 
 const std::vector<std::string> &MathFunctionNames() {
     static const std::vector<std::string> names = {
-        "abs", "acos",  "asin", "atan",  "atan2", "ceil", "clamp", "cos", "exp", "floor", "hypot",
-        "log", "log10", "max",  "min",   "pow",   "round", "sin",  "sqrt", "tan", "trunc"};
+        "abs", "acos",  "asin", "atan", "atan2", "ceil",  "clamp", "cos",  "exp", "floor", "hypot",
+        "log", "log10", "max",  "min",  "pow",   "round", "sin",   "sqrt", "tan", "trunc"};
     return names;
 }
 
@@ -54,8 +54,10 @@ std::string DescribeValue(const Value &v) {
         case Value::Kind::Number:
         case Value::Kind::Complex:
         case Value::Kind::String:
-        case Value::Kind::Bool: return v.DescribeKind() + " (" + v.ToString() + ")";
-        default: return v.DescribeKind();
+        case Value::Kind::Bool:
+            return v.DescribeKind() + " (" + v.ToString() + ")";
+        default:
+            return v.DescribeKind();
     }
 }
 
@@ -92,7 +94,8 @@ std::optional<Value> Evaluator::Eval(const Expr &e, const std::string &file) {
         return std::nullopt;
     }
     switch (e.kind) {
-        case Expr::Kind::Number: return EvalNumber(e, loc);
+        case Expr::Kind::Number:
+            return EvalNumber(e, loc);
         case Expr::Kind::Imag: {
             double x = 0;
             auto r = std::from_chars(e.text.data(), e.text.data() + e.text.size(), x);
@@ -102,9 +105,12 @@ std::optional<Value> Evaluator::Eval(const Expr &e, const std::string &file) {
             }
             return Value::ComplexNumber(Complex(0, x), loc);
         }
-        case Expr::Kind::String: return Value::String(e.text, loc);
-        case Expr::Kind::Bool: return Value::Bool(e.boolean, loc);
-        case Expr::Kind::Ref: return Value::Ref(e.text, loc);
+        case Expr::Kind::String:
+            return Value::String(e.text, loc);
+        case Expr::Kind::Bool:
+            return Value::Bool(e.boolean, loc);
+        case Expr::Kind::Ref:
+            return Value::Ref(e.text, loc);
         case Expr::Kind::Var: {
             if (!lookupVar) {
                 Error(loc, "'$" + e.text + "' is not defined");
@@ -117,8 +123,10 @@ std::optional<Value> Evaluator::Eval(const Expr &e, const std::string &file) {
             bool ok = true;
             for (const Expr &k : e.kids) {
                 std::optional<Value> v = Eval(k, file);
-                if (!v) ok = false;
-                else if (ok) items.push_back(std::move(*v));
+                if (!v)
+                    ok = false;
+                else if (ok)
+                    items.push_back(std::move(*v));
             }
             if (!ok) return std::nullopt;
             Value list = Value::List(std::move(items), loc);
@@ -127,14 +135,16 @@ std::optional<Value> Evaluator::Eval(const Expr &e, const std::string &file) {
                 std::optional<Unit> u = ParseUnit(e.unit);
                 if (!u) {
                     std::string sug = Suggest(e.unit, KnownUnitNames());
-                    Error(uLoc, "unknown unit '" + e.unit + "'" + (sug.empty() ? "" : "; did you mean '" + sug + "'?"));
+                    Error(uLoc, "unknown unit '" + e.unit + "'" +
+                                    (sug.empty() ? "" : "; did you mean '" + sug + "'?"));
                     return std::nullopt;
                 }
                 if (!ApplyUnit(list, u->scale, u->dim, e.unit, uLoc)) return std::nullopt;
             }
             return list;
         }
-        case Expr::Kind::Call: return EvalCall(e, file, loc);
+        case Expr::Kind::Call:
+            return EvalCall(e, file, loc);
         case Expr::Kind::Paren: {
             std::optional<Value> v = Eval(e.kids[0], file);
             if (v) v->loc = loc;
@@ -158,7 +168,8 @@ std::optional<Value> Evaluator::Eval(const Expr &e, const std::string &file) {
                         Error(v->loc, "'" + op + "' needs booleans on both sides; got " + DescribeValue(*v));
                         return std::nullopt;
                     }
-                return Value::Bool(op == "and" ? (a->boolean && b->boolean) : (a->boolean || b->boolean), loc);
+                return Value::Bool(op == "and" ? (a->boolean && b->boolean) : (a->boolean || b->boolean),
+                                   loc);
             }
             if (op == "==" || op == "!=" || op == "<" || op == "<=" || op == ">" || op == ">=")
                 return Compare(op, *a, *b, opLoc, loc);
@@ -198,8 +209,8 @@ bool Evaluator::ApplyUnit(Value &v, double scale, Dim dim, const std::string &un
         return ok;
     }
     if (!IsPlain(v)) {
-        Error(v.loc, "the list's unit '" + unit + "' applies to every item, but this item is " + DescribeValue(v) +
-                         " (give either the list a unit or its items, not both)");
+        Error(v.loc, "the list's unit '" + unit + "' applies to every item, but this item is " +
+                         DescribeValue(v) + " (give either the list a unit or its items, not both)");
         return false;
     }
     if (!CheckDim(dim, unitLoc)) return false;
@@ -223,7 +234,10 @@ std::optional<Value> Evaluator::EvalCall(const Expr &e, const std::string &file,
             ok = false;
         }
         std::optional<Value> v = Eval(e.kids[i], file);
-        if (!v) { ok = false; continue; }
+        if (!v) {
+            ok = false;
+            continue;
+        }
         args.push_back(std::move(*v));
         names.push_back(n);
     }
@@ -253,8 +267,9 @@ std::optional<Value> Evaluator::EvalMath(const Expr &e, std::vector<Value> &args
     }
     auto arity = [&](std::size_t lo, std::size_t hi) {
         if (args.size() >= lo && args.size() <= hi) return true;
-        std::string want = lo == hi ? std::to_string(lo) : hi > 100 ? "at least " + std::to_string(lo)
-                                                                    : std::to_string(lo) + " to " + std::to_string(hi);
+        std::string want = lo == hi   ? std::to_string(lo)
+                           : hi > 100 ? "at least " + std::to_string(lo)
+                                      : std::to_string(lo) + " to " + std::to_string(hi);
         Error(loc, "'" + f + "' takes " + want + " argument" + (lo == 1 && hi == 1 ? "" : "s") + "; got " +
                        std::to_string(args.size()));
         return false;
@@ -273,8 +288,8 @@ std::optional<Value> Evaluator::EvalMath(const Expr &e, std::vector<Value> &args
     auto sameDims = [&]() {
         for (std::size_t i = 1; i < args.size(); ++i)
             if (args[i].dim != args[0].dim) {
-                Error(args[i].loc, "'" + f + "' needs arguments of one dimension; got " + DescribeValue(args[0]) +
-                                       " and " + DescribeValue(args[i]));
+                Error(args[i].loc, "'" + f + "' needs arguments of one dimension; got " +
+                                       DescribeValue(args[0]) + " and " + DescribeValue(args[i]));
                 return false;
             }
         return true;
@@ -285,9 +300,12 @@ std::optional<Value> Evaluator::EvalMath(const Expr &e, std::vector<Value> &args
     };
     const Value *a = args.empty() ? nullptr : &args[0];
     if (f == "round" || f == "floor" || f == "ceil" || f == "trunc") {
-        if (!arity(1, 1) || !needPlain(*a, " (divide by a unit first, e.g. round($width / 1 um))")) return std::nullopt;
-        double x = f == "round" ? std::round(a->number) : f == "floor" ? std::floor(a->number)
-                   : f == "ceil" ? std::ceil(a->number) : std::trunc(a->number);
+        if (!arity(1, 1) || !needPlain(*a, " (divide by a unit first, e.g. round($width / 1 um))"))
+            return std::nullopt;
+        double x = f == "round"   ? std::round(a->number)
+                   : f == "floor" ? std::floor(a->number)
+                   : f == "ceil"  ? std::ceil(a->number)
+                                  : std::trunc(a->number);
         return result(x, Dim::None(), true);
     }
     if (f == "abs") {
@@ -326,8 +344,8 @@ std::optional<Value> Evaluator::EvalMath(const Expr &e, std::vector<Value> &args
             Error(a->loc, "'sqrt' of a negative number");
             return std::nullopt;
         }
-        Dim h{int8_t(d.length / 2), int8_t(d.angle / 2), int8_t(d.solidAngle / 2), int8_t(d.power / 2),
-              int8_t(d.temperature / 2), int8_t(d.time / 2)};
+        Dim h{int8_t(d.length / 2), int8_t(d.angle / 2),       int8_t(d.solidAngle / 2),
+              int8_t(d.power / 2),  int8_t(d.temperature / 2), int8_t(d.time / 2)};
         return result(std::sqrt(a->number), h, false);
     }
     if (f == "pow") {
@@ -351,7 +369,9 @@ std::optional<Value> Evaluator::EvalMath(const Expr &e, std::vector<Value> &args
             Error(a->loc, "'" + f + "' of a number that is not positive");
             return std::nullopt;
         }
-        double x = f == "exp" ? std::exp(a->number) : f == "log" ? std::log(a->number) : std::log10(a->number);
+        double x = f == "exp"   ? std::exp(a->number)
+                   : f == "log" ? std::log(a->number)
+                                : std::log10(a->number);
         return result(x, Dim::None(), false);
     }
     if (f == "sin" || f == "cos" || f == "tan") {
@@ -369,7 +389,9 @@ std::optional<Value> Evaluator::EvalMath(const Expr &e, std::vector<Value> &args
             Error(a->loc, "'" + f + "' needs a number in [-1, 1]");
             return std::nullopt;
         }
-        double x = f == "asin" ? std::asin(a->number) : f == "acos" ? std::acos(a->number) : std::atan(a->number);
+        double x = f == "asin"   ? std::asin(a->number)
+                   : f == "acos" ? std::acos(a->number)
+                                 : std::atan(a->number);
         return result(x, Dim::Angle(), false);
     }
     if (f == "atan2") {
@@ -416,22 +438,24 @@ std::optional<Value> Evaluator::Unary(const std::string &op, const Value &a, con
             v.loc = loc;
             return v;
         }
-        default: break;
+        default:
+            break;
     }
     Error(opLoc, "cannot apply unary '" + op + "' to " + DescribeValue(a));
     return std::nullopt;
 }
 
-std::optional<Value> Evaluator::Arith(const std::string &op, const Value &a, const Value &b, const FileLoc &opLoc,
-                                      const FileLoc &loc) {
+std::optional<Value> Evaluator::Arith(const std::string &op, const Value &a, const Value &b,
+                                      const FileLoc &opLoc, const FileLoc &loc) {
     using K = Value::Kind;
     // Lists: elementwise (list ± list of the same length; list * or / a scalar; scalar * list).
     if (a.kind == K::List || b.kind == K::List) {
         Value out = Value::List({}, loc);
         if (a.kind == K::List && b.kind == K::List && (op == "+" || op == "-")) {
             if (a.items.size() != b.items.size()) {
-                Error(opLoc, "cannot " + OpWord(op) + " lists of different lengths (" + std::to_string(a.items.size()) +
-                                 " and " + std::to_string(b.items.size()) + ")");
+                Error(opLoc, "cannot " + OpWord(op) + " lists of different lengths (" +
+                                 std::to_string(a.items.size()) + " and " + std::to_string(b.items.size()) +
+                                 ")");
                 return std::nullopt;
             }
             for (std::size_t i = 0; i < a.items.size(); ++i) {
@@ -508,25 +532,31 @@ std::optional<Value> Evaluator::Arith(const std::string &op, const Value &a, con
     return MakeNumber(r, d, op == "*" && a.isInteger && b.isInteger, loc);
 }
 
-std::optional<Value> Evaluator::Compare(const std::string &op, const Value &a, const Value &b, const FileLoc &opLoc,
-                                        const FileLoc &loc) {
+std::optional<Value> Evaluator::Compare(const std::string &op, const Value &a, const Value &b,
+                                        const FileLoc &opLoc, const FileLoc &loc) {
     using K = Value::Kind;
     bool ordering = op != "==" && op != "!=";
     if (a.kind == K::Number && b.kind == K::Number) {
         if (a.dim != b.dim) {
-            Error(opLoc, "cannot compare " + DescribeValue(a) + " and " + DescribeValue(b) + " (different dimensions)");
+            Error(opLoc, "cannot compare " + DescribeValue(a) + " and " + DescribeValue(b) +
+                             " (different dimensions)");
             return std::nullopt;
         }
         double x = a.number, y = b.number;
-        bool r = op == "==" ? x == y : op == "!=" ? x != y : op == "<" ? x < y : op == "<=" ? x <= y
-                 : op == ">" ? x > y : x >= y;
+        bool r = op == "=="   ? x == y
+                 : op == "!=" ? x != y
+                 : op == "<"  ? x < y
+                 : op == "<=" ? x <= y
+                 : op == ">"  ? x > y
+                              : x >= y;
         return Value::Bool(r, loc);
     }
     if (ordering) {
         Error(opLoc, "'" + op + "' compares numbers; got " + DescribeValue(a) + " and " + DescribeValue(b));
         return std::nullopt;
     }
-    bool numA = a.kind == K::Number || a.kind == K::Complex, numB = b.kind == K::Number || b.kind == K::Complex;
+    bool numA = a.kind == K::Number || a.kind == K::Complex,
+         numB = b.kind == K::Number || b.kind == K::Complex;
     if (a.kind != b.kind && !(numA && numB)) {
         Error(opLoc, "cannot compare " + DescribeValue(a) + " and " + DescribeValue(b));
         return std::nullopt;

@@ -32,7 +32,8 @@ class Evaluator {
     std::optional<Value> EvalCall(const Expr &e, const std::string &file, const FileLoc &loc);
     std::optional<Value> EvalMath(const Expr &e, std::vector<Value> &args, const std::string &file,
                                   const FileLoc &loc);
-    std::optional<Value> Unary(const std::string &op, const Value &a, const FileLoc &opLoc, const FileLoc &loc);
+    std::optional<Value> Unary(const std::string &op, const Value &a, const FileLoc &opLoc,
+                               const FileLoc &loc);
     std::optional<Value> Arith(const std::string &op, const Value &a, const Value &b, const FileLoc &opLoc,
                                const FileLoc &loc);
     std::optional<Value> Compare(const std::string &op, const Value &a, const Value &b, const FileLoc &opLoc,

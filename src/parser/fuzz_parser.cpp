@@ -34,7 +34,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t *data, std::size_t size) {
     while (std::getline(lines, line) && line.rfind("#D ", 0) == 0)
         if (auto kv = SplitDefineArgument(line.substr(3), defineDiag)) opt.defines.push_back(*kv);
     opt.readFile = [&text](const std::string &path) -> std::optional<std::string> {
-        if (path == "lib/a.wscene") return std::string("wscene 1\nDefine lib_a = 2 mm\nMaterial \"diffuse\" \"lib_m\" {}\n");
+        if (path == "lib/a.wscene")
+            return std::string("wscene 1\nDefine lib_a = 2 mm\nMaterial \"diffuse\" \"lib_m\" {}\n");
         if (path == "lib/b.wscene") return std::string("wscene 1\nInclude \"a.wscene\"\n");
         if (path == "self.wscene" || path == "fuzz.wscene") return text;
         return std::nullopt;

@@ -25,11 +25,21 @@ int DecodeUtf8(std::string_view s, std::size_t i, uint32_t *cp) {
     unsigned char c = s[i];
     int n;
     uint32_t v;
-    if (c < 0x80) { *cp = c; return 1; }
-    if ((c & 0xE0) == 0xC0) { n = 2; v = c & 0x1F; }
-    else if ((c & 0xF0) == 0xE0) { n = 3; v = c & 0x0F; }
-    else if ((c & 0xF8) == 0xF0) { n = 4; v = c & 0x07; }
-    else return 0;
+    if (c < 0x80) {
+        *cp = c;
+        return 1;
+    }
+    if ((c & 0xE0) == 0xC0) {
+        n = 2;
+        v = c & 0x1F;
+    } else if ((c & 0xF0) == 0xE0) {
+        n = 3;
+        v = c & 0x0F;
+    } else if ((c & 0xF8) == 0xF0) {
+        n = 4;
+        v = c & 0x07;
+    } else
+        return 0;
     if (i + n > s.size()) return 0;
     for (int k = 1; k < n; ++k) {
         unsigned char d = s[i + k];
@@ -118,12 +128,17 @@ class Lexer {
         return false;
     }
 
-    static bool IsSpaceOrComment(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '#'; }
+    static bool IsSpaceOrComment(char c) {
+        return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '#';
+    }
 
     void Advance(std::size_t n = 1) {
         for (std::size_t k = 0; k < n && pos_ < s_.size(); ++k) {
-            if (s_[pos_] == '\n') { ++line_; col_ = 1; }
-            else ++col_;
+            if (s_[pos_] == '\n') {
+                ++line_;
+                col_ = 1;
+            } else
+                ++col_;
             ++pos_;
         }
     }
@@ -185,7 +200,8 @@ class Lexer {
                     i += n;
                 }
                 std::size_t end = i;
-                while (end > start && (s_[end - 1] == ' ' || s_[end - 1] == '\t' || s_[end - 1] == '\r')) --end;
+                while (end > start && (s_[end - 1] == ' ' || s_[end - 1] == '\t' || s_[end - 1] == '\r'))
+                    --end;
                 cm.text = std::string(s_.substr(start, end - start));
                 comments.push_back(std::move(cm));
                 Advance(i - pos_);
@@ -219,29 +235,48 @@ class Lexer {
         char c = s_[pos_];
         char next = pos_ + 1 < s_.size() ? s_[pos_ + 1] : '\0';
         switch (c) {
-            case '{': return Single(t, Tok::LBrace);
-            case '}': return Single(t, Tok::RBrace);
-            case '[': return Single(t, Tok::LBracket);
-            case ']': return Single(t, Tok::RBracket);
-            case '(': return Single(t, Tok::LParen);
-            case ')': return Single(t, Tok::RParen);
-            case ',': return Single(t, Tok::Comma);
-            case '+': return Single(t, Tok::Plus);
-            case '-': return Single(t, Tok::Minus);
-            case '*': return Single(t, Tok::Star);
-            case '/': return Single(t, Tok::Slash);
-            case '=': return next == '=' ? Single(t, Tok::Eq, 2) : Single(t, Tok::Assign);
-            case '<': return next == '=' ? Single(t, Tok::Le, 2) : Single(t, Tok::Lt);
-            case '>': return next == '=' ? Single(t, Tok::Ge, 2) : Single(t, Tok::Gt);
+            case '{':
+                return Single(t, Tok::LBrace);
+            case '}':
+                return Single(t, Tok::RBrace);
+            case '[':
+                return Single(t, Tok::LBracket);
+            case ']':
+                return Single(t, Tok::RBracket);
+            case '(':
+                return Single(t, Tok::LParen);
+            case ')':
+                return Single(t, Tok::RParen);
+            case ',':
+                return Single(t, Tok::Comma);
+            case '+':
+                return Single(t, Tok::Plus);
+            case '-':
+                return Single(t, Tok::Minus);
+            case '*':
+                return Single(t, Tok::Star);
+            case '/':
+                return Single(t, Tok::Slash);
+            case '=':
+                return next == '=' ? Single(t, Tok::Eq, 2) : Single(t, Tok::Assign);
+            case '<':
+                return next == '=' ? Single(t, Tok::Le, 2) : Single(t, Tok::Lt);
+            case '>':
+                return next == '=' ? Single(t, Tok::Ge, 2) : Single(t, Tok::Gt);
             case '!':
                 if (next == '=') return Single(t, Tok::Ne, 2);
                 return Fail(line_, col_, 1, "unexpected '!'; write 'not' for logical negation");
-            case '&': return Fail(line_, col_, next == '&' ? 2 : 1, "unexpected '&'; write 'and'");
-            case '|': return Fail(line_, col_, next == '|' ? 2 : 1, "unexpected '|'; write 'or'");
-            case '"': return LexString(t);
+            case '&':
+                return Fail(line_, col_, next == '&' ? 2 : 1, "unexpected '&'; write 'and'");
+            case '|':
+                return Fail(line_, col_, next == '|' ? 2 : 1, "unexpected '|'; write 'or'");
+            case '"':
+                return LexString(t);
             case '@':
-            case '$': return LexSigil(t, c == '@' ? Tok::Ref : Tok::Var);
-            default: break;
+            case '$':
+                return LexSigil(t, c == '@' ? Tok::Ref : Tok::Var);
+            default:
+                break;
         }
         if (IsDigit(c) || (c == '.' && IsDigit(next))) return LexNumber(t);
         if (IsIdentStart(c)) {
@@ -253,7 +288,8 @@ class Lexer {
             Finish(t);
             return true;
         }
-        if (c == ';') return Fail(line_, col_, 1, "unexpected ';'; statements and parameters need no separator");
+        if (c == ';')
+            return Fail(line_, col_, 1, "unexpected ';'; statements and parameters need no separator");
         if (MicroSign(s_, pos_))
             return Fail(line_, col_, 2, "unexpected 'µ'; a unit must follow a number or a ']'");
         uint32_t cp;
@@ -265,8 +301,9 @@ class Lexer {
         Begin(t, kind);
         std::size_t i = pos_ + 1;
         if (i >= s_.size() || !IsIdentStart(s_[i]))
-            return Fail(line_, col_, 1,
-                        std::string("expected a name directly after '") + s_[pos_] + "' (e.g. " + s_[pos_] + "name)");
+            return Fail(
+                line_, col_, 1,
+                std::string("expected a name directly after '") + s_[pos_] + "' (e.g. " + s_[pos_] + "name)");
         while (i < s_.size() && IsIdentChar(s_[i])) ++i;
         t.text = std::string(s_.substr(pos_ + 1, i - pos_ - 1));
         Advance(i - pos_);
@@ -281,25 +318,41 @@ class Lexer {
         std::string out;
         for (;;) {
             if (i >= s_.size() || s_[i] == '\n' || s_[i] == '\r')
-                return Fail(startLine, startCol, 1, "unterminated string (strings end on the same line with '\"')");
+                return Fail(startLine, startCol, 1,
+                            "unterminated string (strings end on the same line with '\"')");
             char c = s_[i];
-            if (c == '"') { ++i; break; }
+            if (c == '"') {
+                ++i;
+                break;
+            }
             if (c == '\\') {
                 char e = i + 1 < s_.size() ? s_[i + 1] : '\0';
                 switch (e) {
-                    case '"': out += '"'; break;
-                    case '\\': out += '\\'; break;
-                    case 'n': out += '\n'; break;
-                    case 't': out += '\t'; break;
-                    case 'r': out += '\r'; break;
+                    case '"':
+                        out += '"';
+                        break;
+                    case '\\':
+                        out += '\\';
+                        break;
+                    case 'n':
+                        out += '\n';
+                        break;
+                    case 't':
+                        out += '\t';
+                        break;
+                    case 'r':
+                        out += '\r';
+                        break;
                     default: {
                         if (e == '\n' || e == '\0' || e == '\r')
-                            return Fail(startLine, startCol, 1, "unterminated string (strings end on the same line with '\"')");
+                            return Fail(startLine, startCol, 1,
+                                        "unterminated string (strings end on the same line with '\"')");
                         Advance(i - pos_);
                         uint32_t cp;
                         int n = DecodeUtf8(s_, i + 1, &cp);
                         return Fail(line_, col_, 1 + (n > 0 ? n : 1),
-                                    "unknown escape sequence '\\" + std::string(s_.substr(i + 1, n > 0 ? n : 1)) +
+                                    "unknown escape sequence '\\" +
+                                        std::string(s_.substr(i + 1, n > 0 ? n : 1)) +
                                         "' in string (use \\\" \\\\ \\n \\t or \\r)");
                     }
                 }
@@ -366,7 +419,10 @@ class Lexer {
         std::string run = RunFrom(pos_);
         std::size_t i = pos_ + run.size();
         // Include a sign of an exponent ("1e+") in the message.
-        while (i < s_.size() && (s_[i] == '+' || s_[i] == '-')) { run += s_[i]; ++i; }
+        while (i < s_.size() && (s_[i] == '+' || s_[i] == '-')) {
+            run += s_[i];
+            ++i;
+        }
         return Fail(line_, col_, (int)run.size(), "malformed number '" + run + "'");
     }
 
@@ -393,9 +449,12 @@ class Lexer {
         auto name = [&](std::size_t k) {
             std::size_t j = k;
             while (j < s_.size()) {
-                if (IsAsciiLetter(s_[j])) ++j;
-                else if (int m = MicroSign(s_, j)) j += m;
-                else break;
+                if (IsAsciiLetter(s_[j]))
+                    ++j;
+                else if (int m = MicroSign(s_, j))
+                    j += m;
+                else
+                    break;
             }
             return j - k;
         };
@@ -494,33 +553,60 @@ class Lexer {
 
 const char *Describe(Tok t) {
     switch (t) {
-        case Tok::End: return "end of file";
-        case Tok::Error: return "an invalid token";
-        case Tok::Ident: return "a name";
-        case Tok::Number: return "a number";
-        case Tok::Imag: return "an imaginary number";
-        case Tok::Unit: return "a unit";
-        case Tok::String: return "a string";
-        case Tok::Ref: return "a reference";
-        case Tok::Var: return "a variable";
-        case Tok::LBrace: return "'{'";
-        case Tok::RBrace: return "'}'";
-        case Tok::LBracket: return "'['";
-        case Tok::RBracket: return "']'";
-        case Tok::LParen: return "'('";
-        case Tok::RParen: return "')'";
-        case Tok::Comma: return "','";
-        case Tok::Assign: return "'='";
-        case Tok::Plus: return "'+'";
-        case Tok::Minus: return "'-'";
-        case Tok::Star: return "'*'";
-        case Tok::Slash: return "'/'";
-        case Tok::Eq: return "'=='";
-        case Tok::Ne: return "'!='";
-        case Tok::Lt: return "'<'";
-        case Tok::Le: return "'<='";
-        case Tok::Gt: return "'>'";
-        case Tok::Ge: return "'>='";
+        case Tok::End:
+            return "end of file";
+        case Tok::Error:
+            return "an invalid token";
+        case Tok::Ident:
+            return "a name";
+        case Tok::Number:
+            return "a number";
+        case Tok::Imag:
+            return "an imaginary number";
+        case Tok::Unit:
+            return "a unit";
+        case Tok::String:
+            return "a string";
+        case Tok::Ref:
+            return "a reference";
+        case Tok::Var:
+            return "a variable";
+        case Tok::LBrace:
+            return "'{'";
+        case Tok::RBrace:
+            return "'}'";
+        case Tok::LBracket:
+            return "'['";
+        case Tok::RBracket:
+            return "']'";
+        case Tok::LParen:
+            return "'('";
+        case Tok::RParen:
+            return "')'";
+        case Tok::Comma:
+            return "','";
+        case Tok::Assign:
+            return "'='";
+        case Tok::Plus:
+            return "'+'";
+        case Tok::Minus:
+            return "'-'";
+        case Tok::Star:
+            return "'*'";
+        case Tok::Slash:
+            return "'/'";
+        case Tok::Eq:
+            return "'=='";
+        case Tok::Ne:
+            return "'!='";
+        case Tok::Lt:
+            return "'<'";
+        case Tok::Le:
+            return "'<='";
+        case Tok::Gt:
+            return "'>'";
+        case Tok::Ge:
+            return "'>='";
     }
     return "a token";
 }
@@ -541,8 +627,7 @@ TokenStream Tokenize(std::string_view text, int firstLine, int firstCol) {
     TokenSource src(text, firstLine, firstCol);
     std::deque<Token> tokens;
     std::deque<Comment> comments;
-    while (src.More(tokens, comments)) {
-    }
+    while (src.More(tokens, comments)) {}
     TokenStream out;
     out.tokens.assign(std::make_move_iterator(tokens.begin()), std::make_move_iterator(tokens.end()));
     out.comments.assign(std::make_move_iterator(comments.begin()), std::make_move_iterator(comments.end()));

@@ -13,20 +13,33 @@
 namespace phasor::wscene {
 
 enum class Tok {
-    End,       // end of input
-    Error,     // lexical error; `text` holds the message
-    Ident,     // name or keyword
-    Number,    // numeric literal; `text` is the literal as written
-    Imag,      // imaginary literal such as 0.01i; `text` is the number without the 'i'
-    Unit,      // unit after a number or ']' (e.g. um, W/m^2); `text` as written
-    String,    // "..."; `text` is the decoded content
-    Ref,       // @name; `text` is the name
-    Var,       // $name; `text` is the name
-    LBrace, RBrace, LBracket, RBracket, LParen, RParen,
+    End,     // end of input
+    Error,   // lexical error; `text` holds the message
+    Ident,   // name or keyword
+    Number,  // numeric literal; `text` is the literal as written
+    Imag,    // imaginary literal such as 0.01i; `text` is the number without the 'i'
+    Unit,    // unit after a number or ']' (e.g. um, W/m^2); `text` as written
+    String,  // "..."; `text` is the decoded content
+    Ref,     // @name; `text` is the name
+    Var,     // $name; `text` is the name
+    LBrace,
+    RBrace,
+    LBracket,
+    RBracket,
+    LParen,
+    RParen,
     Comma,
     Assign,  // =
-    Plus, Minus, Star, Slash,
-    Eq, Ne, Lt, Le, Gt, Ge,
+    Plus,
+    Minus,
+    Star,
+    Slash,
+    Eq,
+    Ne,
+    Lt,
+    Le,
+    Gt,
+    Ge,
 };
 
 /// Short human-readable token kind ("a number", "'{'") for syntax errors.
@@ -35,10 +48,10 @@ const char *Describe(Tok t);
 struct Token {
     Tok kind = Tok::End;
     std::string text;
-    int line = 1, col = 1;   // 1-based; columns count bytes
-    int length = 0;          // bytes of source covered (on the token's line)
-    uint32_t offset = 0;     // byte offset of the first character
-    uint32_t endOffset = 0;  // byte offset just past the token
+    int line = 1, col = 1;     // 1-based; columns count bytes
+    int length = 0;            // bytes of source covered (on the token's line)
+    uint32_t offset = 0;       // byte offset of the first character
+    uint32_t endOffset = 0;    // byte offset just past the token
     bool spaceBefore = false;  // whitespace, a comment or the start of the input right before it
     bool spaceAfter = false;   // whitespace, a comment or the end of the input right after it
 };

@@ -34,8 +34,10 @@ struct ParseOptions {
 
 /// Parses and resolves a scene file. Returns nullopt if any error was reported to `diag` (the
 /// diagnostics say why); warnings alone do not fail (unless `diag` is strict).
-std::optional<SceneDesc> ParseSceneFile(const std::string &path, const DefineList &defines, Diagnostics &diag);
-std::optional<SceneDesc> ParseSceneFile(const std::string &path, const ParseOptions &options, Diagnostics &diag);
+std::optional<SceneDesc> ParseSceneFile(const std::string &path, const DefineList &defines,
+                                        Diagnostics &diag);
+std::optional<SceneDesc> ParseSceneFile(const std::string &path, const ParseOptions &options,
+                                        Diagnostics &diag);
 
 /// As ParseSceneFile, for text held in memory. `virtualFileName` names it in diagnostics and is
 /// the base for relative Include paths.
@@ -46,7 +48,8 @@ std::optional<SceneDesc> ParseSceneString(const std::string &text, const std::st
 
 /// Splits a command-line argument "name=value" (the text after -D). Returns nullopt (and
 /// reports an error) if there is no '=' or the name is not an identifier.
-std::optional<std::pair<std::string, std::string>> SplitDefineArgument(const std::string &arg, Diagnostics &diag);
+std::optional<std::pair<std::string, std::string>> SplitDefineArgument(const std::string &arg,
+                                                                       Diagnostics &diag);
 
 /// Evaluates one standalone value expression (no $variables), e.g. "150 um" → 1.5e-4 (length).
 /// Used by tests and tools; errors go to `diag` with positions in `virtualFileName`.

@@ -21,20 +21,32 @@ std::string Quote(const std::string &s) {
     std::string out = "\"";
     for (char c : s) {
         switch (c) {
-            case '"': out += "\\\""; break;
-            case '\\': out += "\\\\"; break;
-            case '\n': out += "\\n"; break;
-            case '\t': out += "\\t"; break;
-            case '\r': out += "\\r"; break;
-            default: out += c;
+            case '"':
+                out += "\\\"";
+                break;
+            case '\\':
+                out += "\\\\";
+                break;
+            case '\n':
+                out += "\\n";
+                break;
+            case '\t':
+                out += "\\t";
+                break;
+            case '\r':
+                out += "\\r";
+                break;
+            default:
+                out += c;
         }
     }
     return out + "\"";
 }
 
 bool IsCompactComplex(const Expr &e) {
-    return e.kind == Expr::Kind::Binary && (e.text == "+" || e.text == "-") && e.kids[1].kind == Expr::Kind::Imag &&
-           e.kids[0].kind == Expr::Kind::Number && e.kids[0].unit.empty();
+    return e.kind == Expr::Kind::Binary && (e.text == "+" || e.text == "-") &&
+           e.kids[1].kind == Expr::Kind::Imag && e.kids[0].kind == Expr::Kind::Number &&
+           e.kids[0].unit.empty();
 }
 
 void Print(const Expr &e, std::string &out, int indent, int column);
@@ -79,11 +91,21 @@ void Print(const Expr &e, std::string &out, int indent, int column) {
             out += e.text;
             if (!e.unit.empty()) out += " " + e.unit;
             return;
-        case Expr::Kind::Imag: out += e.text + "i"; return;
-        case Expr::Kind::String: out += Quote(e.text); return;
-        case Expr::Kind::Bool: out += e.boolean ? "true" : "false"; return;
-        case Expr::Kind::Ref: out += "@" + e.text; return;
-        case Expr::Kind::Var: out += "$" + e.text; return;
+        case Expr::Kind::Imag:
+            out += e.text + "i";
+            return;
+        case Expr::Kind::String:
+            out += Quote(e.text);
+            return;
+        case Expr::Kind::Bool:
+            out += e.boolean ? "true" : "false";
+            return;
+        case Expr::Kind::Ref:
+            out += "@" + e.text;
+            return;
+        case Expr::Kind::Var:
+            out += "$" + e.text;
+            return;
         case Expr::Kind::List: {
             std::size_t lineStart = out.rfind('\n');
             int col = column + int(out.size() - (lineStart == std::string::npos ? 0 : lineStart + 1));
@@ -119,8 +141,10 @@ void Print(const Expr &e, std::string &out, int indent, int column) {
 
 void PrintComments(const std::vector<std::string> &lines, std::string &out, int indent) {
     for (const std::string &l : lines) {
-        if (l == "\n") out += "\n";
-        else out += std::string(indent, ' ') + "#" + l + "\n";
+        if (l == "\n")
+            out += "\n";
+        else
+            out += std::string(indent, ' ') + "#" + l + "\n";
     }
 }
 
@@ -141,8 +165,12 @@ std::string FormatAst(const FileAst &ast) {
         PrintLeading(st.comments, out, 0, first);
         first = false;
         switch (st.kind) {
-            case Stmt::Kind::Header: out += "wscene " + st.text; break;
-            case Stmt::Kind::Include: out += "Include " + Quote(st.text); break;
+            case Stmt::Kind::Header:
+                out += "wscene " + st.text;
+                break;
+            case Stmt::Kind::Include:
+                out += "Include " + Quote(st.text);
+                break;
             case Stmt::Kind::Define: {
                 out += "Define " + st.name + " = ";
                 Print(st.value, out, 0, 0);
@@ -193,7 +221,8 @@ std::optional<std::string> FormatSceneString(const std::string &text, const std:
                                              Diagnostics &diag) {
     diag.AddSource(virtualFileName, text);
     wscene::FileAst ast;
-    if (!wscene::ParseFileAst(text, virtualFileName, diag, ast) || ast.lexError || ast.syntaxError) return std::nullopt;
+    if (!wscene::ParseFileAst(text, virtualFileName, diag, ast) || ast.lexError || ast.syntaxError)
+        return std::nullopt;
     return wscene::FormatAst(ast);
 }
 

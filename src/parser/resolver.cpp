@@ -2,6 +2,7 @@
 // phasor — .wscene resolver: FileAst → SceneDesc (docs/wscene.md §5–§7). Follows Includes,
 // substitutes $defines (and -D overrides), evaluates dimensioned arithmetic and math functions,
 // converts to SI, applies `enabled`, and checks names and @references.
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <filesystem>
@@ -9,6 +10,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <unordered_map>
 
 #include "core/units.h"
 #include "parser/ast.h"
@@ -67,13 +69,18 @@ class Resolver {
         std::size_t errorsBefore = diag_.ErrorCount();
         PrepareOverrides();
         std::optional<std::string> content;
-        if (text) content = *text;
-        else content = Read(fileName);
+        if (text)
+            content = *text;
+        else
+            content = Read(fileName);
         if (!content) {
             diag_.Error(FileLoc{fileName, 0, 0, 1}, "cannot read scene file '" + fileName + "'");
             return std::nullopt;
         }
         desc_.sourceFile = fileName;
+        // Every block has a '{': a cheap upper bound that avoids regrowing a large entity list.
+        desc_.entities.reserve(
+            std::min<std::size_t>(std::count(content->begin(), content->end(), '{'), 1u << 22));
         stack_.push_back(Key(fileName));
         ProcessFile(*content, fileName);
         stack_.pop_back();
@@ -105,7 +112,9 @@ class Resolver {
     static Diagnostic Note(const FileLoc &loc, std::string msg) {
         return Diagnostic{Severity::Note, loc, std::move(msg), {}};
     }
-    FileLoc Loc(const std::string &file, const Pos &p) const { return FileLoc{file, p.line, p.col, std::max(1, p.length)}; }
+    FileLoc Loc(const std::string &file, const Pos &p) const {
+        return FileLoc{file, p.line, p.col, std::max(1, p.length)};
+    }
 
     void ProcessFile(const std::string &text, const std::string &file) {
         diag_.AddSource(file, text);
@@ -114,10 +123,18 @@ class Resolver {
         wscene::ParseFileAst(text, file, diag_, ast, ChainOf(file), [&](Stmt &st) {
             if (diag_.TooManyErrors()) return;
             switch (st.kind) {
-                case Stmt::Kind::Header: CheckHeader(st, file); break;
-                case Stmt::Kind::Include: DoInclude(st, file); break;
-                case Stmt::Kind::Define: DoDefine(st, file); break;
-                case Stmt::Kind::Block: DoBlock(st, file); break;
+                case Stmt::Kind::Header:
+                    CheckHeader(st, file);
+                    break;
+                case Stmt::Kind::Include:
+                    DoInclude(st, file);
+                    break;
+                case Stmt::Kind::Define:
+                    DoDefine(st, file);
+                    break;
+                case Stmt::Kind::Block:
+                    DoBlock(st, file);
+                    break;
             }
         });
         if (ast.lexError) lostNames_ = true;
@@ -136,8 +153,9 @@ class Resolver {
             Err(at, "empty file name in Include");
             return;
         }
-        std::string target =
-            (std::filesystem::path(file).parent_path() / std::filesystem::path(st.text)).lexically_normal().generic_string();
+        std::string target = (std::filesystem::path(file).parent_path() / std::filesystem::path(st.text))
+                                 .lexically_normal()
+                                 .generic_string();
         std::string key = Key(target);
         for (std::size_t k = 0; k < stack_.size(); ++k) {
             if (stack_[k] != key) continue;
@@ -147,7 +165,8 @@ class Resolver {
             return;
         }
         if ((int)stack_.size() > opt_.maxIncludeDepth) {
-            Err(at, "includes nested too deeply (more than " + std::to_string(opt_.maxIncludeDepth) + " levels)");
+            Err(at,
+                "includes nested too deeply (more than " + std::to_string(opt_.maxIncludeDepth) + " levels)");
             return;
         }
         std::optional<std::string> content = Read(target);
@@ -228,15 +247,18 @@ class Resolver {
     static bool Compatible(const Value &def, const Value &v) {
         using K = Value::Kind;
         switch (def.kind) {
-            case K::Number: return v.kind == K::Number && v.dim == def.dim;
-            case K::Complex: return v.kind == K::Complex || (v.kind == K::Number && v.dim.IsNone());
+            case K::Number:
+                return v.kind == K::Number && v.dim == def.dim;
+            case K::Complex:
+                return v.kind == K::Complex || (v.kind == K::Number && v.dim.IsNone());
             case K::List:
                 if (v.kind != K::List) return false;
                 if (!def.items.empty() && !v.items.empty() && def.items[0].kind == K::Number &&
                     v.items[0].kind == K::Number)
                     return def.items[0].dim == v.items[0].dim;
                 return true;
-            default: return v.kind == def.kind;
+            default:
+                return v.kind == def.kind;
         }
     }
 
@@ -263,7 +285,8 @@ class Resolver {
                 const Value &d = *info.value;
                 std::string want = d.kind == Value::Kind::Number ? d.dim.Describe() : d.DescribeKind();
                 if (d.kind == Value::Kind::List && !d.items.empty() && d.items[0].kind == Value::Kind::Number)
-                    want = "a list of " + d.items[0].dim.Describe().substr(d.items[0].dim.Describe().find(' ') + 1) + "s";
+                    want = "a list of " +
+                           d.items[0].dim.Describe().substr(d.items[0].dim.Describe().find(' ') + 1) + "s";
                 diag_.Error(v->loc,
                             "'-D " + st.name + "' must be " + want + ", like the Define it overrides; got " +
                                 v->DescribeKind() + " (" + v->ToString() + ")",
@@ -296,7 +319,8 @@ class Resolver {
         bool ok = !st.broken;
         if (st.keyword == "Render") {
             if (renderSeen_) {
-                Err(kwLoc, "only one Render block is allowed", {Note(renderLoc_, "the first Render block is here")});
+                Err(kwLoc, "only one Render block is allowed",
+                    {Note(renderLoc_, "the first Render block is here")});
                 ok = false;
             } else {
                 renderSeen_ = true;
@@ -310,13 +334,15 @@ class Resolver {
         NameInfo *named = nullptr;
         if (st.hasName) {
             if (!wscene::IsIdentifier(st.name)) {
-                Err(nameLoc, "invalid name \"" + st.name +
-                                 "\": names are letters, digits and '_' (not starting with a digit) so that @name "
-                                 "can refer to them");
+                Err(nameLoc,
+                    "invalid name \"" + st.name +
+                        "\": names are letters, digits and '_' (not starting with a digit) so that @name "
+                        "can refer to them");
                 ok = false;
             } else if (auto it = names_.find(st.name); it != names_.end()) {
-                Err(nameLoc, "duplicate name '" + st.name + "': already used by " + it->second.keyword + " \"" +
-                                 it->second.type + "\"",
+                Err(nameLoc,
+                    "duplicate name '" + st.name + "': already used by " + it->second.keyword + " \"" +
+                        it->second.type + "\"",
                     {Note(it->second.loc, "'" + st.name + "' is first defined here")});
                 ok = false;
             } else {
@@ -338,7 +364,8 @@ class Resolver {
         for (const wscene::ParamNode &p : st.params) {
             FileLoc pLoc = Loc(file, p.namePos);
             if (auto s = seen.find(p.name); s != seen.end()) {
-                Err(pLoc, "duplicate parameter '" + p.name + "'", {Note(s->second, "'" + p.name + "' is first given here")});
+                Err(pLoc, "duplicate parameter '" + p.name + "'",
+                    {Note(s->second, "'" + p.name + "' is first given here")});
                 ok = false;
                 continue;
             }
@@ -350,8 +377,10 @@ class Resolver {
             }
             if (p.name == "enabled") {
                 if (v->kind != Value::Kind::Bool) {
-                    Err(v->loc, "'enabled' must be a boolean expression (true, false, or e.g. $mode == \"fast\"); got " +
-                                    v->DescribeKind());
+                    Err(v->loc,
+                        "'enabled' must be a boolean expression (true, false, or e.g. $mode == \"fast\"); "
+                        "got " +
+                            v->DescribeKind());
                     ok = false;
                     continue;
                 }
@@ -375,30 +404,35 @@ class Resolver {
     void Finish() {
         for (const Override &ov : overrides_) {
             if (ov.used) continue;
-            std::vector<std::string> names;
-            for (const auto &d : defines_) names.push_back(d.first);
-            std::string sug = Suggest(ov.name, names);
+            std::string sug = Suggest(ov.name, DefineNames());
             diag_.Warning(ov.nameLoc, "'-D " + ov.name + "' does not override any Define in the scene" +
                                           (sug.empty() ? "" : "; did you mean '" + sug + "'?"));
         }
         for (const auto &[name, loc] : pendingVars_) {
             auto it = defines_.find(name);
             if (it != defines_.end()) {
-                Err(loc, "'$" + name + "' is used before its Define", {Note(it->second.site, "defined here")});
+                Err(loc, "'$" + name + "' is used before its Define",
+                    {Note(it->second.site, "defined here")});
                 continue;
             }
-            std::vector<std::string> names;
-            for (const auto &d : defines_) names.push_back(d.first);
-            std::string sug = Suggest(name, names);
+            std::string sug = Suggest(name, DefineNames());
             std::vector<Diagnostic> notes;
             for (const Override &ov : overrides_)
                 if (ov.name == name)
-                    notes.push_back(Note(ov.nameLoc, "-D only overrides a Define; add 'Define " + name + " = …' to the scene"));
+                    notes.push_back(Note(ov.nameLoc, "-D only overrides a Define; add 'Define " + name +
+                                                         " = …' to the scene"));
             Err(loc, "'$" + name + "' is not defined" + (sug.empty() ? "" : "; did you mean '$" + sug + "'?"),
                 std::move(notes));
         }
         for (const SceneEntity &e : desc_.entities)
             for (const Param &p : e.params.All()) CheckRefs(p.value);
+    }
+
+    std::vector<std::string> DefineNames() const {
+        std::vector<std::string> names;
+        for (const auto &d : defines_) names.push_back(d.first);
+        std::sort(names.begin(), names.end());
+        return names;
     }
 
     void CheckRefs(const Value &v) {
@@ -408,18 +442,21 @@ class Resolver {
                 if (lostNames_) return;  // the name may have been in a part lost to a lexical error
                 std::vector<std::string> names;
                 for (const auto &n : names_) names.push_back(n.first);
+                std::sort(names.begin(), names.end());  // deterministic choice among equals
                 std::string sug = Suggest(v.text, names);
                 std::string msg = "'@" + v.text + "' is not defined";
                 if (!sug.empty()) {
                     const NameInfo &s = names_.at(sug);
-                    msg += "; did you mean '@" + sug + "' (" + s.keyword + " \"" + s.type + "\" at " + s.loc.ToString() + ")?";
+                    msg += "; did you mean '@" + sug + "' (" + s.keyword + " \"" + s.type + "\" at " +
+                           s.loc.ToString() + ")?";
                 }
                 Err(v.loc, msg);
                 return;
             }
             const NameInfo &n = it->second;
             if (n.disabled)
-                Err(v.loc, "'@" + v.text + "' refers to " + n.keyword + " \"" + n.type + "\", which is disabled",
+                Err(v.loc,
+                    "'@" + v.text + "' refers to " + n.keyword + " \"" + n.type + "\", which is disabled",
                     {Note(n.enabledLoc, "disabled here")});
             return;
         }
@@ -430,12 +467,12 @@ class Resolver {
     Diagnostics &diag_;
     wscene::Evaluator eval_;
     SceneDesc desc_;
-    std::vector<std::string> stack_;  // files being read (include cycle detection)
+    std::vector<std::string> stack_;                         // files being read (include cycle detection)
     std::map<std::string, std::vector<Diagnostic>> chains_;  // file → "included from" notes
-    std::map<std::string, DefineInfo> defines_;
+    std::unordered_map<std::string, DefineInfo> defines_;
     std::vector<Override> overrides_;
     std::vector<std::pair<std::string, FileLoc>> pendingVars_;
-    std::map<std::string, NameInfo> names_;
+    std::unordered_map<std::string, NameInfo> names_;
     bool renderSeen_ = false;
     FileLoc renderLoc_;
     bool lostNames_ = false;
@@ -443,11 +480,13 @@ class Resolver {
 
 }  // namespace
 
-std::optional<SceneDesc> ParseSceneFile(const std::string &path, const ParseOptions &options, Diagnostics &diag) {
+std::optional<SceneDesc> ParseSceneFile(const std::string &path, const ParseOptions &options,
+                                        Diagnostics &diag) {
     return Resolver(options, diag).Run(nullptr, path);
 }
 
-std::optional<SceneDesc> ParseSceneFile(const std::string &path, const DefineList &defines, Diagnostics &diag) {
+std::optional<SceneDesc> ParseSceneFile(const std::string &path, const DefineList &defines,
+                                        Diagnostics &diag) {
     ParseOptions o;
     o.defines = defines;
     return ParseSceneFile(path, o, diag);
@@ -465,7 +504,8 @@ std::optional<SceneDesc> ParseSceneString(const std::string &text, const std::st
     return ParseSceneString(text, virtualFileName, o, diag);
 }
 
-std::optional<std::pair<std::string, std::string>> SplitDefineArgument(const std::string &arg, Diagnostics &diag) {
+std::optional<std::pair<std::string, std::string>> SplitDefineArgument(const std::string &arg,
+                                                                       Diagnostics &diag) {
     std::size_t eq = arg.find('=');
     FileLoc loc{kCommandLine, 0, 0, 1};
     if (eq == std::string::npos) {
@@ -481,7 +521,8 @@ std::optional<std::pair<std::string, std::string>> SplitDefineArgument(const std
     return std::make_pair(name, arg.substr(eq + 1));
 }
 
-std::optional<Value> ParseValueString(const std::string &text, const std::string &virtualFileName, Diagnostics &diag) {
+std::optional<Value> ParseValueString(const std::string &text, const std::string &virtualFileName,
+                                      Diagnostics &diag) {
     diag.AddSource(virtualFileName, text);
     Expr e;
     if (!wscene::ParseExprAst(text, virtualFileName, 1, 1, diag, e)) return std::nullopt;
@@ -499,10 +540,12 @@ bool SameScene(const SceneDesc &a, const SceneDesc &b, std::string *why) {
         return false;
     };
     if (a.entities.size() != b.entities.size())
-        return fail("entity count " + std::to_string(a.entities.size()) + " vs " + std::to_string(b.entities.size()));
+        return fail("entity count " + std::to_string(a.entities.size()) + " vs " +
+                    std::to_string(b.entities.size()));
     for (std::size_t i = 0; i < a.entities.size(); ++i) {
         const SceneEntity &x = a.entities[i], &y = b.entities[i];
-        std::string at = "entity " + std::to_string(i) + " (" + x.keyword + " \"" + x.type + "\" \"" + x.name + "\")";
+        std::string at =
+            "entity " + std::to_string(i) + " (" + x.keyword + " \"" + x.type + "\" \"" + x.name + "\")";
         if (x.keyword != y.keyword || x.type != y.type || x.name != y.name)
             return fail(at + " vs " + y.keyword + " \"" + y.type + "\" \"" + y.name + "\"");
         const auto &px = x.params.All(), &py = y.params.All();
@@ -510,7 +553,8 @@ bool SameScene(const SceneDesc &a, const SceneDesc &b, std::string *why) {
         for (std::size_t k = 0; k < px.size(); ++k) {
             if (px[k].name != py[k].name) return fail(at + ": parameter " + px[k].name + " vs " + py[k].name);
             if (!px[k].value.SameAs(py[k].value))
-                return fail(at + ": '" + px[k].name + "' = " + px[k].value.ToString() + " vs " + py[k].value.ToString());
+                return fail(at + ": '" + px[k].name + "' = " + px[k].value.ToString() + " vs " +
+                            py[k].value.ToString());
         }
     }
     return true;

@@ -14,8 +14,8 @@ namespace phasor::wscene {
 
 namespace {
 
-constexpr std::array<const char *, 7> kFamilyKeywords = {"Spectrum", "Texture", "Material", "Shape",
-                                                        "Light",    "Detector", "Integrator"};
+constexpr std::array<const char *, 7> kFamilyKeywords = {"Spectrum", "Texture",  "Material",  "Shape",
+                                                         "Light",    "Detector", "Integrator"};
 constexpr int kMaxDepth = 256;  // nesting levels of an expression (docs/wscene.md §4)
 
 bool IsFamilyKeyword(std::string_view w) {
@@ -42,8 +42,10 @@ class SyntaxParser {
     // Parses the file; each statement goes to `onStmt` if given, else into out.stmts.
     bool ParseFile(FileAst &out, const std::function<void(Stmt &)> &onStmt) {
         auto emit = [&](Stmt &st) {
-            if (onStmt) onStmt(st);
-            else out.stmts.push_back(std::move(st));
+            if (onStmt)
+                onStmt(st);
+            else
+                out.stmts.push_back(std::move(st));
         };
         std::size_t errorsBefore = diag_.ErrorCount();
         try {
@@ -77,7 +79,8 @@ class SyntaxParser {
     bool ParseSingleExpr(Expr &out) {
         try {
             out = ParseExpr(false);
-            if (Peek().kind != Tok::End) Fail(Peek(), std::string("unexpected ") + Describe(Peek().kind) + " after the value");
+            if (Peek().kind != Tok::End)
+                Fail(Peek(), std::string("unexpected ") + Describe(Peek().kind) + " after the value");
             return true;
         } catch (const SyntaxError &) {
             return false;
@@ -109,16 +112,17 @@ class SyntaxParser {
             ++cbase_;
         }
     }
-    bool HaveComment() {
-        return ci_ - cbase_ < comments_.size();
-    }
+    bool HaveComment() { return ci_ - cbase_ < comments_.size(); }
     const Comment &CurComment() { return comments_[ci_ - cbase_]; }
 
     const Token &Peek(std::size_t k = 0) {
         std::size_t j = i_ + k;
         // Never look past an error token; report it when reached.
         for (std::size_t m = i_; m < j; ++m)
-            if (At(m).kind == Tok::Error || At(m).kind == Tok::End) { j = m; break; }
+            if (At(m).kind == Tok::Error || At(m).kind == Tok::End) {
+                j = m;
+                break;
+            }
         const Token &t = At(j);
         if (t.kind == Tok::Error && j == i_) LexFail(t);
         return t;
@@ -136,7 +140,9 @@ class SyntaxParser {
         throw LexAbort{};
     }
 
-    FileLoc Loc(int line, int col, int length) const { return FileLoc{file_, line, col, std::max(1, length)}; }
+    FileLoc Loc(int line, int col, int length) const {
+        return FileLoc{file_, line, col, std::max(1, length)};
+    }
     FileLoc Loc(const Token &t) const { return Loc(t.line, t.col, t.kind == Tok::End ? 1 : t.length); }
     FileLoc Loc(const Pos &p) const { return Loc(p.line, p.col, p.length); }
     static std::string Where(const Token &t) { return std::to_string(t.line) + ":" + std::to_string(t.col); }
@@ -144,20 +150,28 @@ class SyntaxParser {
 
     [[noreturn]] void Fail(const Token &t, const std::string &msg, std::vector<Diagnostic> extra = {}) {
         std::string m = msg;
-        if (t.kind == Tok::End && m.rfind("unexpected end of file", 0) != 0) m = "unexpected end of file: " + m;
+        if (t.kind == Tok::End && m.rfind("unexpected end of file", 0) != 0)
+            m = "unexpected end of file: " + m;
         for (const Diagnostic &n : notes_) extra.push_back(n);
         diag_.Error(Loc(t), m, std::move(extra));
         throw SyntaxError{};
     }
     std::string Got(const Token &t) {
         switch (t.kind) {
-            case Tok::Ident: return "'" + t.text + "'";
-            case Tok::Number: return "number " + t.text;
-            case Tok::String: return "string \"" + t.text + "\"";
-            case Tok::Ref: return "'@" + t.text + "'";
-            case Tok::Var: return "'$" + t.text + "'";
-            case Tok::Unit: return "unit '" + t.text + "'";
-            default: return Describe(t.kind);
+            case Tok::Ident:
+                return "'" + t.text + "'";
+            case Tok::Number:
+                return "number " + t.text;
+            case Tok::String:
+                return "string \"" + t.text + "\"";
+            case Tok::Ref:
+                return "'@" + t.text + "'";
+            case Tok::Var:
+                return "'$" + t.text + "'";
+            case Tok::Unit:
+                return "unit '" + t.text + "'";
+            default:
+                return Describe(t.kind);
         }
     }
     const Token &Expect(Tok kind, const std::string &what) {
@@ -193,8 +207,10 @@ class SyntaxParser {
         while (HaveComment() && CurComment().offset < offset) {
             const Comment &cm = CurComment();
             if (cm.line > prevLine_ + 1 && prevLine_ > 0) {
-                if (c.leading.empty()) c.blankBefore = true;
-                else c.leading.push_back("\n");
+                if (c.leading.empty())
+                    c.blankBefore = true;
+                else
+                    c.leading.push_back("\n");
             }
             c.leading.push_back(cm.text);
             prevLine_ = cm.line;
@@ -204,8 +220,10 @@ class SyntaxParser {
     void StartItem(const Token &t, Comments &c) {
         TakeLeading(t.offset, c);
         if (t.line > prevLine_ + 1 && prevLine_ > 0) {
-            if (c.leading.empty()) c.blankBefore = true;
-            else c.leading.push_back("\n");
+            if (c.leading.empty())
+                c.blankBefore = true;
+            else
+                c.leading.push_back("\n");
         }
     }
     // After an item's last token: comments inside it move before it; a comment on its last line
@@ -231,10 +249,12 @@ class SyntaxParser {
         const Token &t = Peek();
         if (!IsIdent(t, "wscene")) {
             if (t.kind == Tok::End) {
-                diag_.Error(Loc(t), "empty scene: a .wscene file must start with the header 'wscene 1'", notes_);
+                diag_.Error(Loc(t), "empty scene: a .wscene file must start with the header 'wscene 1'",
+                            notes_);
                 return;
             }
-            diag_.Error(Loc(t), "missing header: a .wscene file must start with 'wscene 1' (got " + Got(t) + ")",
+            diag_.Error(Loc(t),
+                        "missing header: a .wscene file must start with 'wscene 1' (got " + Got(t) + ")",
                         notes_);
             out.syntaxError = true;
             return;
@@ -246,7 +266,8 @@ class SyntaxParser {
         st.pos = PosOf(Next());
         const Token &v = Peek();
         if (v.kind != Tok::Number) {
-            diag_.Error(Loc(v), "expected the format version after 'wscene' (e.g. wscene 1); got " + Got(v), notes_);
+            diag_.Error(Loc(v), "expected the format version after 'wscene' (e.g. wscene 1); got " + Got(v),
+                        notes_);
             out.syntaxError = true;
             emit(st);
             return;
@@ -268,8 +289,10 @@ class SyntaxParser {
         if (t.kind != Tok::Ident) {
             std::string hint;
             if (t.kind == Tok::RBrace) hint = " ('}' without a matching '{')";
-            Fail(t, "expected a statement (Include, Define, Render or a block such as Shape \"sphere\" { … }); got " +
-                        Got(t) + hint);
+            Fail(t,
+                 "expected a statement (Include, Define, Render or a block such as Shape \"sphere\" { … }); "
+                 "got " +
+                     Got(t) + hint);
         }
         StartItem(t, st.comments);
         if (t.text == "Include") {
@@ -284,9 +307,11 @@ class SyntaxParser {
             st.keyword = t.text;
             st.pos = PosOf(Next());
             const Token &n = Peek();
-            if (n.kind == Tok::Var) Fail(n, "write the variable's name without '$' after Define (Define " + n.text + " = …)");
+            if (n.kind == Tok::Var)
+                Fail(n, "write the variable's name without '$' after Define (Define " + n.text + " = …)");
             if (n.kind != Tok::Ident) Fail(n, "expected a variable name after 'Define'; got " + Got(n));
-            if (IsReservedWord(n.text)) Fail(n, "'" + n.text + "' is a reserved word and cannot name a variable");
+            if (IsReservedWord(n.text))
+                Fail(n, "'" + n.text + "' is a reserved word and cannot name a variable");
             Next();
             st.name = n.text;
             st.namePos = PosOf(n);
@@ -310,8 +335,8 @@ class SyntaxParser {
             st.pos = PosOf(Next());
             const Token &ty = Peek();
             if (ty.kind != Tok::String)
-                Fail(ty, "expected the plug-in type in quotes after '" + st.keyword + "' (e.g. " + st.keyword +
-                             " \"" + ExampleType(st.keyword) + "\" { … }); got " + Got(ty));
+                Fail(ty, "expected the plug-in type in quotes after '" + st.keyword + "' (e.g. " +
+                             st.keyword + " \"" + ExampleType(st.keyword) + "\" { … }); got " + Got(ty));
             Next();
             st.text = ty.text;
             st.textPos = PosOf(ty);
@@ -326,7 +351,8 @@ class SyntaxParser {
             ParseBody(st);
             st.broken = false;
         } else if (t.text == "wscene") {
-            Fail(t, "the header 'wscene " + std::string("1") + "' may appear only once, at the start of the file");
+            Fail(t, "the header 'wscene " + std::string("1") +
+                        "' may appear only once, at the start of the file");
         } else {
             std::string sug = Suggest(t.text, StatementKeywordList());
             if (sug.empty()) {
@@ -339,11 +365,13 @@ class SyntaxParser {
                 }
             }
             if (Peek(1).kind == Tok::Assign)
-                Fail(t, "parameter '" + t.text + "' outside a block; parameters go inside { } after a block header");
-            Fail(t, "unknown statement '" + t.text + "'" +
-                        (sug.empty() ? " (expected Include, Define, Render, Spectrum, Texture, Material, Shape, "
-                                       "Light, Detector or Integrator)"
-                                     : "; did you mean '" + sug + "'?"));
+                Fail(t, "parameter '" + t.text +
+                            "' outside a block; parameters go inside { } after a block header");
+            Fail(t,
+                 "unknown statement '" + t.text + "'" +
+                     (sug.empty() ? " (expected Include, Define, Render, Spectrum, Texture, Material, Shape, "
+                                    "Light, Detector or Integrator)"
+                                  : "; did you mean '" + sug + "'?"));
         }
         EndItem(st.comments);
     }
@@ -366,7 +394,8 @@ class SyntaxParser {
         Next();
         const Token &openTok = *last_;
         prevLine_ = openTok.line;
-        std::vector<Diagnostic> openNote = {Diagnostic{Severity::Note, Loc(openTok), "the block was opened here", {}}};
+        std::vector<Diagnostic> openNote = {
+            Diagnostic{Severity::Note, Loc(openTok), "the block was opened here", {}}};
         for (;;) {
             const Token &t = Peek();
             if (t.kind == Tok::RBrace) {
@@ -381,11 +410,13 @@ class SyntaxParser {
                 Fail(t, "unexpected end of file: missing '}' to close " + st.keyword + " block", openNote);
             if (t.kind != Tok::Ident) {
                 std::string hint;
-                if (t.kind == Tok::Comma) hint = " (parameters are separated by spaces or line breaks, not ',')";
+                if (t.kind == Tok::Comma)
+                    hint = " (parameters are separated by spaces or line breaks, not ',')";
                 Fail(t, "expected a parameter name or '}'; got " + Got(t) + hint);
             }
             if (IsStatementKeyword(t.text) && Peek(1).kind != Tok::Assign)
-                Fail(t, "missing '}' before '" + t.text + "' (the " + st.keyword + " block is not closed)", openNote);
+                Fail(t, "missing '}' before '" + t.text + "' (the " + st.keyword + " block is not closed)",
+                     openNote);
             if (Peek(1).kind != Tok::Assign) {
                 const Token &a = Peek(1);
                 Next();
@@ -445,6 +476,7 @@ class SyntaxParser {
         e.kind = Expr::Kind::Binary;
         e.text = op.text;
         e.opPos = PosOf(op);
+        e.kids.reserve(2);
         e.kids.push_back(std::move(l));
         e.kids.push_back(std::move(r));
         e.pos = Span(first);
@@ -503,8 +535,7 @@ class SyntaxParser {
             const Token &op = Next();
             Expr r = ParseSum(listElem);
             l = MakeBinary(first, op, std::move(l), std::move(r));
-            if (IsCmp(Peek().kind))
-                Fail(Peek(), "comparisons cannot be chained; combine them with 'and'");
+            if (IsCmp(Peek().kind)) Fail(Peek(), "comparisons cannot be chained; combine them with 'and'");
         }
         return l;
     }
@@ -586,7 +617,8 @@ class SyntaxParser {
                 e.kind = t.kind == Tok::Ref ? Expr::Kind::Ref : Expr::Kind::Var;
                 e.text = t.text;
                 return e;
-            case Tok::LBracket: return ParseList();
+            case Tok::LBracket:
+                return ParseList();
             case Tok::LParen: {
                 DepthGuard g(*this);
                 Next();
@@ -618,7 +650,8 @@ class SyntaxParser {
             }
             case Tok::Unit:
                 Fail(t, "unexpected unit '" + t.text + "'");
-            default: break;
+            default:
+                break;
         }
         Fail(t, "expected a value; got " + Got(t));
     }
@@ -660,8 +693,8 @@ class SyntaxParser {
             const Token &t = Peek();
             if (t.kind == Tok::RParen) break;
             if (t.kind == Tok::End)
-                Fail(t, "unexpected end of file: missing ')' to close the call to '" + name.text + "' opened at " +
-                            Where(open));
+                Fail(t, "unexpected end of file: missing ')' to close the call to '" + name.text +
+                            "' opened at " + Where(open));
             std::string argName;
             Pos argPos;
             if (t.kind == Tok::Ident && Peek(1).kind == Tok::Assign) {
@@ -678,7 +711,8 @@ class SyntaxParser {
                 continue;
             }
             if (Peek().kind != Tok::RParen)
-                Fail(Peek(), "expected ',' or ')' in the arguments of '" + name.text + "'; got " + Got(Peek()));
+                Fail(Peek(),
+                     "expected ',' or ')' in the arguments of '" + name.text + "'; got " + Got(Peek()));
         }
         Next();  // ')'
         e.pos = Span(name);
@@ -687,7 +721,7 @@ class SyntaxParser {
 
     std::string_view text_;
     TokenSource src_;
-    std::deque<Token> toks_;  // tokens base_ … base_ + size - 1 (global indices)
+    std::deque<Token> toks_;        // tokens base_ … base_ + size - 1 (global indices)
     std::deque<Comment> comments_;  // comments cbase_ …
     std::size_t base_ = 0, cbase_ = 0;
     bool exhausted_ = false;

@@ -42,18 +42,24 @@ CorpusCase ReadCase(const fs::path &file, std::string *error) {
     CorpusCase c;
     std::ifstream in(file);
     std::string line;
-    static const std::regex expectRe(R"(^#\s*expect:\s*(error|warning|note)\s+(?:(.+?):)?(\d+):(\d+)\s+(.*?)\s*$)");
+    static const std::regex expectRe(
+        R"(^#\s*expect:\s*(error|warning|note)\s+(?:(.+?):)?(\d+):(\d+)\s+(.*?)\s*$)");
     static const std::regex defineRe(R"(^#\s*define:\s*(.*?)\s*$)");
     while (std::getline(in, line)) {
         if (line.rfind("#", 0) != 0) continue;
         std::smatch m;
         if (std::regex_match(line, m, expectRe)) {
             Expectation e;
-            e.severity = m[1] == "error" ? Severity::Error : m[1] == "warning" ? Severity::Warning : Severity::Note;
+            e.severity = m[1] == "error"     ? Severity::Error
+                         : m[1] == "warning" ? Severity::Warning
+                                             : Severity::Note;
             std::string f = m[2].matched ? m[2].str() : std::string();
-            if (f.empty()) e.file = Normal(file);
-            else if (f[0] == '<') e.file = f;  // <command line>
-            else e.file = Normal(file.parent_path() / f);
+            if (f.empty())
+                e.file = Normal(file);
+            else if (f[0] == '<')
+                e.file = f;  // <command line>
+            else
+                e.file = Normal(file.parent_path() / f);
             e.line = std::stoi(m[3]);
             e.col = std::stoi(m[4]);
             e.fragment = m[5];
@@ -62,8 +68,10 @@ CorpusCase ReadCase(const fs::path &file, std::string *error) {
         } else if (std::regex_match(line, m, defineRe)) {
             Diagnostics d;
             auto kv = SplitDefineArgument(m[1], d);
-            if (!kv) *error = "bad '# define:' line: " + line;
-            else c.defines.push_back(*kv);
+            if (!kv)
+                *error = "bad '# define:' line: " + line;
+            else
+                c.defines.push_back(*kv);
         } else if (line == "# strict") {
             c.strict = true;
         } else if (line == "# stage: build") {

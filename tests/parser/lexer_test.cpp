@@ -15,15 +15,33 @@ std::string Kinds(const std::string &src) {
         if (t.kind == Tok::End) break;
         if (!out.empty()) out += ' ';
         switch (t.kind) {
-            case Tok::Error: out += "Error"; break;
-            case Tok::Ident: out += "Ident:" + t.text; break;
-            case Tok::Number: out += "Number:" + t.text; break;
-            case Tok::Imag: out += "Imag:" + t.text; break;
-            case Tok::Unit: out += "Unit:" + t.text; break;
-            case Tok::String: out += "String:" + t.text; break;
-            case Tok::Ref: out += "Ref:" + t.text; break;
-            case Tok::Var: out += "Var:" + t.text; break;
-            default: out += t.text; break;
+            case Tok::Error:
+                out += "Error";
+                break;
+            case Tok::Ident:
+                out += "Ident:" + t.text;
+                break;
+            case Tok::Number:
+                out += "Number:" + t.text;
+                break;
+            case Tok::Imag:
+                out += "Imag:" + t.text;
+                break;
+            case Tok::Unit:
+                out += "Unit:" + t.text;
+                break;
+            case Tok::String:
+                out += "String:" + t.text;
+                break;
+            case Tok::Ref:
+                out += "Ref:" + t.text;
+                break;
+            case Tok::Var:
+                out += "Var:" + t.text;
+                break;
+            default:
+                out += t.text;
+                break;
         }
     }
     return out;
@@ -104,7 +122,8 @@ TEST(Lexer, ComplexAndImaginary) {
 }
 
 TEST(Lexer, NumbersForms) {
-    EXPECT_EQ(Kinds("1 1.5 .5 1e3 1.5E-3 007"), "Number:1 Number:1.5 Number:.5 Number:1e3 Number:1.5E-3 Number:007");
+    EXPECT_EQ(Kinds("1 1.5 .5 1e3 1.5E-3 007"),
+              "Number:1 Number:1.5 Number:.5 Number:1e3 Number:1.5E-3 Number:007");
     EXPECT_EQ(Kinds("-1"), "- Number:1");
 }
 

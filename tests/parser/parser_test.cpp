@@ -17,7 +17,8 @@ struct Parsed {
     std::string Errors() const {
         std::string s;
         for (const Diagnostic &d : diag->All())
-            s += d.loc.ToString() + ": " + (d.severity == Severity::Warning ? "warning: " : "") + d.message + "\n";
+            s += d.loc.ToString() + ": " + (d.severity == Severity::Warning ? "warning: " : "") + d.message +
+                 "\n";
         return s;
     }
 };
@@ -78,8 +79,9 @@ TEST(Parser, MinimalScene) {
 }
 
 TEST(Parser, EveryFamilyKeyword) {
-    Parsed p = Parse("wscene 1\nSpectrum \"a\" {}\nTexture \"b\" {}\nMaterial \"c\" {}\nShape \"d\" {}\n"
-                     "Light \"e\" {}\nDetector \"f\" {}\nIntegrator \"g\" {}\nRender {}\n");
+    Parsed p = Parse(
+        "wscene 1\nSpectrum \"a\" {}\nTexture \"b\" {}\nMaterial \"c\" {}\nShape \"d\" {}\n"
+        "Light \"e\" {}\nDetector \"f\" {}\nIntegrator \"g\" {}\nRender {}\n");
     ASSERT_TRUE(p.desc) << p.Errors();
     std::string kw;
     for (const SceneEntity &e : p.desc->entities) kw += e.keyword + e.type + " ";
@@ -101,9 +103,10 @@ TEST(Parser, NumbersAndIntegers) {
 }
 
 TEST(Parser, UnitsConvertToSI) {
-    Parsed p = One("a = 532 nm  b = 150um  c = 3 \xC2\xB5m  d = 3 \xCE\xBCm  e = 1.5 mm  f = 2 cm  g = 1 m"
-                   "  h = 90 deg  i = 2 mrad  j = 300 K  k = 5 mW  l = 1000 W/m^2  m = 3 W/m^2/sr"
-                   "  n = 2500 um^2  o = 1 mm^2  p = 0.5 sr  q = 20 1/m  r = 1 rad");
+    Parsed p =
+        One("a = 532 nm  b = 150um  c = 3 \xC2\xB5m  d = 3 \xCE\xBCm  e = 1.5 mm  f = 2 cm  g = 1 m"
+            "  h = 90 deg  i = 2 mrad  j = 300 K  k = 5 mW  l = 1000 W/m^2  m = 3 W/m^2/sr"
+            "  n = 2500 um^2  o = 1 mm^2  p = 0.5 sr  q = 20 1/m  r = 1 rad");
     ASSERT_TRUE(p.desc) << p.Errors();
     ExpectNumber(Param(p, "a"), 532e-9, Dim::Length());
     ExpectNumber(Param(p, "b"), 150e-6, Dim::Length());
@@ -126,9 +129,10 @@ TEST(Parser, UnitsConvertToSI) {
 }
 
 TEST(Parser, ComplexStringsBooleansRefsCalls) {
-    Parsed p = Parse("wscene 1\nMaterial \"m\" \"gold\" {}\nShape \"sphere\" { a = 1.5+0.01i  b = 0.2-3.4i"
-                     "  c = \"x\\\"y\"  d = true  e = false  f = @gold"
-                     "  g = blackbody(5800 K)  h = lookat(eye = [0 0 -1] m, target = [0 0 0] m) }\n");
+    Parsed p = Parse(
+        "wscene 1\nMaterial \"m\" \"gold\" {}\nShape \"sphere\" { a = 1.5+0.01i  b = 0.2-3.4i"
+        "  c = \"x\\\"y\"  d = true  e = false  f = @gold"
+        "  g = blackbody(5800 K)  h = lookat(eye = [0 0 -1] m, target = [0 0 0] m) }\n");
     ASSERT_TRUE(p.desc) << p.Errors();
     const Value &a = Param(p, "a", 1);
     ASSERT_EQ(a.kind, Value::Kind::Complex);
@@ -151,8 +155,9 @@ TEST(Parser, ComplexStringsBooleansRefsCalls) {
 }
 
 TEST(Parser, ListsWithTrailingUnitAndSigns) {
-    Parsed p = One("a = [0 0 1] m  b = [1, 2, 3,]  c = [0 -1 0]  d = [1 - 1]  e = [1 -1]  f = [1-1]"
-                   "  g = [1 m 2 mm]  h = []  i = [[1 2] [3 4]] um  j = [1 +2i]");
+    Parsed p =
+        One("a = [0 0 1] m  b = [1, 2, 3,]  c = [0 -1 0]  d = [1 - 1]  e = [1 -1]  f = [1-1]"
+            "  g = [1 m 2 mm]  h = []  i = [[1 2] [3 4]] um  j = [1 +2i]");
     ASSERT_TRUE(p.desc) << p.Errors();
     const Value &a = Param(p, "a");
     ASSERT_EQ(a.items.size(), 3u);
@@ -172,10 +177,11 @@ TEST(Parser, ListsWithTrailingUnitAndSigns) {
 }
 
 TEST(Parser, DimensionedArithmetic) {
-    Parsed p = Parse("wscene 1\nDefine d = 2 mm\nDefine width = 150 um\nDefine pitch = 1.5 um\n"
-                     "Shape \"s\" { a = -$d/2  b = round($width/$pitch)  c = $d * $d  d = $width / $pitch"
-                     "  e = (1 + 2) * 3  f = 2 * 3 mm  g = 1 mm + 1 um  h = 10 W / (2 m^2)"
-                     "  i = [1 2 3] m * 2  j = [1 2] mm + [3 4] mm  k = \"a\" + \"b\" }\n");
+    Parsed p = Parse(
+        "wscene 1\nDefine d = 2 mm\nDefine width = 150 um\nDefine pitch = 1.5 um\n"
+        "Shape \"s\" { a = -$d/2  b = round($width/$pitch)  c = $d * $d  d = $width / $pitch"
+        "  e = (1 + 2) * 3  f = 2 * 3 mm  g = 1 mm + 1 um  h = 10 W / (2 m^2)"
+        "  i = [1 2 3] m * 2  j = [1 2] mm + [3 4] mm  k = \"a\" + \"b\" }\n");
     ASSERT_TRUE(p.desc) << p.Errors();
     ExpectNumber(Param(p, "a"), -1e-3, Dim::Length());
     ExpectNumber(Param(p, "b"), 100, Dim::None());
@@ -194,11 +200,12 @@ TEST(Parser, DimensionedArithmetic) {
 }
 
 TEST(Parser, MathFunctions) {
-    Parsed p = One("a = sqrt(4 m^2)  b = min(3 mm, 1 cm, 2 mm)  c = max([1 5 2])  d = sin(30 deg)"
-                   "  e = cos(0)  f = abs(-2 K)  g = pow(2 m, 3)  h = floor(2.7)  i = ceil(2.1)"
-                   "  j = asin(1)  k = atan2(1 m, 1 m)  l = exp(0)  m = log(1)  n = clamp(5, 0, 3)"
-                   "  o = hypot(3 m, 4 m)  p = abs(3+4i)  q = pow(2, 10)  r = log10(1000)  s = tan(45 deg)"
-                   "  t = trunc(-2.5)");
+    Parsed p =
+        One("a = sqrt(4 m^2)  b = min(3 mm, 1 cm, 2 mm)  c = max([1 5 2])  d = sin(30 deg)"
+            "  e = cos(0)  f = abs(-2 K)  g = pow(2 m, 3)  h = floor(2.7)  i = ceil(2.1)"
+            "  j = asin(1)  k = atan2(1 m, 1 m)  l = exp(0)  m = log(1)  n = clamp(5, 0, 3)"
+            "  o = hypot(3 m, 4 m)  p = abs(3+4i)  q = pow(2, 10)  r = log10(1000)  s = tan(45 deg)"
+            "  t = trunc(-2.5)");
     ASSERT_TRUE(p.desc) << p.Errors();
     ExpectNumber(Param(p, "a"), 2, Dim::Length());
     ExpectNumber(Param(p, "b"), 2e-3, Dim::Length());
@@ -225,9 +232,10 @@ TEST(Parser, MathFunctions) {
 }
 
 TEST(Parser, BooleanExpressions) {
-    Parsed p = Parse("wscene 1\nDefine n = 3\nDefine mode = \"fast\"\nShape \"s\" { a = $n > 2 and $mode == \"fast\""
-                     "  b = not ($n >= 3)  c = $n != 3 or true  d = 1 mm < 2 mm  e = \"x\" != \"y\"  f = 2 <= 1"
-                     "  g = @x == @x }\nShape \"t\" \"x\" {}\n");
+    Parsed p = Parse(
+        "wscene 1\nDefine n = 3\nDefine mode = \"fast\"\nShape \"s\" { a = $n > 2 and $mode == \"fast\""
+        "  b = not ($n >= 3)  c = $n != 3 or true  d = 1 mm < 2 mm  e = \"x\" != \"y\"  f = 2 <= 1"
+        "  g = @x == @x }\nShape \"t\" \"x\" {}\n");
     ASSERT_TRUE(p.desc) << p.Errors();
     EXPECT_TRUE(Param(p, "a").boolean);
     EXPECT_FALSE(Param(p, "b").boolean);
@@ -239,24 +247,27 @@ TEST(Parser, BooleanExpressions) {
 }
 
 TEST(Parser, EnabledDropsEntitiesAndIsNotAParameter) {
-    Parsed p = Parse("wscene 1\nDefine exp = \"a\"\nShape \"s\" \"one\" { enabled = $exp == \"a\"  r = 1 m }\n"
-                     "Shape \"s\" \"two\" { enabled = $exp == \"b\" }\nShape \"s\" \"three\" { enabled = false }\n");
+    Parsed p = Parse(
+        "wscene 1\nDefine exp = \"a\"\nShape \"s\" \"one\" { enabled = $exp == \"a\"  r = 1 m }\n"
+        "Shape \"s\" \"two\" { enabled = $exp == \"b\" }\nShape \"s\" \"three\" { enabled = false }\n");
     ASSERT_TRUE(p.desc) << p.Errors();
     ASSERT_EQ(p.desc->entities.size(), 1u);
     EXPECT_EQ(p.desc->entities[0].name, "one");
     EXPECT_FALSE(p.desc->entities[0].params.Has("enabled"));
-    Parsed q = Parse("wscene 1\nDefine exp = \"a\"\nShape \"s\" \"one\" { enabled = $exp == \"a\" }\n"
-                     "Shape \"s\" \"two\" { enabled = $exp == \"b\" }\n",
-                     {{"exp", "b"}});
+    Parsed q = Parse(
+        "wscene 1\nDefine exp = \"a\"\nShape \"s\" \"one\" { enabled = $exp == \"a\" }\n"
+        "Shape \"s\" \"two\" { enabled = $exp == \"b\" }\n",
+        {{"exp", "b"}});
     ASSERT_TRUE(q.desc) << q.Errors();
     ASSERT_EQ(q.desc->entities.size(), 1u);
     EXPECT_EQ(q.desc->entities[0].name, "two");
 }
 
 TEST(Parser, DefinesAndOverrides) {
-    const std::string src = "wscene 1\nDefine w = 150 um\nDefine half = $w / 2\nDefine on = true\n"
-                            "Define name = \"out.exr\"\nDefine v = [0 0 1] m\n"
-                            "Shape \"s\" { a = $w  b = $half  c = $on  d = $name  e = $v }\n";
+    const std::string src =
+        "wscene 1\nDefine w = 150 um\nDefine half = $w / 2\nDefine on = true\n"
+        "Define name = \"out.exr\"\nDefine v = [0 0 1] m\n"
+        "Shape \"s\" { a = $w  b = $half  c = $on  d = $name  e = $v }\n";
     Parsed p = Parse(src);
     ASSERT_TRUE(p.desc) << p.Errors();
     ExpectNumber(Param(p, "a"), 150e-6, Dim::Length());
@@ -331,7 +342,8 @@ TEST(Parser, IncludesAreRelativeToTheIncludingFile) {
         {"lib/materials.wscene", "wscene 1\nDefine n = 1.5\nInclude \"more/glass.wscene\"\n"},
         {"lib/more/glass.wscene", "wscene 1\nMaterial \"dielectric\" \"glass\" { ior = $n }\n"},
     };
-    Parsed p = Parse("wscene 1\nInclude \"lib/materials.wscene\"\nShape \"s\" { material = @glass }\n", {}, files);
+    Parsed p =
+        Parse("wscene 1\nInclude \"lib/materials.wscene\"\nShape \"s\" { material = @glass }\n", {}, files);
     ASSERT_TRUE(p.desc) << p.Errors();
     ASSERT_EQ(p.desc->entities.size(), 2u);
     EXPECT_EQ(p.desc->entities[0].name, "glass");
@@ -366,20 +378,23 @@ TEST(Parser, IncludeCycleAndMissingInclude) {
     Parsed self = Parse("wscene 1\nInclude \"./main.wscene\"\n", {}, {});
     EXPECT_NE(self.Errors().find("include cycle"), std::string::npos) << self.Errors();
     Parsed missing = Parse("wscene 1\nInclude \"nope.wscene\"\n");
-    EXPECT_NE(missing.Errors().find("main.wscene:2:9: cannot read included file 'nope.wscene'"), std::string::npos)
+    EXPECT_NE(missing.Errors().find("main.wscene:2:9: cannot read included file 'nope.wscene'"),
+              std::string::npos)
         << missing.Errors();
 }
 
 TEST(Parser, ForwardReferencesAreAllowed) {
-    Parsed p = Parse("wscene 1\nShape \"s\" { material = @m  list = [@a @m] }\nMaterial \"x\" \"m\" {}\n"
-                     "Material \"x\" \"a\" {}\n");
+    Parsed p = Parse(
+        "wscene 1\nShape \"s\" { material = @m  list = [@a @m] }\nMaterial \"x\" \"m\" {}\n"
+        "Material \"x\" \"a\" {}\n");
     ASSERT_TRUE(p.desc) << p.Errors();
 }
 
 TEST(Parser, UndefinedReferenceSuggests) {
     Parsed p = Parse("wscene 1\nMaterial \"conductor\" \"gold\" {}\nShape \"s\" { material = @gld }\n");
     EXPECT_FALSE(p.desc);
-    EXPECT_NE(p.Errors().find("main.wscene:3:24: '@gld' is not defined; did you mean '@gold'"), std::string::npos)
+    EXPECT_NE(p.Errors().find("main.wscene:3:24: '@gld' is not defined; did you mean '@gold'"),
+              std::string::npos)
         << p.Errors();
 }
 
@@ -429,15 +444,18 @@ TEST(Parser, MissingHeader) {
     EXPECT_FALSE(p.desc);
     EXPECT_NE(p.Errors().find("main.wscene:1:1: missing header"), std::string::npos) << p.Errors();
     Parsed v = Parse("wscene 2\n");
-    EXPECT_NE(v.Errors().find("main.wscene:1:8: unsupported format version"), std::string::npos) << v.Errors();
+    EXPECT_NE(v.Errors().find("main.wscene:1:8: unsupported format version"), std::string::npos)
+        << v.Errors();
     Parsed comments = Parse("# a comment first is fine\n\nwscene 1\n");
     EXPECT_TRUE(comments.desc) << comments.Errors();
 }
 
 TEST(Parser, MisspelledKeywordSuggests) {
     Parsed p = Parse("wscene 1\nShap \"s\" {}\nmaterial \"m\" {}\n");
-    EXPECT_NE(p.Errors().find("2:1: unknown statement 'Shap'; did you mean 'Shape'?"), std::string::npos) << p.Errors();
-    EXPECT_NE(p.Errors().find("3:1: unknown statement 'material'; did you mean 'Material'?"), std::string::npos)
+    EXPECT_NE(p.Errors().find("2:1: unknown statement 'Shap'; did you mean 'Shape'?"), std::string::npos)
+        << p.Errors();
+    EXPECT_NE(p.Errors().find("3:1: unknown statement 'material'; did you mean 'Material'?"),
+              std::string::npos)
         << p.Errors();
 }
 
@@ -473,7 +491,8 @@ TEST(Parser, DimensionErrors) {
 
 TEST(Parser, UnknownUnitSuggests) {
     Parsed p = One("a = 2 umm");
-    EXPECT_NE(p.Errors().find("2:28: unknown unit 'umm'; did you mean 'um'?"), std::string::npos) << p.Errors();
+    EXPECT_NE(p.Errors().find("2:28: unknown unit 'umm'; did you mean 'um'?"), std::string::npos)
+        << p.Errors();
 }
 
 TEST(Parser, RenderRules) {
