@@ -93,12 +93,18 @@ void Diagnostics::Print(std::ostream &os, bool color) const {
 }
 
 std::size_t EditDistance(const std::string &a, const std::string &b) {
-    std::vector<std::size_t> prev(b.size() + 1), cur(b.size() + 1);
+    // Optimal string alignment distance: insertions, deletions, substitutions and swaps of two
+    // adjacent characters each cost 1 (so "widht" is one edit from "width").
+    std::vector<std::size_t> prev2(b.size() + 1), prev(b.size() + 1), cur(b.size() + 1);
     for (std::size_t j = 0; j <= b.size(); ++j) prev[j] = j;
     for (std::size_t i = 1; i <= a.size(); ++i) {
         cur[0] = i;
-        for (std::size_t j = 1; j <= b.size(); ++j)
+        for (std::size_t j = 1; j <= b.size(); ++j) {
             cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] != b[j - 1])});
+            if (i > 1 && j > 1 && a[i - 1] == b[j - 2] && a[i - 2] == b[j - 1])
+                cur[j] = std::min(cur[j], prev2[j - 2] + 1);
+        }
+        std::swap(prev2, prev);
         std::swap(prev, cur);
     }
     return prev[b.size()];
