@@ -6,8 +6,10 @@
 #include <optional>
 #include <string>
 
+#include "core/genray.h"
 #include "core/math.h"
 #include "core/params.h"
+#include "core/sampler.h"
 #include "core/shape.h"
 #include "core/spectrum.h"
 
@@ -18,9 +20,39 @@ struct DetectorSample {
     double weight = 1;   // importance weight (pixel sensitivity / pdf)
 };
 
+/// A generalized-ray sample (theory §0 D2): the mean ray leaving the detector and the GR's
+/// footprint at the ray's origin for each carried wavelength (traced convention: ρ > 0 diverges
+/// into the scene).
+struct DetectorGrSample {
+    Ray ray;
+    /// 𝒟/p in radiance units: the pixel value is the mean of weight × (radiance measured along the
+    /// GR). 1 for cameras; for `virtual_plane` the area of the sampled direction-cosine region, so
+    /// that the mean is ∫ L cosθ dω = irradiance (theory §0 D4).
+    double weight = 1;
+    std::array<double, NumWavelengths> beta2{}, rho{};
+    /// True if the detector integrates closed-form sources analytically over its directions (D4a,
+    /// IntegrateIncidence); then the sampled GR must not measure them itself.
+    bool integratesIncidence = false;
+};
+
+/// Where a sample sits among its pixel's samples (for stratifying directions across them, D4b).
+struct PixelSampleIndex {
+    int index = 0, count = 1;
+    uint64_t seed = 0;
+};
+
+/// A 2-D sample for a pixel's directions, stratified across the pixel's samples (theory §0 D4b):
+/// a Cranley–Patterson-rotated n×n lattice when the sample count is a square n² (n ≥ 2; the shift
+/// is fixed per pixel and seed), otherwise the sampler's next (0,2)-stratified pair.
+Vec2 StratifiedPixelSample(int x, int y, const PixelSampleIndex &si, Sampler &sampler);
+
 /// The `response` parameter every detector has ("cie_xyz" or "radiometric"), and its value.
 ParamSpec ResponseParam(const char *defaultResponse);
 SensorResponse ResponseFromParams(const ParamDict &d);
+/// The parameters every camera has (to_world, fov, resolution, pixel, response), followed by
+/// `extra`; and the validated resolution they give.
+std::vector<ParamSpec> CameraParams(std::vector<ParamSpec> extra = {});
+std::pair<int, int> CameraResolution(const ParamDict &d);
 
 class Detector {
   public:
@@ -34,6 +66,18 @@ class Detector {
     /// A ray through continuous image position pFilm (pixel units) using lens sample uLens.
     virtual std::optional<DetectorSample> Generate(const Vec2 &pFilm, const Vec2 &uLens) const = 0;
     virtual std::string ToString() const = 0;
+
+    // ---- Generalized rays (theory §0 D2, D4, D4a, D4b) ------------------------------------------
+    /// True if GenerateGR is implemented (the `grt` integrator needs it).
+    virtual bool SupportsGR() const { return false; }
+    /// A GR for pixel (x, y), sample `si` of the pixel; draws what it needs from `sampler`
+    /// (position in the pixel first, then directions / lens). Wavelengths set the footprint.
+    virtual std::optional<DetectorGrSample> GenerateGR(int x, int y, const PixelSampleIndex &si,
+                                                       Sampler &sampler, const SampledWavelengths &wl) const;
+    /// D4a: the pixel value (same units as weight × radiance) contributed by a closed-form source
+    /// that reaches the sample's origin unobstructed, integrated analytically over the detector's
+    /// directions. Only called when the sample has integratesIncidence.
+    virtual SampledSpectrum IntegrateIncidence(const DetectorGrSample &s, const GrIncidence &inc) const;
 
     std::string name;
 

@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "core/genray.h"
 #include "core/math.h"
 #include "core/shape.h"
 #include "core/spectrum.h"
@@ -26,6 +27,15 @@ struct LightSample {
     double dist = 0;  // distance to the sampled point (Infinity for directional lights)
     double pdf = 0;   // solid-angle density; 1 for delta lights
     bool delta = false;
+};
+
+/// Coherence description of the light arriving at a point (theory §0 D5), for sample-solve:
+/// Ω = omega·I is the angular covariance [rad²] of the arrival directions about wi (never a
+/// solid angle; a uniform disc of angular radius α has omega = α²/4). The mutual coherence between
+/// transverse points separated by v is μ(v) = exp(−½k²·omega·|v|²).
+struct LightCoherence {
+    Vec3 wi;            // unit mean direction towards the light
+    double omega = 0;   // [rad²]; 0 = fully (spatially) coherent
 };
 
 class Light {
@@ -54,6 +64,24 @@ class Light {
     /// the sampler can weight lights against each other.
     virtual const Spectrum &EmissionSpectrum() const = 0;
     virtual double PowerScale() const = 0;
+
+    // ---- Generalized rays (theory §2.4, §0 D4a, D5, D14) ------------------------------------
+    /// True for sources that GRs measure in closed form instead of hitting them: delta position or
+    /// direction (point, spot, plane wave, directional, Gaussian beam) and distant sources. The
+    /// `grt` integrator measures these right after a detector or a near-delta lobe (and never
+    /// again on escape); continuous lobes still reach them through SampleLi / Le.
+    virtual bool MeasuredInClosedForm() const { return false; }
+    /// Eq. 24 in radiance units (k²·M) for the *physical* GR g (g.d = direction of light flow,
+    /// ρ > 0 diverging along it), per carried wavelength; nullopt if nothing reaches g.
+    virtual std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
+                                                   const SampledWavelengths &wl) const;
+    /// D4a: the source integrated over all directions of a GR at its waist (g.o, footprint; g.d is
+    /// not used — the caller decides which arrival directions count).
+    virtual std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
+                                                     const SampledWavelengths &wl) const;
+    /// Coherence description at p (theory §0 D5). Default: fully coherent light from nowhere.
+    virtual LightCoherence Coherence(const Vec3 &p) const;
+
     /// Called once with the scene bounds before rendering.
     virtual void Preprocess(const Bounds3 &sceneBounds) { (void)sceneBounds; }
     virtual std::string ToString() const = 0;

@@ -37,6 +37,10 @@ struct ScatterQuery {
     /// Footprint of the incident generalized ray (theory §1.2): β² [m²] and ρ; zero for a
     /// classical ray. Near-delta lobes use it to spread Eval over the ray's angular width.
     double beta2 = 0, rho = 0;
+    /// With !rayOptics: whether Eval includes the near-delta lobes' GR-spread Gaussians. The `grt`
+    /// integrator clears it for next-event estimation, because it measures light through
+    /// near-delta lobes by following the sampled lobe (closed forms, theory §0 D14).
+    bool evalNearDelta = true;
     Vec2 uv;                               // surface parameterisation of the hit
     Vec3 pLocal;                           // hit position in the shape's local frame [m]
 };

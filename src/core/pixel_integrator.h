@@ -4,14 +4,18 @@
 // a complete pass and the partial image has a uniform spp), deterministic per (pixel, sample).
 #pragma once
 
+#include "core/detector.h"
 #include "core/integrator.h"
 #include "core/scene.h"
 
 namespace phasor {
 
-/// Per-thread counters merged after each batch.
+/// Per-thread counters merged after each batch, plus the render loop's position for the current
+/// call (which sample of how many, and the seed — detectors stratify directions across a pixel's
+/// samples with it, theory §0 D4b).
 struct PathStats {
     long long rays = 0;
+    PixelSampleIndex sample;
 };
 
 class PixelIntegrator : public Integrator {

@@ -8,7 +8,8 @@
 // Valid when the surface roughness is ≪ λ over the footprint (otherwise use a rough kernel).
 // Two-sided like pbrt's conductor: a ray arriving from below the shading normal is mirrored on
 // that side too (the inside of a metal is unreachable, so this only matters for thin sheets and
-// flipped normals). Never transmits; the rest (1 − R) is absorbed.
+// flipped normals). Never transmits; the rest (1 − R) is absorbed. For a generalized ray
+// (!ScatterQuery::rayOptics) Eval reports the lobe as the GR's angular Gaussian (near_delta.h).
 //
 // Index: `ior` (a complex constant), or `eta` and `k` (spectra), or `metal` (tabulated: Al from
 // Rakić et al. 1998, Ag/Au/Cu from Johnson & Christy 1972; see metal_ior.h). The index is relative
@@ -21,6 +22,7 @@
 #include "core/registry.h"
 #include "materials/fresnel.h"
 #include "materials/metal_ior.h"
+#include "materials/near_delta.h"
 
 namespace phasor {
 
@@ -143,11 +145,20 @@ class ConductorMaterial final : public Material {
         return s;
     }
 
-    SampledSpectrum Eval(const ScatterQuery &, const Vec3 &) const override {
-        // Ray-optics limit: a Dirac delta has no finite density. TODO(issue 4): for !q.rayOptics
-        // return R·(GR-spread Gaussian around ReflectLocal(wi)); until then a generalized ray is
-        // treated exactly like a classical ray here.
-        return SampledSpectrum(0);
+    SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const override {
+        // Ray-optics limit: a Dirac delta has no finite density. A generalized ray's mirror lobe
+        // is its own angular Gaussian about the mirror direction (near_delta.h), so
+        // f·|cosθo| = R·N(wo; wr, σ_k²/k²): NEE to a delta-direction source then yields the glint
+        // R·E·k²·N₂(Δk⊥; 0, σ_k²I) of theory §2.4 item 2.
+        if (!SpreadNearDelta(q) || q.wi.z == 0 || wo.z == 0) return SampledSpectrum(0);
+        const Vec3 wr = ReflectLocal(q.wi);
+        const SampledSpectrum r = Reflectance(q);
+        SampledSpectrum f(0.0);
+        for (int i = 0; i < q.wl->Count(); ++i) {
+            const double var = NearDeltaAngularVariance(q, q.etaOutside, q.wl->lambda[i]);
+            f[i] = r[i] * NearDeltaDensity(wo, wr, var) / std::abs(wo.z);
+        }
+        return f;
     }
 
     double Pdf(const ScatterQuery &, const Vec3 &) const override { return 0; }

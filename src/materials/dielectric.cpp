@@ -11,7 +11,9 @@
 // is inside and leaves. Lobe choice is ∝ Fresnel at the hero wavelength (theory §3.1); the
 // refracted radiance carries the (η_i/η_t)² factor (camera paths transport radiance, whose
 // basic invariant is L/n²). A wavelength-dependent index makes refraction dispersive: its
-// direction is the hero's, and the integrator drops the companions (theory §0 D10).
+// direction is the hero's, and the integrator drops the companions (theory §0 D10). For a
+// generalized ray (!ScatterQuery::rayOptics) Eval reports both lobes as the GR's angular Gaussians
+// (near_delta.h).
 //
 // Dispersion: `ior` may be any spectrum; `cauchy_b` adds Cauchy's term, η(λ) = ior(λ) + B/λ²
 // (Cauchy 1836; e.g. BK7 ≈ 1.5046 + 4.20e-3 µm²/λ²).
@@ -22,6 +24,7 @@
 #include "core/material.h"
 #include "core/registry.h"
 #include "materials/fresnel.h"
+#include "materials/near_delta.h"
 
 namespace phasor {
 
@@ -118,12 +121,30 @@ class DielectricMaterial final : public Material {
         return s;
     }
 
-    SampledSpectrum Eval(const ScatterQuery &, const Vec3 &) const override {
-        // Ray-optics limit: both lobes are Dirac deltas with no finite density. TODO(issue 4): for
-        // !q.rayOptics return R·(GR-spread Gaussian around the mirror direction) + T/η²·(Gaussian
-        // around the refracted direction); until then a generalized ray is treated exactly like a
-        // classical ray here.
-        return SampledSpectrum(0);
+    SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const override {
+        // Ray-optics limit: both lobes are Dirac deltas with no finite density. For a generalized
+        // ray each lobe is the GR's angular Gaussian about its direction (near_delta.h), in the
+        // medium the lobe travels in: f·|cosθo| = R·N(wo; wr, σ_k²/k_i²) + (T/η²)·N(wo; wt, σ_k²/k_t²)
+        // per wavelength (β and ρ are kept, only |k| follows the medium, S6.4).
+        const Vec3 &wi = q.wi;
+        if (!SpreadNearDelta(q) || wi.z == 0 || wo.z == 0) return SampledSpectrum(0);
+        const bool entering = wi.z > 0;
+        const double cosI = std::abs(wi.z);
+        const Vec3 wr = ReflectLocal(wi);
+        SampledSpectrum f(0.0);
+        for (int i = 0; i < q.wl->Count(); ++i) {
+            const double lambda = q.wl->lambda[i], n = Index(lambda);
+            if (!(n > 0)) continue;
+            const double etaI = entering ? q.etaOutside : n, etaT = entering ? n : q.etaOutside;
+            const double eta = etaT / etaI, refl = FresnelDielectric(cosI, eta);
+            double v = refl * NearDeltaDensity(wo, wr, NearDeltaAngularVariance(q, etaI, lambda));
+            Vec3 wt;
+            if (refl < 1 && RefractLocal(wi, eta, &wt))
+                v += (1 - refl) / (eta * eta) *
+                     NearDeltaDensity(wo, wt, NearDeltaAngularVariance(q, etaT, lambda));
+            f[i] = v / std::abs(wo.z);
+        }
+        return f;
     }
 
     double Pdf(const ScatterQuery &, const Vec3 &) const override { return 0; }

@@ -15,27 +15,9 @@
 #include "core/diagnostics.h"
 #include "core/material.h"
 #include "core/registry.h"
+#include "core/sampling.h"
 
 namespace phasor {
-
-namespace {
-
-// Shirley & Chiu (1997) concentric square → disc mapping (area preserving, low distortion).
-Vec2 ConcentricDisc(const Vec2 &u) {
-    const double ox = 2 * u.x - 1, oy = 2 * u.y - 1;
-    if (ox == 0 && oy == 0) return {0, 0};
-    double r, theta;
-    if (std::abs(ox) > std::abs(oy)) {
-        r = ox;
-        theta = (Pi / 4) * (oy / ox);
-    } else {
-        r = oy;
-        theta = Pi / 2 - (Pi / 4) * (ox / oy);
-    }
-    return {r * std::cos(theta), r * std::sin(theta)};
-}
-
-}  // namespace
 
 class DiffuseMaterial final : public Material {
   public:

@@ -57,6 +57,15 @@ class AreaLight final : public Light {
         return LengthSquared(pLight - ctx.p) / (cosL * shape_->Area());
     }
     bool IsDelta() const override { return false; }
+    /// Coherence (theory §0 D5, §2.2): a thermal emitter subtending the solid angle Ω_src ≈ A/r²
+    /// (r to the centre of its bounds, orientation ignored) is treated as a disc of that solid angle,
+    /// πα² = Ω_src, so Ω = α²/4 = Ω_src/(4π) per axis. GRs measure it as L_e (theory §2.4 item 4).
+    LightCoherence Coherence(const Vec3 &p) const override {
+        const Vec3 c = shape_->Bounds().Center() - p;
+        const double r2 = LengthSquared(c);
+        if (!(r2 > 0)) return LightCoherence{Vec3(0, 0, 1), 0.25};
+        return LightCoherence{c / std::sqrt(r2), std::min(0.25, shape_->Area() / r2 * Inv4Pi)};
+    }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
     double PowerScale() const override { return radiance_ * Pi * shape_->Area() * (twoSided_ ? 2 : 1); }
     std::string ToString() const override { return "area { shape = " + shape_->ToString() + " }"; }

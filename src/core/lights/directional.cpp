@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // `directional`: light from a single direction at infinity (delta direction), e.g. an idealised
-// sun. `irradiance` is measured on a plane normal to the direction of travel.
+// sun. `irradiance` is measured on a plane normal to the direction of travel. For generalized rays
+// it is a coherent plane wave (theory §2.4 item 2), like `plane_wave`, but its strength is
+// irradiance × spectrum(λ) rather than a total.
 #include "core/light.h"
+#include "core/lights/closed_form.h"
 #include "core/registry.h"
 
 namespace phasor {
@@ -34,6 +37,16 @@ class DirectionalLight final : public Light {
     double PdfLi(const LightSampleContext &, const Vec3 &, const Vec3 &, const Vec3 &) const override { return 0; }
     bool IsDelta() const override { return true; }
     bool IsInfinite() const override { return true; }
+    bool MeasuredInClosedForm() const override { return true; }
+    std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
+                                           const SampledWavelengths &wl) const override {
+        return MeasureDistantGR(g, dir_, EvalEmission(*spectrum_, wl) * irradiance_, false, 0, 0);
+    }
+    std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
+                                             const SampledWavelengths &wl) const override {
+        return DistantIncidence(g, dir_, EvalEmission(*spectrum_, wl) * irradiance_, 0);
+    }
+    LightCoherence Coherence(const Vec3 &) const override { return LightCoherence{-dir_, 0}; }
     void Preprocess(const Bounds3 &b) override {
         double r = b.Empty() ? 1 : 0.5 * Length(b.Diagonal());
         sceneArea_ = Pi * r * r;

@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/detector.h"
 
+#include <cmath>
+
 namespace phasor {
 
 ParamSpec ResponseParam(const char *defaultResponse) {
@@ -12,6 +14,57 @@ ParamSpec ResponseParam(const char *defaultResponse) {
 SensorResponse ResponseFromParams(const ParamDict &d) {
     return SensorResponse(d.GetString("response") == "radiometric" ? SensorResponse::Kind::Radiometric
                                                                    : SensorResponse::Kind::CieXyz);
+}
+
+Vec2 StratifiedPixelSample(int x, int y, const PixelSampleIndex &si, Sampler &sampler) {
+    const int n = int(std::lround(std::sqrt(double(si.count))));
+    if (n < 2 || n * n != si.count || si.index < 0 || si.index >= si.count) return sampler.Get2D();
+    // One shift per (seed, pixel): the same rotated lattice for all of the pixel's samples.
+    const uint64_t h = Hash(si.seed, uint64_t(uint32_t(x)), uint64_t(uint32_t(y)), 0x6c61747469636521ULL);
+    const double sx = double(h >> 11) * 0x1p-53, sy = double(MixBits(h) >> 11) * 0x1p-53;
+    const int i = si.index / n, j = si.index % n;
+    return {std::min((i + sx) / n, 0x1.fffffffffffffp-1), std::min((j + sy) / n, 0x1.fffffffffffffp-1)};
+}
+
+std::optional<DetectorGrSample> Detector::GenerateGR(int, int, const PixelSampleIndex &, Sampler &,
+                                                    const SampledWavelengths &) const {
+    return std::nullopt;
+}
+
+SampledSpectrum Detector::IntegrateIncidence(const DetectorGrSample &, const GrIncidence &) const {
+    return SampledSpectrum(0.0);
+}
+
+std::vector<ParamSpec> CameraParams(std::vector<ParamSpec> extra) {
+    std::vector<ParamSpec> p = {
+        P::Transform("to_world", "camera-to-world transform, e.g. lookat(eye, target, up)")
+            .Default(Value::Call("lookat",
+                                 {Value::Vector({0, 0, 0}, Dim::Length()), Value::Vector({0, 0, 1}, Dim::Length()),
+                                  Value::Vector({0, 1, 0})},
+                                 {"eye", "target", "up"})),
+        P::Angle("fov", "field of view across the shorter image side")
+            .Default(Value::Number(Radians(40), Dim::Angle()))
+            .Min(0, true)
+            .Max(Radians(179)),
+        P::IntegerList("resolution", "image width and height in pixels")
+            .Default(Value::List({Value::Integer(256), Value::Integer(256)}))
+            .Size(2)
+            .Min(1)};
+    for (ParamSpec &e : extra) p.push_back(std::move(e));
+    p.push_back(P::String("pixel",
+                          "pixel sensitivity: box (jittered over the pixel) or gaussian (centred GR of the "
+                          "pixel's angular std)")
+                    .Default(Value::String("box"))
+                    .Choices({"box", "gaussian"}));
+    p.push_back(ResponseParam("cie_xyz"));
+    return p;
+}
+
+std::pair<int, int> CameraResolution(const ParamDict &d) {
+    std::vector<int> res = d.GetInts("resolution");
+    if (res[0] > 65536 || res[1] > 65536 || (long long)res[0] * res[1] > (1LL << 28))
+        throw Error(d.Loc("resolution"), "resolution is too large (at most 65536 per side and 2^28 pixels)");
+    return {res[0], res[1]};
 }
 
 }  // namespace phasor

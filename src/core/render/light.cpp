@@ -9,4 +9,14 @@ SampledSpectrum Light::L(const Vec3 &, const Vec3 &, const Vec3 &, const Sampled
 
 SampledSpectrum Light::Le(const Vec3 &, const SampledWavelengths &) const { return SampledSpectrum(0.0); }
 
+std::optional<GrMeasurement> Light::MeasureGR(const SpectralGenRay &, const SampledWavelengths &) const {
+    return std::nullopt;
+}
+
+std::optional<GrIncidence> Light::IncidenceOnGR(const SpectralGenRay &, const SampledWavelengths &) const {
+    return std::nullopt;
+}
+
+LightCoherence Light::Coherence(const Vec3 &) const { return LightCoherence{}; }
+
 }  // namespace phasor

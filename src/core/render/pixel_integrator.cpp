@@ -40,6 +40,7 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                     for (int x = r.cols().begin(); x < r.cols().end(); ++x)
                         for (int s = done; s < end; ++s) {
                             sampler->StartPixelSample(x, y, s);
+                            ps.sample = PixelSampleIndex{s, opt.spp, opt.seed};
                             // Wavelengths first, so they are stratified across the pixel's samples.
                             SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
                             SampledSpectrum L = EstimatePixel(scene, x, y, wl, *sampler, ps);

@@ -1,0 +1,212 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — generalized-ray maths (genray.h; theory §1–§2).
+#include "core/genray.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace phasor {
+
+GrCovariance GrCovariance::Transformed(const Abcd &t) const {
+    // Σ' = T Σ Tᵀ for T = [[a, b], [c, d]] (theory §1.6, S3.36).
+    const double rrN = t.a * t.a * rr + 2 * t.a * t.b * rk + t.b * t.b * kk;
+    const double rkN = t.a * t.c * rr + (t.a * t.d + t.b * t.c) * rk + t.b * t.d * kk;
+    const double kkN = t.c * t.c * rr + 2 * t.c * t.d * rk + t.d * t.d * kk;
+    return {rrN, rkN, kkN};
+}
+
+void GenRay::Propagate(double z) {
+    // Supplement S6.3 in closed form; identical to Apply(Abcd::FreeSpace(z, k)) (theory §1.6).
+    const double zb = z / k;
+    const double q = (1 + rho * rho) / beta2;
+    beta2 = beta2 + zb * (2 * rho + zb * q);
+    rho = rho + zb * q;
+    o += z * d;
+}
+
+void GenRay::Apply(const Abcd &t) {
+    GrCovariance s = Covariance().Transformed(t);
+    beta2 = s.Beta2();
+    rho = s.Rho();
+}
+
+Complex GenRay::WaveFunction(const Vec3 &x) const {
+    // Theory §1.3: ψ = (πβ²)^{-1/2} e^{ik d·Δ} e^{−(1−iρ)|Δ⊥|²/(2β²)}.
+    const Vec3 delta = x - o;
+    const double along = Dot(delta, d);
+    const double perp2 = std::max(0.0, LengthSquared(delta) - along * along);
+    const Complex expo(-perp2 / (2 * beta2), rho * perp2 / (2 * beta2) + k * along);
+    return std::exp(expo) / std::sqrt(Pi * beta2);
+}
+
+Complex GenRay::OnPlane(const Vec3 &x, const Vec3 &n) const {
+    // Theory §6.3 step 3: the oblique cut keeps the transverse profile at the projected offset
+    // and gains √cosθ, which makes the plane-to-plane norm 1.
+    const double c = std::abs(Dot(d, n));
+    if (c == 0) return 0;
+    return std::sqrt(c) * WaveFunction(x);
+}
+
+double GenRay::PhaseSpaceDensity(const Vec2 &dr, const Vec2 &dk) const {
+    // Theory §1.2: g = π⁻² exp(−|Δr|²/β² − |βΔk − (ρ/β)Δr|²).
+    const double beta = std::sqrt(beta2);
+    const Vec2 m = dk * beta - dr * (rho / beta);
+    return std::exp(-LengthSquared(dr) / beta2 - LengthSquared(m)) / (Pi * Pi);
+}
+
+void SpectralGenRay::Propagate(double z) {
+    for (int i = 0; i < count; ++i) {
+        GenRay g = At(i);
+        g.Propagate(z);
+        beta2[i] = g.beta2;
+        rho[i] = g.rho;
+    }
+    o += z * d;
+}
+
+void SpectralGenRay::Redirect(const Vec3 &newDirection, double etaRatio) {
+    d = newDirection;
+    for (int i = 0; i < count; ++i) k[i] *= etaRatio;
+}
+
+SpectralGenRay SpectralGenRay::TimeReversed() const {
+    SpectralGenRay r = *this;
+    r.d = -d;
+    for (int i = 0; i < count; ++i) r.rho[i] = -rho[i];
+    return r;
+}
+
+// ---- Closed-form measurements -----------------------------------------------------------------
+
+Vec2 TransverseWavevector(const GenRay &g, const Vec3 &s) {
+    if (Dot(s, g.d) <= 0) return {Infinity, Infinity};
+    const Frame f = g.TransverseFrame();
+    return Vec2(Dot(s, f.s), Dot(s, f.t)) * g.k;
+}
+
+double MeasurePlaneWave(const GenRay &g, const Vec3 &s, double irradiance) {
+    // Theory §2.4 item 2.
+    const Vec2 ks = TransverseWavevector(g, s);
+    if (!std::isfinite(ks.x)) return 0;
+    const double q = 1 + g.rho * g.rho;
+    return irradiance * g.beta2 / (Pi * q) * std::exp(-g.beta2 * LengthSquared(ks) / q);
+}
+
+double MeasureDistantGaussian(const GenRay &g, const Vec3 &s, double irradiance, double omega) {
+    // Theory §2.4 item 3: E·N₂(k_s⊥; 0, σ_k²I + k²Ω).
+    const Vec2 ks = TransverseWavevector(g, s);
+    if (!std::isfinite(ks.x)) return 0;
+    return irradiance * Normal2(LengthSquared(ks), g.SigmaK2() + g.k * g.k * omega);
+}
+
+double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double alpha) {
+    if (alpha <= 0) return MeasurePlaneWave(g, s, irradiance);
+    const Vec2 ks = TransverseWavevector(g, s);
+    if (!std::isfinite(ks.x)) return 0;
+    // Work in angle units (divide wavevectors by k) for a well-scaled Rice integral.
+    const double sinA = std::sin(alpha);
+    const double p = DiscGaussianProbability(Length(ks) / g.k, sinA, std::sqrt(g.AngularVariance()));
+    return irradiance * p / (Pi * g.k * g.k * sinA * sinA);
+}
+
+double MeasurePointSource(const GenRay &g, const Vec3 &p, double intensity) {
+    // Theory §2.4 item 5 (derivation: the far-zone WDF (I/R²)δ(k⊥ − k r⊥/R) against g).
+    const Vec3 rel = g.o - p;
+    const double r2 = LengthSquared(rel);
+    if (!(r2 > 0)) return 0;
+    const double r = std::sqrt(r2);
+    if (Dot(rel, g.d) <= 0) return 0;  // the wave travels against the GR
+    const Frame f = g.TransverseFrame();
+    const Vec2 kappa = Vec2(Dot(rel, f.s), Dot(rel, f.t)) * (g.k / r);
+    const double beta = std::sqrt(g.beta2);
+    const double a = beta * g.k / r - g.rho / beta;
+    const double ab2 = a * a * g.beta2;
+    return intensity / r2 * std::exp(-g.beta2 * LengthSquared(kappa) / (1 + ab2)) /
+           (Pi * (1 / g.beta2 + a * a));
+}
+
+namespace {
+// N₂(u; 0, C) for a 2-vector u = (x, y) and symmetric C = [[cxx, cxy], [cxy, cyy]].
+double Normal2Full(double x, double y, double cxx, double cxy, double cyy) {
+    const double det = cxx * cyy - cxy * cxy;
+    if (!(det > 0)) return 0;
+    const double q = (cyy * x * x - 2 * cxy * x * y + cxx * y * y) / det;
+    return std::exp(-0.5 * q) / (2 * Pi * std::sqrt(det));
+}
+}  // namespace
+
+double MeasureGaussianBeam(const GenRay &g, const GenRay &beam, double power) {
+    // Theory §2.4 item 1 with the source WDF P·g_{β_s,ρ_s}: per axis N₂(ū_g − ū_s; 0, Σ_g + Σ_s).
+    if (Dot(beam.d, g.d) <= 0) return 0;
+    GenRay s = beam;
+    s.k = g.k;
+    // Carry the beam to the plane ⊥ g.d through g.o (along its own axis).
+    const double z = Dot(g.o - beam.o, g.d) / Dot(beam.d, g.d);
+    s.Propagate(z);
+    const Frame f = g.TransverseFrame();
+    const Vec3 dr = g.o - s.o;
+    const Vec2 drT(Dot(dr, f.s), Dot(dr, f.t));
+    const Vec2 dkT = Vec2(Dot(beam.d, f.s), Dot(beam.d, f.t)) * (-g.k);
+    const GrCovariance c = g.Covariance() + s.Covariance();
+    return power * Normal2Full(drT.x, dkT.x, c.rr, c.rk, c.kk) * Normal2Full(drT.y, dkT.y, c.rr, c.rk, c.kk);
+}
+
+namespace {
+
+// Exponentially scaled modified Bessel function I₀(x)·e^{−x}, x ≥ 0.
+double BesselI0Scaled(double x) {
+    if (x < 600) return std::cyl_bessel_i(0.0, x) * std::exp(-x);
+    // Asymptotic expansion (Abramowitz & Stegun 9.7.1).
+    const double t = 1 / (8 * x);
+    return (1 + t * (1 + t * (4.5 + t * 37.5))) / std::sqrt(2 * Pi * x);
+}
+
+// ∫_a^b f(x) dx by composite 8-point Gauss–Legendre on `panels` panels.
+template <typename F>
+double GaussLegendre(F &&f, double a, double b, int panels) {
+    static constexpr double X[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
+                                    0.9602898564975363};
+    static constexpr double W[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
+                                    0.1012285362903763};
+    double sum = 0;
+    const double h = (b - a) / panels;
+    for (int p = 0; p < panels; ++p) {
+        const double m = a + (p + 0.5) * h, r = 0.5 * h;
+        for (int i = 0; i < 4; ++i) sum += W[i] * r * (f(m - r * X[i]) + f(m + r * X[i]));
+    }
+    return sum;
+}
+
+}  // namespace
+
+double DiscGaussianProbability(double offset, double radius, double sigma) {
+    if (radius <= 0) return 0;
+    if (!(sigma > 0)) return offset <= radius ? 1.0 : 0.0;
+    const double t = offset / sigma, c = radius / sigma;
+    // Rice density of ρ = |X|/σ: ρ·exp(−(ρ−t)²/2)·I₀e(ρt), which is negligible (< e^{-60})
+    // outside [t − 11, t + 11].
+    auto density = [&](double r) { return r * std::exp(-0.5 * (r - t) * (r - t)) * BesselI0Scaled(r * t); };
+    constexpr double Reach = 11;
+    const double lo = std::max(0.0, t - Reach), hi = t + Reach;
+    if (c >= hi) return 1;
+    if (c <= lo) {
+        // A disc far out in the tail: negligible unless the disc is small, where [0, c] is smooth
+        // and short enough to integrate directly (keeps relative accuracy for tiny sources).
+        return c < 2 ? GaussLegendre(density, 0.0, c, 8) : 0.0;
+    }
+    // Integrate the shorter side for accuracy near 0 and 1.
+    if (c - lo <= hi - c) return std::min(1.0, GaussLegendre(density, lo, c, 24));
+    return std::max(0.0, 1 - GaussLegendre(density, c, hi, 24));
+}
+
+double RectGaussianProbability(const Vec2 &mu, double sigma, const Vec2 &lo, const Vec2 &hi) {
+    auto axis = [&](double m, double a, double b) {
+        if (!(sigma > 0)) return (m >= a && m <= b) ? 1.0 : 0.0;
+        const double s = sigma * std::sqrt(2.0);
+        // Φ(b) − Φ(a) via erfc on the far tails for accuracy.
+        return 0.5 * (std::erfc((a - m) / s) - std::erfc((b - m) / s));
+    };
+    return axis(mu.x, lo.x, hi.x) * axis(mu.y, lo.y, hi.y);
+}
+
+}  // namespace phasor

@@ -1,0 +1,191 @@
+// SPDX-License-Identifier: Apache-2.0
+// `grt`: the backward generalized-ray path tracer — Algorithm 1 of theory §3.3 (design.md §4.3).
+//
+// Each pixel sample draws wavelengths ∝ emission × sensor response (D10; the render loop), a GR
+// from the detector (D2: mean ray + per-wavelength footprint β², ρ) and follows it like a
+// classical path: the mean ray is traced, the footprint is propagated by ABCD (theory §1.6, S6.3),
+// kernels are queried with the footprint (ScatterQuery::beta2/rho, !rayOptics) and pick one term
+// of the Eq. 22 mixture. Light is collected in radiance units (pixel = k²·M, D4):
+//   * area lights: L_e where the mean ray hits them (theory §2.4 item 4), MIS (power heuristic)
+//     against next-event estimation after continuous lobes, in full after near-delta lobes;
+//   * next-event estimation to one uniformly chosen light per vertex, with Eval reporting only the
+//     continuous lobes (ScatterQuery::evalNearDelta = false);
+//   * closed-form sources (Light::MeasuredInClosedForm: plane waves, point/spot lights, distant
+//     sources, Gaussian beams) are measured analytically (Eq. 24, theory §2.4) by every GR that
+//     leaves the detector or a near-delta lobe — D4a for primary GRs (a `virtual_plane` integrates
+//     them over its directions exactly), D14 for mirror/refraction lobes (glints of the sun or a
+//     laser) — with a shadow ray towards the source. Such a GR does not measure them again when
+//     it escapes (no double counting); after a continuous lobe they are reached by NEE and by
+//     escaping GRs (Le), MIS-weighted as usual.
+// Russian roulette starts after `rr_depth` bounces and never before the first measurement (NEE or
+// closed form). The film keeps the per-pixel variance of the mean.
+//
+// Simplifications (documented in docs/generalized_rays.md): the footprint is isotropic (D1); the
+// anamorphic stretch on oblique/curved interfaces is ignored (theory §1.6, as in the paper); area
+// emitters are measured by the mean ray (no footprint fraction at silhouettes).
+#include "core/path_common.h"
+#include "core/registry.h"
+
+namespace phasor {
+
+class GrtIntegrator final : public PixelIntegrator {
+  public:
+    GrtIntegrator(int maxDepth, int rrDepth) : maxDepth_(maxDepth), rrDepth_(rrDepth) {}
+
+    static const Schema &GetSchema() {
+        static const Schema s{
+            "integrator",
+            "grt",
+            "Backward generalized-ray path tracer (Algorithm 1): wave-optical transport.",
+            {P::Integer("max_depth",
+                        "maximum number of scattering events (-1: unlimited, Russian roulette ends paths)")
+                 .Default(Value::Integer(16))
+                 .Min(-1),
+             P::Integer("rr_depth",
+                        "bounces before Russian roulette starts (never before the first measurement)")
+                 .Default(Value::Integer(3))
+                 .Min(0)}};
+        return s;
+    }
+    static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
+        return std::make_unique<GrtIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"));
+    }
+
+    RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override {
+        const Detector &det = scene.GetDetector();
+        if (!det.SupportsGR())
+            throw Error(
+                "integrator 'grt' needs a detector that generates generalized rays (perspective, thin_lens, "
+                "virtual_plane); detector '" +
+                det.name + "' does not");
+        return PixelIntegrator::Render(scene, film, opt);
+    }
+
+    SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
+                                  PathStats &stats) const override {
+        auto ds = scene.GetDetector().GenerateGR(x, y, stats.sample, sampler, wl);
+        if (!ds) return SampledSpectrum(0.0);
+        SpectralGenRay g;
+        g.o = ds->ray.o;
+        g.d = ds->ray.d;
+        g.count = wl.Count();
+        for (int i = 0; i < g.count; ++i) {
+            g.k[i] = 2 * Pi / wl.lambda[i];  // detectors sit in vacuum/air (η = 1)
+            g.beta2[i] = ds->beta2[i];
+            g.rho[i] = ds->rho[i];
+        }
+        SampledSpectrum T(ds->weight), L(0.0);
+        bool measured = false;  // a measurement (NEE or closed form) happened: RR may start
+
+        // Primary GRs facing closed-form sources (theory §0 D4a).
+        if (ds->integratesIncidence) {
+            for (const Light *light : scene.Lights()) {
+                if (!light->MeasuredInClosedForm()) continue;
+                auto inc = light->IncidenceOnGR(g, wl);
+                if (!inc || inc->irradiance.IsZero()) continue;
+                const SampledSpectrum v = scene.GetDetector().IntegrateIncidence(*ds, *inc);
+                if (v.IsZero()) continue;
+                ++stats.rays;
+                if (!scene.GetAccel().Occluded(Ray{g.o, inc->wi}, 0, inc->dist * (1 - 1e-7))) L += v;
+            }
+        } else {
+            L += T * MeasureClosedForm(scene, g, nullptr, wl, stats);
+        }
+        measured = true;
+        if (!(ds->weight > 0)) return L;
+
+        path::MisState mis;          // the detector counts as a delta vertex
+        bool closedFormDone = true;  // the current GR has measured the closed-form sources
+        auto skipClosedForm = [](const Light *l) { return l->MeasuredInClosedForm(); };
+        for (int depth = 0;; ++depth) {
+            ++stats.rays;
+            auto si = scene.Intersect(g.MeanRay());
+            if (!si) {
+                if (closedFormDone)
+                    L += T * path::EscapedEmission(scene, g.d, wl, mis, skipClosedForm);
+                else
+                    L += T * path::EscapedEmission(scene, g.d, wl, mis);
+                break;
+            }
+            g.Propagate(si->t);  // ABCD free-space update of every wavelength's footprint
+            g.o = si->p;
+            L += T * path::HitEmission(scene, *si, g.d, wl, mis);
+            const Material *mat = si->material;
+            if (!mat || depth == maxDepth_) break;
+
+            const Frame &frame = si->shading;
+            ScatterQuery q;
+            q.wi = frame.ToLocal(-g.d);
+            q.wl = &wl;
+            q.rayOptics = false;
+            q.beta2 = g.beta2[0];
+            q.rho = g.rho[0];
+            q.evalNearDelta = false;
+            q.uv = si->uv;
+
+            // Next-event estimation through the continuous lobes.
+            const double uLight = sampler.Get1D();
+            const Vec2 uLightPos = sampler.Get2D();
+            if (!mat->IsDeltaOnly()) {
+                L += T * path::SampleDirectLight(scene, *si, *mat, q, uLight, uLightPos, wl, stats);
+                measured = true;
+            }
+
+            // One term of the Eq. 22 mixture: the GR keeps β, ρ; its mean direction turns and |k|
+            // follows the medium (S6.4).
+            auto bs = mat->Sample(q, sampler.Get1D(), sampler.Get2D());
+            if (!bs || bs->weight.IsZero()) break;
+            if (bs->flags & ScatterDispersive) wl.TerminateSecondary();
+            T *= bs->weight;
+            const Vec3 wo = frame.ToWorld(bs->wo);
+            g.Redirect(wo, bs->eta);
+            g.o = si->SpawnOrigin(wo);
+            const bool nearDelta = (bs->flags & ScatterNearDelta) != 0;
+            mis = path::MisState{nearDelta, bs->pdf, LightSampleContext{si->p, si->n}};
+            closedFormDone = nearDelta;
+            if (nearDelta) {
+                // D14: the lobe faces delta and small sources; measure them in closed form.
+                L += T * MeasureClosedForm(scene, g, &*si, wl, stats);
+                measured = true;
+            }
+
+            if (depth + 1 >= rrDepth_ && measured && !path::RussianRoulette(T, sampler.Get1D())) break;
+        }
+        return L;
+    }
+
+    std::string ToString() const override {
+        return "grt { max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) +
+               " }";
+    }
+
+  private:
+    /// Σ over closed-form lights of k²·M for the GR g (traced; measured as its time reverse, D3),
+    /// each if unoccluded from g's origin (from the surface `si` when g leaves one).
+    static SampledSpectrum MeasureClosedForm(const Scene &scene, const SpectralGenRay &g,
+                                             const SurfaceInteraction *si, const SampledWavelengths &wl,
+                                             PathStats &stats) {
+        SampledSpectrum sum(0.0);
+        const SpectralGenRay physical = g.TimeReversed();
+        for (const Light *light : scene.Lights()) {
+            if (!light->MeasuredInClosedForm()) continue;
+            auto m = light->MeasureGR(physical, wl);
+            if (!m || m->value.IsZero()) continue;
+            ++stats.rays;
+            bool blocked;
+            if (si)
+                blocked = std::isinf(m->dist) ? scene.OccludedDirection(*si, m->wi)
+                                              : scene.Occluded(*si, si->p + m->wi * m->dist);
+            else
+                blocked = scene.GetAccel().Occluded(Ray{g.o, m->wi}, 0, m->dist * (1 - 1e-7));
+            if (!blocked) sum += m->value;
+        }
+        return sum;
+    }
+
+    int maxDepth_, rrDepth_;
+};
+
+PHASOR_EXPORT_PLUGIN(Integrator, GrtIntegrator)
+
+}  // namespace phasor
