@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <unordered_map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -158,7 +159,7 @@ class BuildContext {
 
     const SceneDesc &desc_;
     Diagnostics &diag_;
-    std::map<std::string, std::size_t> byName_;
+    std::unordered_map<std::string, std::size_t> byName_;
     std::vector<int> state_;  // 0 = not built, 1 = building, 2 = done
     std::vector<Built> built_;
     std::vector<std::shared_ptr<void>> byIndex_;

@@ -165,6 +165,7 @@ class WavelengthSampler {
   private:
     double lo_ = 360e-9, hi_ = 830e-9;
     std::vector<double> grid_, cdf_;   // continuous part: piecewise-constant density on grid cells
+    std::vector<uint32_t> guide_;      // guide table: first cell whose CDF interval reaches j/size
     std::vector<double> lines_, lineProb_;  // discrete lines and their selection probability
     double continuousProb_ = 1;
 };

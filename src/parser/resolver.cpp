@@ -360,16 +360,20 @@ class Resolver {
         ent.nameLoc = nameLoc;
         ent.params = ParamDict(kwLoc);
         bool enabled = true;
-        std::map<std::string, FileLoc> seen;
+        // Blocks have a handful of parameters: a linear scan beats a map (no allocation).
+        std::vector<const wscene::ParamNode *> seen;
+        seen.reserve(st.params.size());
         for (const wscene::ParamNode &p : st.params) {
             FileLoc pLoc = Loc(file, p.namePos);
-            if (auto s = seen.find(p.name); s != seen.end()) {
+            auto first = std::find_if(seen.begin(), seen.end(),
+                                      [&](const wscene::ParamNode *q) { return q->name == p.name; });
+            if (first != seen.end()) {
                 Err(pLoc, "duplicate parameter '" + p.name + "'",
-                    {Note(s->second, "'" + p.name + "' is first given here")});
+                    {Note(Loc(file, (*first)->namePos), "'" + p.name + "' is first given here")});
                 ok = false;
                 continue;
             }
-            seen.emplace(p.name, pLoc);
+            seen.push_back(&p);
             std::optional<Value> v = eval_.Eval(p.value, file);
             if (!v) {
                 ok = false;

@@ -3,6 +3,7 @@
 // SceneDesc into objects: look up → validate → create → report unused (style.md §2.3).
 #include "core/registry.h"
 
+#include <algorithm>
 #include <cctype>
 
 #include "core/detector.h"
@@ -380,6 +381,7 @@ std::shared_ptr<void> BuildContext::Resolve(const Value &ref, const std::string 
     if (it == byName_.end()) {
         std::vector<std::string> names;
         for (const auto &[n, i] : byName_) names.push_back(n);
+        std::sort(names.begin(), names.end());  // deterministic suggestion on ties
         std::string s = Suggest(ref.text, names);
         throw Error(ref.loc, "'@" + ref.text + "' is not defined" + (s.empty() ? "" : "; did you mean '@" + s + "'?"));
     }

@@ -157,6 +157,18 @@ WavelengthSampler::WavelengthSampler(const std::vector<std::pair<const Spectrum 
 
     // ---- The range spanned.
     lo_ = Infinity;
+    // Guide table (Chen & Asau 1974): guide_[j] is the first cell whose upper CDF value exceeds
+    // j/G, so a lookup starts next to its answer instead of bisecting the whole table.
+    if (cdf_.size() >= 2) {
+        const std::size_t g = cdf_.size() - 1;
+        guide_.assign(g, 0);
+        std::size_t k = 0;
+        for (std::size_t j = 0; j < g; ++j) {
+            const double uj = double(j) / double(g);
+            while (k + 2 < cdf_.size() && cdf_[k + 1] <= uj) ++k;
+            guide_[j] = uint32_t(k);
+        }
+    }
     hi_ = -Infinity;
     if (!grid_.empty()) {
         lo_ = grid_.front();
@@ -181,10 +193,9 @@ SampledWavelengths WavelengthSampler::Sample(double u) const {
             double ui = uc + double(i) / NumWavelengths;  // stratified companions (theory §0 D10)
             if (ui >= 1) ui -= 1;
             // First cell whose upper CDF value exceeds ui (cells of zero mass are skipped).
-            auto it = std::upper_bound(cdf_.begin(), cdf_.end(), ui);
-            std::size_t k = std::size_t(std::clamp<std::ptrdiff_t>(it - cdf_.begin(), 1,
-                                                                   std::ptrdiff_t(cdf_.size()) - 1)) -
-                            1;
+            const std::size_t cells = cdf_.size() - 1;
+            std::size_t k = guide_[std::min(cells - 1, std::size_t(ui * double(cells)))];
+            while (k + 1 < cells && cdf_[k + 1] <= ui) ++k;
             const double c0 = cdf_[k], c1 = cdf_[k + 1], a = grid_[k], b = grid_[k + 1];
             const double t = c1 > c0 ? (ui - c0) / (c1 - c0) : 0.5;
             wl.lambda[i] = std::clamp(a + t * (b - a), a, b);
