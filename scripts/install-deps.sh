@@ -9,6 +9,7 @@ PACKAGES=(
   libembree-dev libtbb-dev libopenimageio-dev libimath-dev libopencolorio-dev libosd-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcerf-dev
   libgtest-dev libbenchmark-dev
+  openimageio-tools   # iinfo: the Ctrl-C test reads the partial image's metadata with it
 )
 # Optional extras for `make fuzz` (clang + libFuzzer runtime).
 if [[ "${PHASOR_WITH_FUZZ:-0}" == 1 ]]; then
