@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "core/genray.h"
+#include "core/registry.h"
 #include "core/spectrum.h"
 
 namespace phasor {
@@ -25,6 +26,29 @@ inline double SpectrumIntegral(const Spectrum &s) {
     double sum = s.Eval(a) + s.Eval(b);
     for (int i = 1; i < n; ++i) sum += s.Eval(a + i * h) * (i % 2 ? 4 : 2);
     return sum * h / 3;
+}
+
+/// Factor turning a spectral shape into a spectrum of the given total: total / ∫S dλ.
+inline double TotalScale(const Spectrum &s, double total) {
+    const double integral = SpectrumIntegral(s);
+    return integral > 0 ? total / integral : 0;
+}
+
+/// A `spectrum` parameter that only gives the shape of a total (irradiance, power): its integral
+/// must be positive. `light` names the plug-in in the error.
+inline std::shared_ptr<const Spectrum> ShapeSpectrumParam(const ParamDict &d, BuildContext &ctx,
+                                                          const char *light) {
+    auto spectrum = ctx.GetSpectrum(d, "spectrum");
+    if (!(SpectrumIntegral(*spectrum) > 0))
+        throw Error(d.Loc("spectrum"), std::string("the spectrum of a ") + light + " must have a positive integral");
+    return spectrum;
+}
+
+/// A direction parameter: must not be zero; returned as given (callers normalise).
+inline Vec3 DirectionParam(const ParamDict &d, const char *name) {
+    Vec3 dir = d.GetVector(name);
+    if (!(Length(dir) > 0)) throw Error(d.Loc(name), std::string("'") + name + "' must not be zero");
+    return dir;
 }
 
 /// value[i] = k_i²·f(g_i)·emission[i] for each carried wavelength (radiance units, theory §0 D4).

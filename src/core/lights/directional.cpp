@@ -25,8 +25,7 @@ class DirectionalLight final : public Light {
         return s;
     }
     static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
-        Vec3 dir = d.GetVector("direction");
-        if (!(Length(dir) > 0)) throw Error(d.Loc("direction"), "'direction' must not be zero");
+        Vec3 dir = DirectionParam(d, "direction");
         return std::make_unique<DirectionalLight>(dir, d.GetNumber("irradiance"), ctx.GetSpectrum(d, "spectrum"));
     }
 

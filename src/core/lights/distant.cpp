@@ -32,8 +32,7 @@ class DistantLight final : public Light {
           disc_(disc),
           alpha_(alpha),
           omega_(omega) {
-        const double integral = SpectrumIntegral(*spectrum_);
-        scale_ = integral > 0 ? irradiance_ / integral : 0;
+        scale_ = TotalScale(*spectrum_, irradiance_);
         cosAlpha_ = std::cos(alpha_);
         sin2Alpha_ = Sqr(std::sin(alpha_));
     }
@@ -65,12 +64,9 @@ class DistantLight final : public Light {
         return s;
     }
     static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
-        Vec3 dir = d.GetVector("direction");
-        if (!(Length(dir) > 0)) throw Error(d.Loc("direction"), "'direction' must not be zero");
+        Vec3 dir = DirectionParam(d, "direction");
         const bool disc = d.GetString("profile") == "disc";
-        auto spectrum = ctx.GetSpectrum(d, "spectrum");
-        if (!(SpectrumIntegral(*spectrum) > 0))
-            throw Error(d.Loc("spectrum"), "the spectrum of a distant light must have a positive integral");
+        auto spectrum = ShapeSpectrumParam(d, ctx, "distant light");
         double alpha = d.GetNumber("angular_radius"), omega = alpha * alpha / 4;
         if (d.Has("omega")) {
             if (disc)

@@ -21,8 +21,7 @@ class GaussianBeamLight final : public Light {
   public:
     GaussianBeamLight(Vec3 pos, Vec3 dir, double w0, double power, std::shared_ptr<const Spectrum> s)
         : pos_(pos), dir_(Normalize(dir)), beta2_(0.5 * w0 * w0), power_(power), spectrum_(std::move(s)) {
-        const double integral = SpectrumIntegral(*spectrum_);
-        scale_ = integral > 0 ? power_ / integral : 0;
+        scale_ = TotalScale(*spectrum_, power_);
     }
 
     static const Schema &GetSchema() {
@@ -44,11 +43,8 @@ class GaussianBeamLight final : public Light {
         return s;
     }
     static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
-        Vec3 dir = d.GetVector("direction");
-        if (!(Length(dir) > 0)) throw Error(d.Loc("direction"), "'direction' must not be zero");
-        auto spectrum = ctx.GetSpectrum(d, "spectrum");
-        if (!(SpectrumIntegral(*spectrum) > 0))
-            throw Error(d.Loc("spectrum"), "the spectrum of a gaussian_beam must have a positive integral");
+        Vec3 dir = DirectionParam(d, "direction");
+        auto spectrum = ShapeSpectrumParam(d, ctx, "gaussian_beam");
         return std::make_unique<GaussianBeamLight>(d.GetVector("position"), dir, d.GetNumber("waist_radius"),
                                                    d.GetNumber("power"), spectrum);
     }

@@ -15,8 +15,7 @@ class PlaneWaveLight final : public Light {
   public:
     PlaneWaveLight(Vec3 dir, double e, std::shared_ptr<const Spectrum> s)
         : dir_(Normalize(dir)), irradiance_(e), spectrum_(std::move(s)) {
-        const double integral = SpectrumIntegral(*spectrum_);
-        scale_ = integral > 0 ? irradiance_ / integral : 0;
+        scale_ = TotalScale(*spectrum_, irradiance_);
     }
 
     static const Schema &GetSchema() {
@@ -33,11 +32,8 @@ class PlaneWaveLight final : public Light {
         return s;
     }
     static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
-        Vec3 dir = d.GetVector("direction");
-        if (!(Length(dir) > 0)) throw Error(d.Loc("direction"), "'direction' must not be zero");
-        auto spectrum = ctx.GetSpectrum(d, "spectrum");
-        if (!(SpectrumIntegral(*spectrum) > 0))
-            throw Error(d.Loc("spectrum"), "the spectrum of a plane_wave must have a positive integral");
+        Vec3 dir = DirectionParam(d, "direction");
+        auto spectrum = ShapeSpectrumParam(d, ctx, "plane_wave");
         return std::make_unique<PlaneWaveLight>(dir, d.GetNumber("irradiance"), spectrum);
     }
 
