@@ -38,6 +38,10 @@ struct LightCoherence {
     double omega = 0;   // [rad²]; 0 = fully (spatially) coherent
 };
 
+/// Cross-section π r² of the scene's bounding sphere [m²]: the area through which a light at
+/// infinity sends power into the scene (for relative power estimates).
+double SceneCrossSection(const Bounds3 &sceneBounds);
+
 class Light {
   public:
     virtual ~Light() = default;

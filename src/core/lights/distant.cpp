@@ -142,10 +142,7 @@ class DistantLight final : public Light {
         return LightCoherence{-dir_, disc_ ? alpha_ * alpha_ / 4 : omega_};
     }
 
-    void Preprocess(const Bounds3 &b) override {
-        double r = b.Empty() ? 1 : 0.5 * Length(b.Diagonal());
-        sceneArea_ = Pi * r * r;
-    }
+    void Preprocess(const Bounds3 &b) override { sceneArea_ = SceneCrossSection(b); }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
     double PowerScale() const override { return scale_ * sceneArea_; }
     std::string ToString() const override {

@@ -59,10 +59,7 @@ class PlaneWaveLight final : public Light {
         return DistantIncidence(g, dir_, Emission(wl), 0);
     }
     LightCoherence Coherence(const Vec3 &) const override { return LightCoherence{-dir_, 0}; }
-    void Preprocess(const Bounds3 &b) override {
-        double r = b.Empty() ? 1 : 0.5 * Length(b.Diagonal());
-        sceneArea_ = Pi * r * r;
-    }
+    void Preprocess(const Bounds3 &b) override { sceneArea_ = SceneCrossSection(b); }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
     double PowerScale() const override { return scale_ * sceneArea_; }
     std::string ToString() const override {

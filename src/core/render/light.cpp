@@ -19,4 +19,9 @@ std::optional<GrIncidence> Light::IncidenceOnGR(const SpectralGenRay &, const Sa
 
 LightCoherence Light::Coherence(const Vec3 &) const { return LightCoherence{}; }
 
+double SceneCrossSection(const Bounds3 &b) {
+    const double r = b.Empty() ? 1 : 0.5 * Length(b.Diagonal());
+    return Pi * r * r;
+}
+
 }  // namespace phasor
