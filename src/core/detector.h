@@ -54,6 +54,23 @@ SensorResponse ResponseFromParams(const ParamDict &d);
 std::vector<ParamSpec> CameraParams(std::vector<ParamSpec> extra = {});
 std::pair<int, int> CameraResolution(const ParamDict &d);
 
+/// Geometry of a sensor plane (`virtual_plane`) for integrators that compute the field on it
+/// directly (`rs`): pixel (i, j) has its centre at origin + s·x_i + t·y_j with
+/// x_i = −width/2 + (i + ½)·pitchX, y_j = height/2 − (j + ½)·pitchY; its sensitivity is
+/// N(0, σ²I) about the centre (gaussian) or 1_box ⊛ N(0, σ²) normalised to unit integral (box,
+/// theory §0 D2). Pixels report flux / referenceIrradiance.
+struct SensorPlaneGeometry {
+    Vec3 origin;
+    Frame frame;  // s = image x, t = image −y … up (local +y), n = front normal
+    double width = 0, height = 0, pitchX = 0, pitchY = 0, sigma = 0;
+    int nx = 0, ny = 0;
+    bool gaussianPixel = true;
+    double referenceIrradiance = 1;  // [W/m²]
+    Vec2 PixelCenter(int i, int j) const {
+        return Vec2(-0.5 * width + (i + 0.5) * pitchX, 0.5 * height - (j + 0.5) * pitchY);
+    }
+};
+
 class Detector {
   public:
     explicit Detector(int width, int height, SensorResponse response)
@@ -78,6 +95,8 @@ class Detector {
     /// that reaches the sample's origin unobstructed, integrated analytically over the detector's
     /// directions. Only called when the sample has integratesIncidence.
     virtual SampledSpectrum IntegrateIncidence(const DetectorGrSample &s, const GrIncidence &inc) const;
+    /// Sensor planes describe themselves for field-based integrators; nullptr for cameras.
+    virtual const SensorPlaneGeometry *SensorPlane() const { return nullptr; }
 
     std::string name;
 

@@ -38,6 +38,18 @@ struct LightCoherence {
     double omega = 0;   // [rad²]; 0 = fully (spatially) coherent
 };
 
+/// A coherent monochromatic field for the forward `rs` integrator (theory §6.2): a plane wave of
+/// irradiance `strength` [W/m², normal to `dir`] travelling along `dir`, or a spherical wave from a
+/// point at `pos` of intensity `strength` [W/sr] (isotropic within `Falloff`-free point lights).
+/// Amplitude convention: |U|² = irradiance normal to the local direction of travel.
+struct CoherentWave {
+    enum class Kind { Plane, Spherical } kind = Kind::Plane;
+    Vec3 dir{0, 0, -1};   // plane: unit direction of travel
+    Vec3 pos;             // spherical: source position [m]
+    double strength = 0;  // plane: irradiance E [W/m²]; spherical: intensity I [W/sr]
+    double lambda = 0;    // vacuum wavelength of the line [m]
+};
+
 /// Cross-section π r² of the scene's bounding sphere [m²]: the area through which a light at
 /// infinity sends power into the scene (for relative power estimates).
 double SceneCrossSection(const Bounds3 &sceneBounds);
@@ -83,6 +95,9 @@ class Light {
     /// not used — the caller decides which arrival directions count).
     virtual std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
                                                      const SampledWavelengths &wl) const;
+    /// The field for `rs`: set by monochromatic (line-spectrum) plane waves and isotropic point
+    /// lights; nullopt for everything else (the integrator reports which light it cannot handle).
+    virtual std::optional<CoherentWave> CoherentField() const { return std::nullopt; }
     /// Coherence description at p (theory §0 D5). Default: fully coherent light from nowhere.
     virtual LightCoherence Coherence(const Vec3 &p) const;
 

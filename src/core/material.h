@@ -15,6 +15,10 @@
 
 namespace phasor {
 
+struct SpectralGenRay;
+struct SurfaceInteraction;
+class Shape;
+
 /// Lobe flags returned by Sample().
 enum ScatterFlags : unsigned {
     ScatterReflection = 1u << 0,
@@ -24,6 +28,9 @@ enum ScatterFlags : unsigned {
     /// Dirac delta; for a generalized ray its true angular width is the ray's own spread σ_k/k.
     ScatterNearDelta = 1u << 3,
     ScatterDispersive = 1u << 4,  // direction depends on wavelength (collapse to the hero)
+    /// Footprint-aware kernels (theory §9 item 5): the lobe already holds the GR's angular spread,
+    /// so the outgoing GR is spread-free — later vertices treat it as a classical ray.
+    ScatterSpreadFree = 1u << 5,
 };
 
 /// What a kernel is asked about (design.md §4.1).
@@ -42,7 +49,12 @@ struct ScatterQuery {
     /// near-delta lobes by following the sampled lobe (closed forms, theory §0 D14).
     bool evalNearDelta = true;
     Vec2 uv;                               // surface parameterisation of the hit
-    Vec3 pLocal;                           // hit position in the shape's local frame [m]
+    /// Footprint-aware kernels (IsFootprintAware, theory §9) need the whole incident GR and the
+    /// hit: `gr` is the traced GR at the hit point in world space (gr->d points into the surface,
+    /// per-wavelength k, β², ρ; traced convention, ρ > 0 diverging along d), `si` the interaction
+    /// (world shading frame, shape and its to_world). Both null for classical rays.
+    const SpectralGenRay *gr = nullptr;
+    const SurfaceInteraction *si = nullptr;
 };
 
 struct ScatterSample {
@@ -74,6 +86,18 @@ class Material {
     virtual bool IsDeltaOnly() const = 0;
     /// True if f(wi→wo) = f(wo→wi) (checked by the contract suite).
     virtual bool IsReciprocal() const { return true; }
+    /// Footprint-aware kernels (theory §9) use the incident GR's wave function (ScatterQuery::gr)
+    /// and return spread-free samples; with !q.rayOptics they need q.gr and q.si.
+    virtual bool IsFootprintAware() const { return false; }
+    /// Like Eval, for light from a source at distance `dist` [m] along −wo (a spherical wave whose
+    /// curvature over the GR's footprint matters to footprint-aware kernels); Infinity gives Eval.
+    virtual SampledSpectrum EvalFrom(const ScatterQuery &q, const Vec3 &wo, double dist) const {
+        (void)dist;
+        return Eval(q, wo);
+    }
+    /// Called by the scene builder for every shape that uses this kernel; throws phasor::Error
+    /// (e.g. a planar kernel on a non-planar shape).
+    virtual void CheckShape(const Shape &shape) const { (void)shape; }
     virtual std::string ToString() const = 0;
 };
 

@@ -39,6 +39,7 @@ class Scene {
 
     const Accel &GetAccel() const { return *accel_; }
     const std::vector<const Light *> &Lights() const { return lights_; }
+    const std::vector<std::shared_ptr<Shape>> &Shapes() const { return shapes_; }
     const std::vector<const Light *> &InfiniteLights() const { return infiniteLights_; }
     const Detector &GetDetector() const { return *detector_; }
     const Integrator &GetIntegrator() const { return *integrator_; }

@@ -76,8 +76,12 @@ class Shape {
     /// Uniform sampling by area.
     virtual ShapeSample Sample(const Vec2 &u) const = 0;
     virtual std::string ToString() const = 0;
+    /// True for shapes that lie in their object-space plane z = 0 (rectangle, disk): planar
+    /// kernels such as `aperture` need one.
+    virtual bool IsPlanar() const { return false; }
 
     const Material *material = nullptr;  // set by the builder from `material = @…`
+    phasor::Transform objectToWorld;     // the shape's `to_world` (identity if it has none)
     const Light *areaLight = nullptr;    // set when an `area` light names this shape
     std::string name;
 };

@@ -183,7 +183,6 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
         q_.etaOutside = 1;
         q_.rayOptics = true;
         q_.uv = Vec2(0.13 + 0.19 * c_.incident, 0.61 - 0.07 * c_.incident);
-        q_.pLocal = Vec3(q_.uv.x, q_.uv.y, 0) * 1e-3;
     }
 
     TestRng Rng(const char *test) const { return TestRng(SeedFor(c_.Name() + "/" + test)); }

@@ -131,7 +131,18 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     // Geometry and lights.
     scene->shapes_ = ctx.All<Shape>();
     std::vector<const Shape *> shapes;
-    for (auto &s : scene->shapes_) shapes.push_back(s.get());
+    for (auto &s : scene->shapes_) {
+        shapes.push_back(s.get());
+        if (!s->material) continue;
+        try {
+            s->material->CheckShape(*s);
+        } catch (const Error &e) {
+            const SceneEntity *ent = ctx.EntityOf(s.get());
+            if (e.Loc().Known() || !ent) diag.Report(e);
+            else diag.Report(Error(ent->loc, e.Message()));
+        }
+    }
+    if (diag.HasErrors()) return nullptr;
     try {
         scene->accel_ = std::make_unique<Accel>(shapes);
     } catch (const Error &e) {

@@ -30,6 +30,7 @@ class DiskShape final : public AnalyticDisk {
     static std::vector<ParamDict> TestPresets() {
         return {ParamDict(), ParamDict().Set("radius", Value::Number(0.05, Dim::Length()))};
     }
+    bool IsPlanar() const override { return true; }
 };
 
 PHASOR_EXPORT_PLUGIN(Shape, DiskShape)

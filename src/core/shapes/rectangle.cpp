@@ -40,6 +40,7 @@ class RectangleShape final : public MeshShape {
                                  .Set("height", Value::Number(0.125, Dim::Length()))};
     }
     std::string ToString() const override { return "rectangle " + MeshShape::ToString(); }
+    bool IsPlanar() const override { return true; }
 };
 
 PHASOR_EXPORT_PLUGIN(Shape, RectangleShape)

@@ -28,6 +28,7 @@ inline ParamSpec ToWorldParam() {
 template <typename S>
 std::unique_ptr<Shape> Finish(std::unique_ptr<S> shape, const ParamDict &d, BuildContext &ctx) {
     if (d.Has("material")) shape->material = ctx.GetRef<Material>(d, "material").get();
+    if (d.Has("to_world")) shape->objectToWorld = ctx.GetTransform(d, "to_world");
     return shape;
 }
 
