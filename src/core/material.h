@@ -18,6 +18,7 @@ namespace phasor {
 struct SpectralGenRay;
 struct SurfaceInteraction;
 class Shape;
+class ApertureMask;
 
 /// Lobe flags returned by Sample().
 enum ScatterFlags : unsigned {
@@ -98,6 +99,9 @@ class Material {
     /// Called by the scene builder for every shape that uses this kernel; throws phasor::Error
     /// (e.g. a planar kernel on a non-planar shape).
     virtual void CheckShape(const Shape &shape) const { (void)shape; }
+    /// Aperture kernels: the plate's openings in plate coordinates (core/aperture.h); nullptr for
+    /// every other kernel. The forward `rs` integrator reads them.
+    virtual const ApertureMask *Openings() const { return nullptr; }
     virtual std::string ToString() const = 0;
 };
 
