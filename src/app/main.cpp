@@ -152,6 +152,13 @@ int Render(const CliOptions &o) {
     img.metadata["phasor:sampler"] = opt.sampler;
     img.metadata["phasor:render_seconds"] = std::to_string(st.seconds);
     img.metadata["phasor:cancelled"] = st.cancelled ? "true" : "false";
+    if (const SensorPlaneGeometry *sp = det.SensorPlane()) {  // pixel centres, for `phasor profile`
+        char buf[64];
+        std::snprintf(buf, sizeof buf, "%.17g", sp->PixelCenter(0, 0).x);
+        img.metadata["phasor:x0_m"] = buf;
+        std::snprintf(buf, sizeof buf, "%.17g", sp->pitchX);
+        img.metadata["phasor:pitch_m"] = buf;
+    }
     try {
         WriteExr(exr.string(), img);
         if (det.Response().GetKind() == SensorResponse::Kind::Radiometric)
@@ -165,6 +172,10 @@ int Render(const CliOptions &o) {
     if (!o.quiet) {
         std::cerr << (st.cancelled ? "interrupted: " : "") << "rendered " << st.sppReached << " spp in "
                   << FormatDuration(st.seconds) << " with " << scene->GetIntegrator().name << "\n";
+        if (st.footprintAfterSpreadFree > 0)
+            std::cerr << "warning: " << st.footprintAfterSpreadFree
+                      << " path vertices met an aperture after another aperture; it acted geometrically "
+                         "(only the first footprint-aware kernel on a path diffracts)\n";
         if (st.invalidSamples > 0)
             std::cerr << "warning: " << st.invalidSamples << " samples were NaN/Inf/negative and were discarded\n";
         std::cerr << "wrote " << exr.string() << " and " << png.string() << "\n";

@@ -33,6 +33,7 @@ struct DetectorGrSample {
     /// True if the detector integrates closed-form sources analytically over its directions (D4a,
     /// IntegrateIncidence); then the sampled GR must not measure them itself.
     bool integratesIncidence = false;
+    double maxLambda = 0;  // longest carried wavelength [m] (sensor planes size their regions by it)
 };
 
 /// Where a sample sits among its pixel's samples (for stratifying directions across them, D4b).

@@ -31,6 +31,9 @@ struct RenderStats {
     double seconds = 0;
     long long invalidSamples = 0;  // NaN/Inf/negative estimates discarded (never written)
     long long rays = 0;            // rays traced (intersection + shadow)
+    /// Footprint-aware kernels (apertures) reached by a GR that had already left one: they acted
+    /// geometrically (re-fitting the footprint after an aperture is future work; theory §9.5).
+    long long footprintAfterSpreadFree = 0;
 };
 
 class Integrator {

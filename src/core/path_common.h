@@ -50,7 +50,7 @@ inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceIntera
     auto ls = light->SampleLi(ctx, uPos, wl);
     if (!ls || !(ls->pdf > 0) || ls->L.IsZero()) return SampledSpectrum(0.0);
     const Vec3 wo = si.shading.ToLocal(ls->wi);
-    const SampledSpectrum f = mat.Eval(q, wo) * std::abs(wo.z);
+    const SampledSpectrum f = mat.EvalFrom(q, wo, ls->dist) * std::abs(wo.z);
     if (f.IsZero()) return SampledSpectrum(0.0);
     ++stats.rays;
     const bool blocked = std::isinf(ls->dist) ? scene.OccludedDirection(si, ls->wi)

@@ -15,6 +15,8 @@ namespace phasor {
 /// samples with it, theory §0 D4b).
 struct PathStats {
     long long rays = 0;
+    /// Vertices where a footprint-aware kernel met a spread-free GR and acted geometrically.
+    long long footprintAfterSpreadFree = 0;
     PixelSampleIndex sample;
 };
 

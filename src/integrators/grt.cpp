@@ -96,6 +96,11 @@ class GrtIntegrator final : public PixelIntegrator {
 
         path::MisState mis;          // the detector counts as a delta vertex
         bool closedFormDone = true;  // the current GR has measured the closed-form sources
+        // After a footprint-aware kernel the GR is spread-free (theory §9 item 5): its angular
+        // spread is inside that kernel's lobe, so later vertices see a classical ray (near-delta
+        // lobes become deltas, delta sources are not measured again, area and distant sources by
+        // direction only).
+        bool spreadFree = false;
         auto skipClosedForm = [](const Light *l) { return l->MeasuredInClosedForm(); };
         for (int depth = 0;; ++depth) {
             ++stats.rays;
@@ -117,11 +122,14 @@ class GrtIntegrator final : public PixelIntegrator {
             ScatterQuery q;
             q.wi = frame.ToLocal(-g.d);
             q.wl = &wl;
-            q.rayOptics = false;
-            q.beta2 = g.beta2[0];
-            q.rho = g.rho[0];
+            q.rayOptics = spreadFree;  // a spread-free GR continues as a classical ray (theory §9.5)
+            q.beta2 = spreadFree ? 0 : g.beta2[0];
+            q.rho = spreadFree ? 0 : g.rho[0];
             q.evalNearDelta = false;
             q.uv = si->uv;
+            q.gr = spreadFree ? nullptr : &g;
+            q.si = &*si;
+            if (spreadFree && mat->IsFootprintAware()) ++stats.footprintAfterSpreadFree;
 
             // Next-event estimation through the continuous lobes.
             const double uLight = sampler.Get1D();
@@ -141,9 +149,10 @@ class GrtIntegrator final : public PixelIntegrator {
             g.Redirect(wo, bs->eta);
             g.o = si->SpawnOrigin(wo);
             const bool nearDelta = (bs->flags & ScatterNearDelta) != 0;
+            spreadFree = spreadFree || (bs->flags & ScatterSpreadFree) != 0;
             mis = path::MisState{nearDelta, bs->pdf, LightSampleContext{si->p, si->n}};
-            closedFormDone = nearDelta;
-            if (nearDelta) {
+            closedFormDone = nearDelta && !spreadFree;
+            if (nearDelta && !spreadFree) {
                 // D14: the lobe faces delta and small sources; measure them in closed form.
                 L += T * MeasureClosedForm(scene, g, &*si, wl, stats);
                 measured = true;

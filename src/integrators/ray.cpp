@@ -53,6 +53,7 @@ class RayIntegrator final : public PixelIntegrator {
             q.wl = &wl;
             q.rayOptics = true;
             q.uv = si->uv;
+            q.si = &*si;
 
             // Next-event estimation (the samples are drawn even when unused, to keep dimensions aligned).
             double uLight = sampler.Get1D();

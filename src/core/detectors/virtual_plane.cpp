@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // `virtual_plane`: a measurement plane (sensor) of given extent and resolution whose pixels
-// report irradiance — the power per unit area crossing the plane from its front side
-// (theory §0 D2, D4). The plane is the local z = 0 square of `extent` centred at the origin, front
+// report irradiance — the power per unit area crossing the plane from its front side — divided by
+// `reference_irradiance` (E_ref, default 1 W/m²; theory §0 D2, D4: set it to the source's
+// irradiance and the EXR `intensity` is flux / incident irradiance). The plane is the local z = 0 square of `extent` centred at the origin, front
 // normal +z, placed by `to_world`; image x runs along local +x, image y along local −y. One-row
 // sensors (N×1) are allowed; `pitch` sets resolution = round(extent/pitch) per axis.
 //
@@ -14,7 +15,8 @@
 // Directions (D4, D4b): 𝒟 = 1 per unit sensor-plane transverse wavevector d²κ = k²cosθ dω. The GR's
 // direction is sampled uniformly in the direction cosines (κ/k) over the acceptance cone of
 // half-angle `acceptance` about the normal — or, with `aim = @shape`, over the box spanned by that
-// shape's bounding box seen from the pixel, widened by 5β (as an angle) and 6σ_θ — stratified
+// shape's bounding box (an aperture plate: its openings' bounding box) seen from the pixel, widened
+// by 5β (as an angle) and 6σ_θ at the longest carried wavelength — stratified
 // across the pixel's samples (a rotated lattice when spp is a square). In radiance units the weight
 // is the sampled region's area in direction cosines, so the pixel mean is ∫L cosθ dω = irradiance.
 // Closed-form sources (plane wave, point, distant, Gaussian beam) are integrated over the directions
@@ -22,7 +24,9 @@
 // exact to ~1e-9 where sampling would need ~1e10 samples.
 #include <cmath>
 
+#include "core/aperture.h"
 #include "core/detector.h"
+#include "core/material.h"
 #include "core/registry.h"
 
 namespace phasor {
@@ -32,6 +36,7 @@ class VirtualPlane final : public Detector {
     struct Config {
         Transform toWorld;
         double width, height, sigma, acceptance;
+        double referenceIrradiance = 1;  // E_ref [W/m²]: pixels report flux / E_ref (D4)
         bool gaussianPixel;
         std::shared_ptr<Shape> aim;
     };
@@ -46,6 +51,18 @@ class VirtualPlane final : public Detector {
         pitchY_ = c_.height / ny;
         sinAcc_ = std::sin(c_.acceptance);
         beta2_ = 2 * c_.sigma * c_.sigma;
+        geom_.origin = origin_;
+        geom_.frame = frame_;
+        geom_.width = c_.width;
+        geom_.height = c_.height;
+        geom_.pitchX = pitchX_;
+        geom_.pitchY = pitchY_;
+        geom_.sigma = c_.sigma;
+        geom_.nx = nx;
+        geom_.ny = ny;
+        geom_.gaussianPixel = c_.gaussianPixel;
+        geom_.referenceIrradiance = c_.referenceIrradiance;
+        if (c_.aim) aimCorners_ = AimCorners(*c_.aim);
     }
 
     static const Schema &GetSchema() {
@@ -74,7 +91,15 @@ class VirtualPlane final : public Detector {
                  .Default(Value::Number(Pi / 2, Dim::Angle()))
                  .Min(0, true)
                  .Max(Pi / 2),
-             P::Ref("aim", "shape", "sample only directions towards this shape's bounding box (D4b)"),
+             P::Ref("aim", "shape",
+                    "sample only directions towards this shape's bounding box, or towards the openings "
+                    "of an aperture plate (D4b)"),
+             P::Number("reference_irradiance",
+                       "pixels report flux per unit area divided by this (E_ref, theory D4; set it to the "
+                       "source's irradiance for flux / incident irradiance)",
+                       Dim::Irradiance())
+                 .Default(Value::Number(1, Dim::Irradiance()))
+                 .Min(0, true),
              ResponseParam("radiometric")}};
         return s;
     }
@@ -106,6 +131,7 @@ class VirtualPlane final : public Detector {
         c.acceptance = d.GetNumber("acceptance");
         c.gaussianPixel = d.GetString("pixel") == "gaussian";
         if (d.Has("aim")) c.aim = ctx.GetRef<Shape>(d, "aim");
+        c.referenceIrradiance = d.GetNumber("reference_irradiance");
         return std::make_unique<VirtualPlane>(nx, ny, ResponseFromParams(d), std::move(c));
     }
 
@@ -117,16 +143,14 @@ class VirtualPlane final : public Detector {
     }
 
     /// The sampled region in direction cosines (u = (d·s, d·t)) for a GR at p: [lo, hi].
-    void Region(const Vec3 &p, Vec2 *lo, Vec2 *hi) const {
+    /// maxLambda: the longest wavelength the GR carries (sets the 6σ_θ margin).
+    void Region(const Vec3 &p, double maxLambda, Vec2 *lo, Vec2 *hi) const {
         *lo = Vec2(-sinAcc_, -sinAcc_);
         *hi = Vec2(sinAcc_, sinAcc_);
         if (!c_.aim) return;
-        const Bounds3 b = c_.aim->Bounds();
         Vec2 alo(Infinity, Infinity), ahi(-Infinity, -Infinity);
         double minDist = Infinity;
-        for (int i = 0; i < 8; ++i) {
-            const Vec3 corner((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y,
-                              (i & 4) ? b.hi.z : b.lo.z);
+        for (const Vec3 &corner : aimCorners_) {
             const Vec3 l = frame_.ToLocal(corner - p);
             const double dist = Length(l);
             if (!(l.z > 1e-9 * dist)) return;  // the box reaches behind the plane: keep the full cone
@@ -135,15 +159,17 @@ class VirtualPlane final : public Detector {
             ahi = Vec2(std::max(ahi.x, u.x), std::max(ahi.y, u.y));
             minDist = std::min(minDist, dist);
         }
-        // Widen by 5β (seen from the nearest corner) and 6σ_θ at the longest wavelength in use
-        // (σ_θ = 1/(2σ_pix k) grows with λ; 2 µm covers the bands phasor samples in practice).
-        const double margin = 5 * std::sqrt(beta2_) / minDist + 6 * MaxAngularSigma();
+        // Widen by 5β (seen from the nearest corner) and 6σ_θ at the longest wavelength carried
+        // (σ_θ = 1/(2σ_pix k) grows with λ).
+        const double margin = 5 * std::sqrt(beta2_) / minDist + 6 * AngularSigma(maxLambda);
         lo->x = std::max(lo->x, alo.x - margin);
         lo->y = std::max(lo->y, alo.y - margin);
         hi->x = std::min(hi->x, ahi.x + margin);
         hi->y = std::min(hi->y, ahi.y + margin);
     }
-    double MaxAngularSigma() const { return 1 / (2 * c_.sigma * (2 * Pi / 2e-6)); }
+    double AngularSigma(double lambda) const { return 1 / (2 * c_.sigma * (2 * Pi / lambda)); }
+    /// Classical rays carry no wavelength here: 2 µm covers the bands phasor samples in practice.
+    static constexpr double ClassicalMaxLambda = 2e-6;
 
     /// Direction from a sample u ∈ [0,1)² over [lo, hi]; nullopt outside the cone.
     std::optional<Vec3> Direction(const Vec2 &u, const Vec2 &lo, const Vec2 &hi) const {
@@ -153,14 +179,31 @@ class VirtualPlane final : public Detector {
         return frame_.ToWorld(Vec3(ux, uy, std::sqrt(1 - r2)));
     }
 
+    /// The points whose directions bound the aimed region: the corners of the openings of an
+    /// aperture plate (its plate is far larger than what diffracts), else of the shape's bounds.
+    static std::vector<Vec3> AimCorners(const Shape &aim) {
+        std::vector<Vec3> out;
+        const ApertureMask *open = aim.material ? aim.material->Openings() : nullptr;
+        if (open && !open->Empty()) {
+            const PlateFrame pf = PlateFrame::FromTransform(aim.objectToWorld);
+            const Bounds2 b = open->Bounds();
+            for (int i = 0; i < 4; ++i) out.push_back(pf.ToWorld(Vec2((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y)));
+            return out;
+        }
+        const Bounds3 b = aim.Bounds();
+        for (int i = 0; i < 8; ++i)
+            out.push_back(Vec3((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z));
+        return out;
+    }
+
     std::optional<DetectorSample> Generate(const Vec2 &pFilm, const Vec2 &uDir) const override {
         const Vec3 p = PlanePoint(pFilm);
         Vec2 lo, hi;
-        Region(p, &lo, &hi);
+        Region(p, ClassicalMaxLambda, &lo, &hi);
         if (!(hi.x > lo.x && hi.y > lo.y)) return std::nullopt;
         auto d = Direction(uDir, lo, hi);
         if (!d) return std::nullopt;
-        return DetectorSample{Ray{p, *d}, (hi.x - lo.x) * (hi.y - lo.y)};
+        return DetectorSample{Ray{p, *d}, (hi.x - lo.x) * (hi.y - lo.y) / c_.referenceIrradiance};
     }
 
     bool SupportsGR() const override { return true; }
@@ -174,13 +217,14 @@ class VirtualPlane final : public Detector {
         for (int i = 0; i < wl.Count(); ++i) {
             s.beta2[i] = beta2_;
             s.rho[i] = 0;
+            s.maxLambda = std::max(s.maxLambda, wl.lambda[i]);
         }
         Vec2 lo, hi;
-        Region(s.ray.o, &lo, &hi);
+        Region(s.ray.o, s.maxLambda, &lo, &hi);
         auto d = hi.x > lo.x && hi.y > lo.y ? Direction(uDir, lo, hi) : std::nullopt;
         // Outside the cone the sample still carries the analytic part (D4a): weight 0, any direction.
         s.ray.d = d ? *d : frame_.n;
-        s.weight = d ? (hi.x - lo.x) * (hi.y - lo.y) : 0;
+        s.weight = d ? (hi.x - lo.x) * (hi.y - lo.y) / c_.referenceIrradiance : 0;
         return s;
     }
 
@@ -194,11 +238,13 @@ class VirtualPlane final : public Detector {
         double frac = c_.acceptance >= Pi / 2 ? 1.0 : DiscGaussianProbability(Length(us), sinAcc_, sigma);
         if (c_.aim) {
             Vec2 lo, hi;
-            Region(s.ray.o, &lo, &hi);
+            Region(s.ray.o, s.maxLambda, &lo, &hi);
             frac *= RectGaussianProbability(us, sigma, lo, hi);
         }
-        return inc.irradiance * (cosTheta * frac);
+        return inc.irradiance * (cosTheta * frac / c_.referenceIrradiance);
     }
+
+    const SensorPlaneGeometry *SensorPlane() const override { return &geom_; }
 
     std::string ToString() const override {
         return "virtual_plane { resolution = [" + std::to_string(Width()) + " " + std::to_string(Height()) +
@@ -212,6 +258,8 @@ class VirtualPlane final : public Detector {
     Vec3 origin_;
     Frame frame_;
     double pitchX_, pitchY_, sinAcc_, beta2_;
+    SensorPlaneGeometry geom_;
+    std::vector<Vec3> aimCorners_;  // AimCorners(*c_.aim), empty without `aim`
 };
 
 PHASOR_EXPORT_PLUGIN(Detector, VirtualPlane)

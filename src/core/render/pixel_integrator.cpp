@@ -48,7 +48,10 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                         }
             },
             tbb::simple_partitioner());
-        local.combine_each([&](const PathStats &p) { stats.rays += p.rays; });
+        local.combine_each([&](const PathStats &p) {
+            stats.rays += p.rays;
+            stats.footprintAfterSpreadFree += p.footprintAfterSpreadFree;
+        });
         done = end;
         batch = std::min(batch * 2, 16);
         if (opt.progress) opt.progress(done, opt.spp);
