@@ -14,7 +14,7 @@ namespace phasor {
 const std::vector<std::string> &MathFunctionNames() {
     static const std::vector<std::string> names = {
         "abs", "acos",  "asin", "atan", "atan2", "ceil",  "clamp", "cos",  "exp", "floor", "hypot",
-        "log", "log10", "max",  "min",  "pow",   "round", "sin",   "sqrt", "tan", "trunc"};
+        "log", "log10", "max",  "min",  "pow",   "round", "select", "sin", "sqrt", "tan", "trunc"};
     return names;
 }
 
@@ -274,6 +274,14 @@ std::optional<Value> Evaluator::EvalMath(const Expr &e, std::vector<Value> &args
                        std::to_string(args.size()));
         return false;
     };
+    if (f == "select") {  // select(condition, a, b): a if the boolean condition holds, else b
+        if (!arity(3, 3)) return std::nullopt;
+        if (args[0].kind != Value::Kind::Bool) {
+            Error(args[0].loc, "'select' needs a boolean condition first; got " + DescribeValue(args[0]));
+            return std::nullopt;
+        }
+        return args[0].boolean ? args[1] : args[2];
+    }
     // Every argument must be a real number (abs also takes a complex number).
     for (const Value &a : args)
         if (a.kind != Value::Kind::Number && !(f == "abs" && a.kind == Value::Kind::Complex)) {

@@ -205,7 +205,7 @@ TEST(Parser, MathFunctions) {
             "  e = cos(0)  f = abs(-2 K)  g = pow(2 m, 3)  h = floor(2.7)  i = ceil(2.1)"
             "  j = asin(1)  k = atan2(1 m, 1 m)  l = exp(0)  m = log(1)  n = clamp(5, 0, 3)"
             "  o = hypot(3 m, 4 m)  p = abs(3+4i)  q = pow(2, 10)  r = log10(1000)  s = tan(45 deg)"
-            "  t = trunc(-2.5)");
+            "  t = trunc(-2.5)  u = select(2 > 1, 4 um, 5 m)  v = select(false, 1, [2 3])");
     ASSERT_TRUE(p.desc) << p.Errors();
     ExpectNumber(Param(p, "a"), 2, Dim::Length());
     ExpectNumber(Param(p, "b"), 2e-3, Dim::Length());
@@ -229,6 +229,8 @@ TEST(Parser, MathFunctions) {
     ExpectNumber(Param(p, "r"), 3, Dim::None(), 1e-15);
     ExpectNumber(Param(p, "s"), 1, Dim::None(), 1e-14);
     ExpectNumber(Param(p, "t"), -2, Dim::None());
+    ExpectNumber(Param(p, "u"), 4e-6, Dim::Length());
+    EXPECT_EQ(Param(p, "v").items.size(), 2u);
 }
 
 TEST(Parser, BooleanExpressions) {
