@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: Apache-2.0
+// Circular aperture (Airy ring) and van Cittert–Zernike: spatial coherence of an incoherent disc
+// source seen through two narrow slits (theory §9 "Double-slit validation numbers", D5).
+#include <cmath>
+#include <cstdio>
+
+#include "validation/render_row.h"
+
+namespace phasor {
+namespace {
+
+using test::RenderRow;
+using test::Row;
+
+TEST(CircularAperture, FirstDarkRingAtTheAiryRadius) {
+    // D = 100 µm, z = 50 mm, λ = 1 µm: r₁ = 1.22·λz/D = 610 µm (first zero of J₁: 3.8317/π·λz/D).
+    const Row r = RenderRow(test::ValidationScene("circular_aperture.wscene"), {}, "grt");
+    ASSERT_FALSE(r.v.empty());
+    const double expected = 3.8317059702075125 / Pi * 1e-6 * 0.05 / 100e-6, pitch = 10e-6;
+    // The first local minimum on the +x side of the axis.
+    std::size_t centre = 0;
+    while (centre + 1 < r.x.size() && r.x[centre] < 0) ++centre;
+    std::size_t i = centre;
+    while (i + 1 < r.v.size() && r.v[i + 1] < r.v[i]) ++i;
+    std::printf("Airy: first minimum at %.1f um (expected %.1f um, pitch %.0f um); I_min/I_0 = %.2e\n",
+                r.x[i] * 1e6, expected * 1e6, pitch * 1e6, r.v[i] / r.v[centre]);
+    EXPECT_NEAR(r.x[i], expected, pitch);
+}
+
+/// V = (P − P₁ − P₂)/(P₁ + P₂) at x = 0 (theory §9) for the given source Defines.
+double Visibility(const DefineList &source) {
+    auto at0 = [&](const DefineList &extra) {
+        DefineList defs = source;
+        defs.insert(defs.end(), extra.begin(), extra.end());
+        const Row r = RenderRow(test::ValidationScene("double_slit.wscene"), defs, "grt");
+        EXPECT_EQ(r.v.size(), 1u);
+        return r.v.empty() ? 0.0 : r.v[0];
+    };
+    const double p = at0({}), p1 = at0({{"slit2", "false"}}), p2 = at0({{"slit1", "false"}});
+    return (p - p1 - p2) / (p1 + p2);
+}
+
+TEST(VanCittertZernike, FringeVisibilityFollowsTheDiscCoherence) {
+    // Narrow slits (b = 10 µm) and one pixel at x = 0; a uniform disc of angular radius α = v/(kd)
+    // at 50 mm. The visibility normalised by its α → 0 value (the plane wave) follows 2J₁(v)/v.
+    for (int d : {100, 200}) {
+        const DefineList base = {{"b", "10um"}, {"d", std::to_string(d) + "um"}, {"width", "25um"}, {"spp", "16384"}};
+        const double v0 = Visibility(base);
+        for (double v : {0.5, 1.5, 2.5, 3.2, 5.0, 6.0}) {
+            const double alpha = v / (2 * Pi / 1e-6 * d * 1e-6);
+            DefineList defs = base;
+            defs.push_back({"source", "disc"});
+            defs.push_back({"alpha", std::to_string(alpha) + "rad"});
+            const double vis = Visibility(defs) / v0, expected = 2 * std::cyl_bessel_j(1.0, v) / v;
+            std::printf("d = %d um, v = %.1f: V/V0 = %+.4f, 2J1(v)/v = %+.4f\n", d, v, vis, expected);
+            EXPECT_NEAR(vis, expected, 0.02) << "d = " << d << ", v = " << v;
+        }
+    }
+}
+
+}  // namespace
+}  // namespace phasor

@@ -1,0 +1,62 @@
+// SPDX-License-Identifier: Apache-2.0
+// Validation tests: render a scene file with -D overrides and an integrator, read back one row.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "core/scene.h"
+#include "parser/parser.h"
+#include "support/scene_builder.h"
+
+namespace phasor::test {
+
+inline std::string ValidationScene(const std::string &name) {
+    return std::string(PHASOR_SOURCE_DIR) + "/scenes/validation/" + name;
+}
+
+struct Row {
+    std::vector<double> x, v;  // pixel centres [m], intensity (flux / E)
+    double seconds = 0;
+    double Peak() const { return *std::max_element(v.begin(), v.end()); }
+};
+
+/// Renders the scene with -D overrides and the given integrator; the middle row's intensity.
+inline Row RenderRow(const std::string &scene, const DefineList &defines, const std::string &integrator, int spp = 0) {
+    Diagnostics diag;
+    auto desc = ParseSceneFile(scene, defines, diag);
+    std::ostringstream os;
+    diag.Print(os);
+    EXPECT_TRUE(desc) << os.str();
+    if (!desc) return {};
+    auto built = Scene::Build(*desc, diag, integrator);
+    diag.Print(os);
+    EXPECT_TRUE(built) << os.str();
+    if (!built) return {};
+    const auto start = std::chrono::steady_clock::now();
+    const Image img = test::RenderImage(*built, spp > 0 ? spp : built->Settings().spp);
+    Row r;
+    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const SensorPlaneGeometry *sp = built->GetDetector().SensorPlane();
+    EXPECT_TRUE(sp);
+    const int c = img.ChannelIndex("intensity"), y = img.height / 2;
+    for (int i = 0; i < img.width; ++i) {
+        r.x.push_back(sp ? sp->PixelCenter(i, y).x : i);
+        r.v.push_back(img.At(i, y, c));
+    }
+    return r;
+}
+
+inline double MaxDiffOfPeak(const Row &a, const Row &ref) {
+    EXPECT_EQ(a.v.size(), ref.v.size());
+    double m = 0;
+    for (std::size_t i = 0; i < std::min(a.v.size(), ref.v.size()); ++i) m = std::max(m, std::abs(a.v[i] - ref.v[i]));
+    return m / ref.Peak();
+}
+
+}  // namespace phasor::test
