@@ -10,6 +10,7 @@ PACKAGES=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcerf-dev
   libgtest-dev libbenchmark-dev
   openimageio-tools   # iinfo: the Ctrl-C test reads the partial image's metadata with it
+  fonts-dejavu-core   # DejaVu Sans: the text of `phasor profile` plots (core/image/plot.cpp)
 )
 # Optional extras for `make fuzz` (clang + libFuzzer runtime).
 if [[ "${PHASOR_WITH_FUZZ:-0}" == 1 ]]; then

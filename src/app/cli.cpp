@@ -2,6 +2,8 @@
 #include "app/cli.h"
 
 #include <charconv>
+#include <cmath>
+#include <cstdlib>
 
 namespace phasor {
 
@@ -10,6 +12,13 @@ template <typename T>
 bool ParseInt(const std::string &s, T &out) {
     auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
     return ec == std::errc() && p == s.data() + s.size();
+}
+// A finite decimal number, the whole string.
+bool ParseDouble(const std::string &s, double &out) {
+    if (s.empty() || std::isspace(static_cast<unsigned char>(s[0]))) return false;
+    char *end = nullptr;
+    out = std::strtod(s.c_str(), &end);
+    return end == s.c_str() + s.size() && std::isfinite(out);
 }
 }  // namespace
 
@@ -28,6 +37,7 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
     else if (cmd == "format") o.command = Command::Format;
     else if (cmd == "list") o.command = Command::List;
     else if (cmd == "describe") o.command = Command::Describe;
+    else if (cmd == "profile") o.command = Command::Profile;
     else {
         err = "unknown command '" + cmd + "'";
         return false;
@@ -65,6 +75,32 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
                 return false;
             }
             o.defines.emplace_back(def.substr(0, eq), def.substr(eq + 1));
+        } else if (o.command == Command::Profile && (a == "--row" || a == "--channel" || a == "--csv" ||
+                                                      a == "--plot" || a == "--label" || a == "--title")) {
+            if (!value(a, v)) return false;
+            auto &p = o.profile;
+            if (a == "--row") {
+                if (!ParseInt(v, p.row) || p.row < 0) {
+                    err = "'--row' expects a non-negative whole number; got '" + v + "'";
+                    return false;
+                }
+            } else if (a == "--channel") p.channel = v;
+            else if (a == "--csv") p.csv = v;
+            else if (a == "--plot") p.plot = v;
+            else if (a == "--label") p.labels.push_back(v);
+            else p.title = v;
+        } else if (o.command == Command::Profile && (a == "--x0" || a == "--pitch" || a == "--diff-scale")) {
+            if (!value(a, v)) return false;
+            auto &p = o.profile;
+            double d;
+            if (!ParseDouble(v, d) || (a != "--x0" && !(d > 0))) {
+                err = "'" + a + "' expects a " + (a == "--x0" ? "finite" : "positive") + " number" +
+                      (a == "--diff-scale" ? "" : " (metres)") + "; got '" + v + "'";
+                return false;
+            }
+            if (a == "--x0") { p.x0 = d; p.hasX0 = true; }
+            else if (a == "--pitch") { p.pitch = d; p.hasPitch = true; }
+            else p.diffScale = d;
         } else if (a == "--quiet" || a == "-q") o.quiet = true;
         else if (a == "--strict") o.strict = true;
         else if (a == "--markdown") o.markdown = true;
@@ -94,6 +130,18 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
             o.family = positional[0];
             o.name = positional[1];
             break;
+        case Command::Profile: {
+            auto &p = o.profile;
+            if (positional.empty()) { err = "'profile' expects at least one image file"; return false; }
+            p.inputs = positional;
+            if (!p.labels.empty() && p.labels.size() != p.inputs.size()) {
+                err = "'profile' got " + std::to_string(p.labels.size()) + " --label for " +
+                      std::to_string(p.inputs.size()) + " images (give one per image, in order)";
+                return false;
+            }
+            if (p.hasX0 != p.hasPitch) { err = "'--x0' and '--pitch' go together"; return false; }
+            break;
+        }
         default: break;
     }
     return true;

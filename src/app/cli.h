@@ -8,7 +8,7 @@
 
 namespace phasor {
 
-enum class Command { Help, Version, Render, Check, Format, List, Describe };
+enum class Command { Help, Version, Render, Check, Format, List, Describe, Profile };
 
 struct CliOptions {
     Command command = Command::Help;
@@ -17,6 +17,19 @@ struct CliOptions {
     long long seed = -1;
     bool quiet = false, strict = false, markdown = false;
     std::vector<std::pair<std::string, std::string>> defines;  // -D name=value, in order
+
+    // `profile`: one image row of each input as CSV and/or a line plot.
+    struct ProfileOptions {
+        std::vector<std::string> inputs;  // EXR files
+        int row = -1;                     // -1: each image's middle row
+        std::string channel = "intensity";
+        std::string csv, plot;            // output paths ("" = not written; csv "-" = stdout)
+        std::vector<std::string> labels;  // one per input, or empty
+        bool hasX0 = false, hasPitch = false;
+        double x0 = 0, pitch = 0;         // metres: x of pixel 0's centre, pixel pitch
+        double diffScale = 1;             // |a − b| is drawn magnified by this factor
+        std::string title;
+    } profile;
 };
 
 /// Fills `o` from argv; on a usage error returns false with a message in `err`.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — the command-line program: render, check, format, list, describe.
+// phasor — the command-line program: render, check, format, list, describe, profile.
 #include <unistd.h>
 
 #include <atomic>
@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "app/cli.h"
+#include "app/profile.h"
 #include "core/image_io.h"
 #include "core/registry.h"
 #include "core/scene.h"
@@ -43,6 +44,11 @@ const char *kUsage =
     "                      detector integrator)\n"
     "  describe FAMILY NAME   print a plug-in's parameters\n"
     "  describe --markdown    print every plug-in's parameters as Markdown (docs/plugins.md)\n"
+    "  profile IMAGE.exr [IMAGE.exr ...] [--row N] [--channel NAME] [--csv FILE|-] [--plot FILE.png]\n"
+    "          [--label NAME ...] [--x0 M --pitch M] [--diff-scale N] [--title TEXT]\n"
+    "                      one row (default: the middle one) of a channel (default: intensity) of\n"
+    "                      each image as CSV (stdout unless --csv/--plot) and/or a line plot; with\n"
+    "                      two images also |a - b| and max |a - b| / max(b)\n"
     "  --version, --help\n";
 
 bool Colour() { return isatty(2) && !std::getenv("NO_COLOR"); }
@@ -260,6 +266,7 @@ int main(int argc, char **argv) {
             case Command::Format: return Format(o);
             case Command::List: return List(o);
             case Command::Describe: return Describe(o);
+            case Command::Profile: return RunProfile(o);
         }
     } catch (const Error &e) {
         std::cerr << (e.Loc().Known() ? e.Loc().ToString() + ": " : "") << "error: " << e.Message() << "\n";

@@ -18,6 +18,7 @@
 
 #include "core/diagnostics.h"
 #include "core/image/color.h"
+#include "core/image/oiio_write.h"
 #include "core/image_io.h"
 
 namespace phasor {
@@ -47,9 +48,32 @@ void CheckShape(const std::string &path, const Image &img) {
                              std::to_string(img.data.size()) + " values");
 }
 
-// Writes `pixels` (of type `type`, packed) described by `spec` to `path` with the OIIO plug-in
-// for `format`, through a temporary file in the same directory that is renamed into place; on
-// any failure the temporary file is removed and phasor::Error is thrown.
+// Display-referred [0,1] value → 8-bit code, round to nearest.
+uint8_t Quantize8(float v) {
+    if (!(v > 0)) return 0;  // also NaN
+    if (v >= 1) return 255;
+    return uint8_t(std::lround(double(v) * 255.0));
+}
+
+// Viridis (van der Walt & Smith 2015, matplotlib's default colour map): the published sRGB colours
+// at t = 0, 1/9, …, 1; interpolated linearly in between.
+constexpr uint8_t Viridis[10][3] = {
+    {0x44, 0x01, 0x54}, {0x48, 0x28, 0x78}, {0x3E, 0x4A, 0x89}, {0x31, 0x68, 0x8E},
+    {0x26, 0x82, 0x8E}, {0x1F, 0x9E, 0x89}, {0x35, 0xB7, 0x79}, {0x6D, 0xCD, 0x59},
+    {0xB4, 0xDE, 0x2C}, {0xFD, 0xE7, 0x25}};
+
+void ViridisColor(double t, uint8_t rgb[3]) {
+    t = Clamp(t, 0, 1) * 9;
+    int i = std::min(int(t), 8);
+    double f = t - i;
+    for (int c = 0; c < 3; ++c)
+        rgb[c] = uint8_t(std::lround(Lerp(f, Viridis[i][c], Viridis[i + 1][c])));
+}
+
+}  // namespace
+
+namespace detail {
+
 void WriteAtomically(const std::string &path, const char *format, const OIIO::ImageSpec &spec,
                      OIIO::TypeDesc type, const void *pixels) {
     const fs::path target(path);
@@ -98,29 +122,7 @@ void WriteAtomically(const std::string &path, const char *format, const OIIO::Im
     if (ec) fail(ec.message());
 }
 
-// Display-referred [0,1] value → 8-bit code, round to nearest.
-uint8_t Quantize8(float v) {
-    if (!(v > 0)) return 0;  // also NaN
-    if (v >= 1) return 255;
-    return uint8_t(std::lround(double(v) * 255.0));
-}
-
-// Viridis (van der Walt & Smith 2015, matplotlib's default colour map): the published sRGB colours
-// at t = 0, 1/9, …, 1; interpolated linearly in between.
-constexpr uint8_t Viridis[10][3] = {
-    {0x44, 0x01, 0x54}, {0x48, 0x28, 0x78}, {0x3E, 0x4A, 0x89}, {0x31, 0x68, 0x8E},
-    {0x26, 0x82, 0x8E}, {0x1F, 0x9E, 0x89}, {0x35, 0xB7, 0x79}, {0x6D, 0xCD, 0x59},
-    {0xB4, 0xDE, 0x2C}, {0xFD, 0xE7, 0x25}};
-
-void ViridisColor(double t, uint8_t rgb[3]) {
-    t = Clamp(t, 0, 1) * 9;
-    int i = std::min(int(t), 8);
-    double f = t - i;
-    for (int c = 0; c < 3; ++c)
-        rgb[c] = uint8_t(std::lround(Lerp(f, Viridis[i][c], Viridis[i + 1][c])));
-}
-
-}  // namespace
+}  // namespace detail
 
 void WriteExr(const std::string &path, const Image &img) {
     CheckShape(path, img);
@@ -130,7 +132,7 @@ void WriteExr(const std::string &path, const Image &img) {
     spec.z_channel = img.ChannelIndex("Z");
     for (const auto &[key, value] : img.metadata) spec.attribute(key, value);
     spec.attribute("compression", "zip");  // lossless
-    WriteAtomically(path, "exr", spec, OIIO::TypeDesc::FLOAT, img.data.data());
+    detail::WriteAtomically(path, "exr", spec, OIIO::TypeDesc::FLOAT, img.data.data());
 }
 
 Image ReadImage(const std::string &path) {
@@ -181,7 +183,7 @@ void WritePng(const std::string &path, const Image &img, const DisplayOptions &o
     for (std::size_t i = 0; i < rgb.size(); ++i) bytes[i] = Quantize8(rgb[i]);
     OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
-    WriteAtomically(path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    detail::WriteAtomically(path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
 }
 
 void WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
@@ -213,7 +215,7 @@ void WriteFalseColorPng(const std::string &path, const Image &img, const std::st
     OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
     spec.attribute("Description", channel + " in dB, " + std::to_string(rangeDb) + " dB range");
-    WriteAtomically(path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    detail::WriteAtomically(path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
 }
 
 }  // namespace phasor

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — a small line-plot rasteriser (image module, src/core/image/plot.cpp): data series as
+// anti-aliased solid/dashed/dotted lines on white, axes with ticks and numeric tick labels, grid,
+// legend, title and axis labels, written as an 8-bit sRGB PNG (atomically, like image_io.h).
+// Text is drawn through OpenImageIO with a TrueType font (DejaVu Sans, Debian package
+// fonts-dejavu-core); without the font the plot is still written, without any text.
+#pragma once
+
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "core/math.h"
+
+namespace phasor {
+
+/// One data series. Points with a non-finite coordinate are skipped and break the line.
+struct PlotSeries {
+    enum Style { Solid, Dashed, Dotted };
+    std::string label;         // legend text; empty = not in the legend
+    std::vector<double> x, y;  // data coordinates, same length ≥ 1
+    Vec3 rgb{0, 0, 0};         // display-referred sRGB colour, components in [0, 1]
+    Style style = Solid;
+    double lineWidth = 2.5;  // pixels
+};
+
+/// A horizontal bar from x0 to x1 at height y (data units), e.g. one sensor pixel's extent.
+struct PlotBar {
+    std::string label;  // legend text; empty = not in the legend
+    double x0 = 0, x1 = 0, y = 0;
+    Vec3 rgb{0, 0.75, 0.9};  // display-referred sRGB (default cyan)
+    double thickness = 6;    // pixels
+};
+
+struct PlotOptions {
+    std::string title, xLabel, yLabel;
+    int width = 1000, height = 600;  // pixels, each in [320, 16384] × [200, 16384]
+    std::vector<PlotBar> bars;
+    bool yIncludesZero = true;  // extend the y range to 0 (intensities)
+    /// A fixed x range (data units) when both are finite and xMin < xMax; else fitted to the data.
+    double xMin = std::numeric_limits<double>::quiet_NaN(), xMax = std::numeric_limits<double>::quiet_NaN();
+    std::string font = "DejaVuSans";  // OpenImageIO font name or a .ttf path
+};
+
+/// Where the data lands in the image: the plot rectangle in pixels (pixel edges, y down) and the
+/// data range it spans, plus the tick values drawn on each axis (data units).
+struct PlotLayout {
+    int left = 0, top = 0, right = 0, bottom = 0;  // plot rectangle [left, right] × [top, bottom]
+    double xMin = 0, xMax = 1, yMin = 0, yMax = 1;
+    std::vector<double> xTicks, yTicks;
+    /// Continuous pixel coordinates (pixel (i, j) covers [i, i+1) × [j, j+1)) of a data point.
+    double PixelX(double x) const { return left + (x - xMin) / (xMax - xMin) * (right - left); }
+    double PixelY(double y) const { return bottom - (y - yMin) / (yMax - yMin) * (bottom - top); }
+};
+
+struct PlotResult {
+    bool textDrawn = true;    // false when no font could be loaded (the plot has no text)
+    std::string textProblem;  // why, when textDrawn is false
+};
+
+/// The layout WritePlotPng uses for these inputs. Throws phasor::Error (FileLoc empty) for
+/// unusable input: no series, x/y of different lengths, no finite point, a bad size or x range.
+PlotLayout ComputePlotLayout(const std::vector<PlotSeries> &series, const PlotOptions &opt = {});
+
+/// Renders the plot and writes it as a PNG to `path` (temporary file + rename: on any failure
+/// nothing is left behind). Throws phasor::Error naming the file and the reason. A missing font
+/// is not an error: the result says so and the caller decides whether to warn.
+PlotResult WritePlotPng(const std::string &path, const std::vector<PlotSeries> &series,
+                        const PlotOptions &opt = {});
+
+}  // namespace phasor
