@@ -59,6 +59,17 @@ class PlaneWaveLight final : public Light {
         return DistantIncidence(g, dir_, Emission(wl), 0);
     }
     LightCoherence Coherence(const Vec3 &) const override { return LightCoherence{-dir_, 0}; }
+    /// The `rs` field: only a line spectrum is monochromatic (the line carries all the irradiance).
+    std::optional<CoherentWave> CoherentField() const override {
+        const auto line = spectrum_->LineWavelength();
+        if (!line) return std::nullopt;
+        CoherentWave w;
+        w.kind = CoherentWave::Kind::Plane;
+        w.dir = dir_;
+        w.strength = scale_ * spectrum_->Eval(*line);  // = irradiance
+        w.lambda = *line;
+        return w;
+    }
     void Preprocess(const Bounds3 &b) override { sceneArea_ = SceneCrossSection(b); }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
     double PowerScale() const override { return scale_ * sceneArea_; }

@@ -27,6 +27,7 @@ class PointLight final : public PointLikeLight {
     }
 
     double Falloff(const Vec3 &) const override { return 1; }
+    bool IsIsotropic() const override { return true; }
     double PowerScale() const override { return 4 * Pi * intensity_; }
     std::string ToString() const override {
         return "point { position = " + phasor::ToString(p_) + ", intensity = " + std::to_string(intensity_) +

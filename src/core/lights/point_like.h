@@ -67,6 +67,19 @@ class PointLikeLight : public Light {
         return inc;
     }
     LightCoherence Coherence(const Vec3 &p) const override { return LightCoherence{Normalize(p_ - p), 0}; }
+    /// True if Falloff is 1 in every direction (`point`; a spherical wave for `rs`).
+    virtual bool IsIsotropic() const { return false; }
+    /// The `rs` field: isotropic lights with a line spectrum only; I = intensity × line strength.
+    std::optional<CoherentWave> CoherentField() const override {
+        const auto line = spectrum_->LineWavelength();
+        if (!line || !IsIsotropic()) return std::nullopt;
+        CoherentWave w;
+        w.kind = CoherentWave::Kind::Spherical;
+        w.pos = p_;
+        w.strength = intensity_ * spectrum_->Eval(*line);
+        w.lambda = *line;
+        return w;
+    }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
 
   protected:

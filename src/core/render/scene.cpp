@@ -90,6 +90,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     // Integrator: the CLI override (by @name or by type), else Render.integrator, else the only one,
     // else a default `ray`.
     if (!integratorOverride.empty()) {
+        if (render && render->Has("integrator")) render->GetValue("integrator");  // overridden, not unused
         for (auto &i : ctx.All<Integrator>()) {
             const SceneEntity *e = ctx.EntityOf(i.get());
             if (e && (e->name == integratorOverride || (e->type == integratorOverride && !scene->integrator_)))

@@ -1,0 +1,964 @@
+// SPDX-License-Identifier: Apache-2.0
+// `rs`: the forward Rayleigh–Sommerfeld reference (theory §6.2, §9; design.md §4.3). Coherent,
+// monochromatic sources (`plane_wave` with a line spectrum at any incidence, isotropic `point`
+// with a line spectrum) shine on ONE planar aperture plate — the scene's only shape, whose
+// material has openings (Material::Openings, e.g. `aperture`) — and the scalar field behind it is
+// computed in double precision on the `virtual_plane` sensor:
+//   Kirchhoff boundary values U₀ = t·U_inc on the openings (the plate is infinite and opaque
+//   elsewhere), RS of the first kind
+//     U(r) = (1/2π) ∫∫ U₀(r') (z/R)(1/R − ik) e^{ikR}/R dA'                              (3-D)
+//     U(x, z) = (ikz/2) ∫ U₀(x') H₁⁽¹⁾(kR)/R dx'                                          (2-D)
+//   and ∇U from the analytic derivative of the same kernels. Amplitude convention: |U_inc|² =
+//   irradiance normal to the direction of travel. Pixels report FLUX through the sensor plane per
+//   unit area, F = −Im(U*·∂U/∂n_s)/k (n_s = front normal; S = Im(U*∇U)/k), integrated against
+//   the pixel sensitivity of theory §0 D2 (Gaussian N(0, σ²I) or box ⊛ Gaussian) and divided by
+//   the sensor's reference irradiance. Several lights add incoherently (intensities add).
+//   In the double-slit set-up F differs from |U|² by 2.8e-5 of peak (measured in rs_test.cpp).
+//
+// Quadrature (docs/rs.md; target 1e-4 of peak, measured 5e-7 — the sensor grid's aliasing):
+//  * Aperture integral, per field point, per mask piece {v ∈ [v0, v1], u ∈ [ULo(v), UHi(v)]}:
+//    Gauss–Legendre panels along v, and for each v node along u. Panels are marched so that
+//    (bound of |∂φ/∂u| or |∂φ/∂v| over the panel's box) × length ≤ 6π, φ = kR + incident phase;
+//    the bound is exact interval arithmetic on the direction cosines (monotone in the offsets),
+//    plus |slope|·|∂φ/∂u| for the moving limits of trapezoids. Panels are at most half the distance
+//    to the field point (and to a point source) so the 1/R amplitudes are resolved. Nodes per
+//    panel: the fewest n ∈ [6, 20] whose Gauss–Legendre error for a linear phase Φ,
+//    Φ^{2n}(n!)⁴/((2n+1)((2n)!)³) (A&S 25.4.30), is below 1e-14 (n ≈ 16 at Φ = 6π; 2π panels
+//    give the same double-slit row to 1e-12 in ~4× the time). Discs are integrated in ψ,
+//    v = c_v + r·sin ψ (smooth chord limits), with the ψ bound of docs/rs.md §2.
+//  * 2-D mode: only the u integral (slits infinite along v), same panels; H₀, H₁ by their
+//    asymptotic series for kR ≥ 25 (error < 1e-16), std::cyl_bessel_j / cyl_neumann below.
+//  * Sensor: the field on a uniform grid over all pixel centres ± 6σ (± pitch/2 + 6σ for box
+//    pixels), spacing h ≤ 2π/(k·Δ + 5/σ) per axis, Δ = 1.05 × the largest spread of the direction
+//    components along that axis from the openings to any point of the window (the band limit of
+//    the intensity); nodes no pixel window reaches are skipped (a one-row sensor evaluates only
+//    its row's nodes). Each pixel is Σ w(node)·F(node)·h_x·h_y: the trapezoid rule on a band-
+//    limited integrand times a Gaussian, accurate to ~e^{−12.5} of the local intensity.
+//  * 2-D mode (`mode = "2d"`, or `auto` when every opening is a rectangle with one common v range
+//    at least `auto_2d_length` long — default 100 × the widest slit, which theory §9 measured at
+//    1.3e-4 of peak for the double slit — the light is a plane wave with no component along v,
+//    a sensor axis is parallel to the slits and the sensor window lies within the slits' v
+//    range): the field is constant along the slits, so the pixel sensitivity along them
+//    integrates to 1 and that grid axis collapses to one node.
+// Parallel over grid nodes with TBB; every node and every pixel sum is computed in a fixed
+// order, so the result does not depend on the thread count.
+#include "integrators/rs.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include <tbb/blocked_range.h>
+#include <tbb/global_control.h>
+#include <tbb/parallel_for.h>
+
+#include "core/integrator.h"
+#include "core/material.h"
+#include "core/registry.h"
+#include "core/scene.h"
+
+namespace phasor {
+namespace rs {
+
+namespace {
+
+// ---- Gauss–Legendre rules ------------------------------------------------------------------------
+
+constexpr int MaxGaussNodes = 32;
+
+struct GaussTable {
+    std::array<std::vector<double>, MaxGaussNodes + 1> x, w;  // nodes and weights on [−1, 1]
+};
+
+const GaussTable &Gauss() {
+    static const GaussTable table = [] {
+        GaussTable t;
+        for (int n = 1; n <= MaxGaussNodes; ++n) {
+            t.x[n].resize(n);
+            t.w[n].resize(n);
+            for (int i = 0; i < n; ++i) {
+                // Newton's method on P_n from Tricomi's initial guess (Abramowitz & Stegun 22.16).
+                double x = std::cos(Pi * (i + 0.75) / (n + 0.5)), dp = 1;
+                for (int it = 0; it < 100; ++it) {
+                    double p0 = 1, p1 = x;
+                    for (int j = 2; j <= n; ++j) {
+                        const double p2 = ((2 * j - 1) * x * p1 - (j - 1) * p0) / j;
+                        p0 = p1;
+                        p1 = p2;
+                    }
+                    dp = n * (x * p1 - p0) / (x * x - 1);
+                    const double dx = p1 / dp;
+                    x -= dx;
+                    if (std::abs(dx) < 1e-16) break;
+                }
+                double p0 = 1, p1 = x;  // derivative at the converged node
+                for (int j = 2; j <= n; ++j) {
+                    const double p2 = ((2 * j - 1) * x * p1 - (j - 1) * p0) / j;
+                    p0 = p1;
+                    p1 = p2;
+                }
+                dp = n * (x * p1 - p0) / (x * x - 1);
+                t.x[n][i] = x;
+                t.w[n][i] = 2 / ((1 - x * x) * dp * dp);  // A&S 25.4.29
+            }
+        }
+        return t;
+    }();
+    return table;
+}
+
+/// Largest panel phase Φ_n [rad] that n Gauss–Legendre nodes integrate with a relative error
+/// below `tol` for e^{iΦt/2}, t ∈ [−1, 1]: the remainder f^{(2n)}·L^{2n+1}(n!)⁴/((2n+1)((2n)!)³)
+/// (A&S 25.4.30) with |f^{(2n)}| = (Φ/L)^{2n}.
+double MaxPhaseForNodes(int n, double tol) {
+    const double logErrPerPhase =
+        4 * std::lgamma(n + 1.0) - std::log(2 * n + 1.0) - 3 * std::lgamma(2 * n + 1.0);
+    return std::exp((std::log(tol) - logErrPerPhase) / (2 * n));
+}
+
+// ---- Hankel functions -----------------------------------------------------------------------------
+
+constexpr int HankelTerms = 48;
+constexpr double HankelAsymptoticMin = 25;
+
+struct HankelCoefficients {
+    std::array<double, HankelTerms> a0, a1;  // a_m(ν) of DLMF 10.17.1 for ν = 0, 1
+};
+
+const HankelCoefficients &HankelCoeffs() {
+    static const HankelCoefficients c = [] {
+        HankelCoefficients h;
+        h.a0[0] = h.a1[0] = 1;
+        for (int m = 1; m < HankelTerms; ++m) {
+            const double odd = (2.0 * m - 1) * (2.0 * m - 1);
+            h.a0[m] = h.a0[m - 1] * (0 - odd) / (8.0 * m);
+            h.a1[m] = h.a1[m - 1] * (4 - odd) / (8.0 * m);
+        }
+        return h;
+    }();
+    return c;
+}
+
+/// The slowly varying factors P_ν(x) = Σ i^m a_m(ν)/x^m of H_ν⁽¹⁾(x) = √(2/(πx))·e^{i(x − νπ/2 −
+/// π/4)}·P_ν(x) (DLMF 10.17.5), for ν = 0 and 1; x ≥ 25, summed until the terms drop below 1e-17
+/// (the remainder is bounded by the first neglected term, DLMF 10.17(iii)).
+void HankelSeries(double x, Complex *p0, Complex *p1) {
+    const HankelCoefficients &c = HankelCoeffs();
+    double r0 = 1, i0 = 0, r1 = 1, i1 = 0, xm = 1;
+    for (int m = 1; m < HankelTerms; ++m) {
+        xm /= x;
+        const double t0 = c.a0[m] * xm, t1 = c.a1[m] * xm;
+        switch (m & 3) {  // i^m
+            case 0: r0 += t0, r1 += t1; break;
+            case 1: i0 += t0, i1 += t1; break;
+            case 2: r0 -= t0, r1 -= t1; break;
+            default: i0 -= t0, i1 -= t1; break;
+        }
+        if (std::abs(t0) < 1e-17 && std::abs(t1) < 1e-17) break;
+    }
+    *p0 = Complex(r0, i0);
+    *p1 = Complex(r1, i1);
+}
+
+// ---- Interval bounds of phase gradients -----------------------------------------------------------
+
+/// Range of a/√(a² + p²) over a ∈ [aLo, aHi], p ∈ [pLo, pHi] (p ≥ 0): increasing in a, and |·|
+/// decreasing in p.
+inline void CosineRange(double aLo, double aHi, double pLo, double pHi, double *lo, double *hi) {
+    const double pa = aHi > 0 ? pLo : pHi, pb = aLo < 0 ? pLo : pHi;
+    *hi = aHi / std::sqrt(aHi * aHi + pa * pa);
+    *lo = aLo / std::sqrt(aLo * aLo + pb * pb);
+}
+
+/// Distance range from y to the points of [a, b].
+inline void DistanceRange(double y, double a, double b, double *lo, double *hi) {
+    *lo = y < a ? a - y : (y > b ? y - b : 0.0);
+    *hi = std::max(std::abs(y - a), std::abs(y - b));
+}
+
+/// Marches panels over [a, b]: each is at most lmax long and has bound(x0, x1)·(x1 − x0) ≤ phiMax
+/// (bound: an upper bound of |φ'| on [x0, x1], monotone under inclusion). Calls emit(x0, x1, Φ)
+/// with Φ = that product.
+template <class Bound, class Emit>
+void MarchPanels(double a, double b, double lmax, double phiMax, Bound &&bound, Emit &&emit) {
+    double x = a;
+    const double tiny = 1e-12 * (b - a);
+    int guard = 0;
+    while (b - x > tiny && guard++ < 50000000) {
+        const double rem = b - x, cap = std::min(rem, lmax);
+        double len = cap, g = bound(x, x + len);
+        if (g * len > phiMax) {
+            len = phiMax / g;  // valid: the bound over a sub-interval is no larger
+            g = bound(x, x + len);
+            for (int it = 0; it < 3; ++it) {  // grow while the tighter bound allows it
+                const double trial = std::min(cap, phiMax / g);
+                if (!(trial > len * 1.02)) break;
+                const double gt = bound(x, x + trial);
+                if (gt * trial > phiMax) break;
+                len = trial;
+                g = gt;
+            }
+        }
+        double end = x + len;
+        if (b - end <= tiny) end = b;
+        emit(x, end, g * (end - x));
+        x = end;
+    }
+}
+
+}  // namespace
+
+void Hankel01(double x, Complex *h0, Complex *h1) {
+    if (x >= HankelAsymptoticMin) {
+        Complex p0, p1;
+        HankelSeries(x, &p0, &p1);
+        const double amp = std::sqrt(2 / (Pi * x));
+        *h0 = amp * std::polar(1.0, x - Pi / 4) * p0;
+        *h1 = amp * std::polar(1.0, x - 3 * Pi / 4) * p1;
+        return;
+    }
+    *h0 = Complex(std::cyl_bessel_j(0.0, x), std::cyl_neumann(0.0, x));
+    *h1 = Complex(std::cyl_bessel_j(1.0, x), std::cyl_neumann(1.0, x));
+}
+
+// ---- Propagator -------------------------------------------------------------------------------------
+
+/// A field point in plate coordinates: (X, Y) along e1, e2, Z > 0 towards the sensor; m the
+/// derivative direction in the same coordinates.
+struct Propagator::Local {
+    double x, y, z, mu, mv, mn;
+};
+
+/// Node counts per panel phase for a rule (index n → largest Φ).
+struct NodeRule {
+    std::array<double, MaxGaussNodes + 1> maxPhase{};
+    int minNodes, maxNodes;
+    explicit NodeRule(const QuadratureRule &r)
+        : minNodes(std::clamp(r.minNodes, 1, MaxGaussNodes)),
+          maxNodes(std::clamp(r.maxNodes, 1, MaxGaussNodes)) {
+        for (int n = 1; n <= MaxGaussNodes; ++n) maxPhase[n] = MaxPhaseForNodes(n, r.tolerance);
+    }
+    int Nodes(double phase) const {
+        int n = minNodes;
+        while (n < maxNodes && maxPhase[n] < phase) ++n;
+        return n;
+    }
+};
+
+Propagator::Propagator(const PlateFrame &plate, const ApertureMask &mask, const CoherentWave &wave, bool flip,
+                       bool twoD, QuadratureRule rule)
+    : plate_(plate),
+      zSign_(flip ? -1.0 : 1.0),
+      twoD_(twoD),
+      rule_(rule),
+      nodes_(std::make_shared<const NodeRule>(rule)) {
+    if (!(wave.lambda > 0) || !(wave.strength >= 0))
+        throw Error("rs: the coherent wave has no valid wavelength");
+    k_ = 2 * Pi / wave.lambda;
+    amp_ = std::sqrt(wave.strength);
+    spherical_ = wave.kind == CoherentWave::Kind::Spherical;
+    if (spherical_) {
+        const Vec3 d = wave.pos - plate.origin;
+        su_ = Dot(d, plate.e1);
+        sv_ = Dot(d, plate.e2);
+        sz_ = -zSign_ * Dot(d, plate.n);
+        if (!(sz_ > 0)) throw Error("the point source is not on the far side of the plate from the sensor");
+    } else {
+        const Vec3 d = Normalize(wave.dir);
+        du_ = Dot(d, plate.e1);
+        dv_ = Dot(d, plate.e2);
+        if (!(zSign_ * Dot(d, plate.n) > 0))
+            throw Error("the plane wave does not travel towards the sensor side of the plate");
+    }
+    bounds_ = mask.Bounds();
+    if (!bounds_.Empty()) {
+        Bounds2 box = bounds_;
+        const Vec2 pad = 0.01 * (box.hi - box.lo);
+        box.lo = box.lo - pad;
+        box.hi = box.hi + pad;
+        mask.ForEachPiece(box, [&](const MaskPiece &p) {
+            if (p.t > 0 && p.v1 > p.v0) pieces_.push_back(p);
+        });
+    }
+    if (twoD_) {
+        if (spherical_ || std::abs(dv_) > 1e-9)
+            throw Error(
+                "the 2-D mode needs a plane wave with no component along the slits (the plate's y axis)");
+        if (!mask.IsSlitsAlongV(0))
+            throw Error("the 2-D mode needs openings that are rectangles sharing one v range");
+    }
+}
+
+double Propagator::Height(const Vec3 &p) const { return zSign_ * Dot(p - plate_.origin, plate_.n); }
+
+FieldValue Propagator::Field(const Vec3 &p, const Vec3 &m) const {
+    const Vec3 d = p - plate_.origin;
+    Local l{Dot(d, plate_.e1), Dot(d, plate_.e2), zSign_ * Dot(d, plate_.n),
+            Dot(m, plate_.e1), Dot(m, plate_.e2), zSign_ * Dot(m, plate_.n)};
+    if (!(l.z > 0)) return {};
+    double acc[4] = {0, 0, 0, 0};  // Re U, Im U, Re ∂U, Im ∂U (before the kernel's constant)
+    if (twoD_) {
+        Field2D(l, acc);
+        // × ik/2 (theory §6.2, 2-D form)
+        const double h = 0.5 * k_;
+        return {Complex(-h * acc[1], h * acc[0]), Complex(-h * acc[3], h * acc[2])};
+    }
+    Field3D(l, acc);
+    const double c = 1 / (2 * Pi);  // theory §6.2, 3-D form
+    return {Complex(c * acc[0], c * acc[1]), Complex(c * acc[2], c * acc[3])};
+}
+
+double Propagator::Flux(const Vec3 &p, const Vec3 &front) const {
+    const FieldValue f = Field(p, front);
+    // S = Im(U*∇U)/k; power arriving at the front side crosses along −front.
+    return -(f.u.real() * f.dudm.imag() - f.u.imag() * f.dudm.real()) / k_;
+}
+
+double Propagator::Intensity(const Vec3 &p) const { return std::norm(Field(p, plate_.n).u); }
+
+void Propagator::Field3D(const Local &p, double acc[4]) const {
+    const GaussTable &gl = Gauss();
+    const NodeRule &nodes = *nodes_;
+    const double k = k_, X = p.x, Y = p.y, Z = p.z, Z2 = Z * Z;
+    const double lmax = rule_.maxPanelOverDistance * (spherical_ ? std::min(Z, sz_) : Z);
+    const double phiMax = rule_.maxPanelPhase;
+    double ur = 0, ui = 0, dr = 0, di = 0;
+
+    // Bounds of |∂φ/∂u| and |∂φ/∂v| over a box, φ = k(R − Z) + φ_inc.
+    auto gradU = [&](double ua, double ub, double va, double vb) {
+        double pLo, pHi, lo, hi;
+        DistanceRange(Y, va, vb, &pLo, &pHi);
+        CosineRange(X - ub, X - ua, std::sqrt(pLo * pLo + Z2), std::sqrt(pHi * pHi + Z2), &lo, &hi);
+        double gLo = -hi, gHi = -lo;  // ∂R/∂u = −(X − u)/R
+        if (spherical_) {
+            double qLo, qHi, sLo, sHi;
+            DistanceRange(sv_, va, vb, &qLo, &qHi);
+            CosineRange(ua - su_, ub - su_, std::sqrt(qLo * qLo + sz_ * sz_),
+                        std::sqrt(qHi * qHi + sz_ * sz_), &sLo, &sHi);
+            gLo += sLo;
+            gHi += sHi;
+        } else {
+            gLo += du_;
+            gHi += du_;
+        }
+        return k * std::max(std::abs(gLo), std::abs(gHi));
+    };
+    auto gradV = [&](double ua, double ub, double va, double vb) {
+        double pLo, pHi, lo, hi;
+        DistanceRange(X, ua, ub, &pLo, &pHi);
+        CosineRange(Y - vb, Y - va, std::sqrt(pLo * pLo + Z2), std::sqrt(pHi * pHi + Z2), &lo, &hi);
+        double gLo = -hi, gHi = -lo;
+        if (spherical_) {
+            double qLo, qHi, sLo, sHi;
+            DistanceRange(su_, ua, ub, &qLo, &qHi);
+            CosineRange(va - sv_, vb - sv_, std::sqrt(qLo * qLo + sz_ * sz_),
+                        std::sqrt(qHi * qHi + sz_ * sz_), &sLo, &sHi);
+            gLo += sLo;
+            gHi += sHi;
+        } else {
+            gLo += dv_;
+            gHi += dv_;
+        }
+        return k * std::max(std::abs(gLo), std::abs(gHi));
+    };
+
+    // One line v = const of a piece: the u integral, weight wv (outer node weight × Jacobian).
+    auto line = [&](double v, double wv, double uLo, double uHi, double t) {
+        const double dy = Y - v, dy2z2 = dy * dy + Z2;
+        const double mvw = p.mv * dy + p.mn * Z;
+        // Incident wave along this line (plane: linear phase; point: spherical).
+        const double phiV = spherical_ ? 0.0 : k * dv_ * v;
+        const double dsv = v - sv_;
+        MarchPanels(
+            uLo, uHi, lmax, phiMax, [&](double ua, double ub) { return gradU(ua, ub, v, v); },
+            [&](double ua, double ub, double phaseU) {
+                const int nu = nodes.Nodes(phaseU);
+                const std::vector<double> &hx = gl.x[nu], &hw = gl.w[nu];
+                const double half = 0.5 * (ub - ua), mid = 0.5 * (ua + ub);
+                for (int iu = 0; iu < nu; ++iu) {
+                    const double u = mid + half * hx[iu];
+                    double a = amp_ * t * wv * half * hw[iu], phi;
+                    if (spherical_) {
+                        // U_inc = √I e^{ikρ}/ρ, phase relative to kρ₀ (ρ₀ = sz).
+                        const double dsu = u - su_, q = dsu * dsu + dsv * dsv;
+                        const double rho = std::sqrt(q + sz_ * sz_);
+                        a /= rho;
+                        phi = k * q / (rho + sz_);
+                    } else {
+                        phi = k * du_ * u + phiV;
+                    }
+                    const double dx = X - u, q = dx * dx + dy * dy;
+                    const double r2 = dx * dx + dy2z2, r = std::sqrt(r2), ir = 1 / r, ir2 = ir * ir;
+                    const double ir3 = ir2 * ir;
+                    phi += k * q / (r + Z);  // k(R − Z), without cancellation
+                    double sn, cs;
+                    ::sincos(phi, &sn, &cs);
+                    const double er = a * cs, ei = a * sn;
+                    // Kernel (1 − ikR)/R³ and its derivative (k²R² + 3ikR − 3)/R⁵ (rs.h).
+                    const double ar = ir3, ai = -k * ir2;
+                    const double br = (k * k * r2 - 3) * ir3 * ir2, bi = 3 * k * ir2 * ir2;
+                    const double mw = p.mu * dx + mvw;
+                    // U: Z·A; ∂U/∂m: m_n·A + Z·(m·w)·B.
+                    const double tur = Z * ar, tui = Z * ai;
+                    const double tdr = p.mn * ar + Z * mw * br, tdi = p.mn * ai + Z * mw * bi;
+                    ur += er * tur - ei * tui;
+                    ui += er * tui + ei * tur;
+                    dr += er * tdr - ei * tdi;
+                    di += er * tdi + ei * tdr;
+                }
+            });
+    };
+
+    for (const MaskPiece &piece : pieces_) {
+        const double t = piece.t;
+        if (piece.circle) {
+            // Discs: v = c_v + r·sin ψ makes the chord limits smooth, dv = r cos ψ dψ. Panels in ψ:
+            // per unit ψ the phase changes by at most r·|cos ψ|·|∂φ/∂v| inside the chord and
+            // r·(|sin ψ|·|∂φ/∂u| + |cos ψ|·|∂φ/∂v|) at its ends (bounded over the arcs' boxes), and
+            // the chord length × Jacobian ∝ cos²ψ adds a frequency of 2.
+            const double r = piece.r, uA = std::max(piece.cu - r, piece.uMin),
+                         uB = std::min(piece.cu + r, piece.uMax);
+            if (!(uB > uA)) continue;
+            const double psi0 = std::asin(std::clamp((piece.v0 - piece.cv) / r, -1.0, 1.0));
+            const double psi1 = std::asin(std::clamp((piece.v1 - piece.cv) / r, -1.0, 1.0));
+            MarchPanels(
+                psi0, psi1, lmax / r, phiMax,
+                [&](double pa, double pb) {
+                    const double va = piece.cv + r * std::sin(pa), vb = piece.cv + r * std::sin(pb);
+                    const double sinMax = std::max(std::abs(std::sin(pa)), std::abs(std::sin(pb)));
+                    const double cosMin = std::min(std::cos(pa), std::cos(pb));
+                    const double cosMax = (pa <= 0 && pb >= 0) ? 1.0 : std::max(std::cos(pa), std::cos(pb));
+                    // Boxes of the two arcs swept by the chord ends (clamped to the piece's u range).
+                    const double lo0 = std::clamp(piece.cu - r * cosMax, uA, uB),
+                                 lo1 = std::clamp(piece.cu - r * cosMin, uA, uB);
+                    const double hi0 = std::clamp(piece.cu + r * cosMin, uA, uB),
+                                 hi1 = std::clamp(piece.cu + r * cosMax, uA, uB);
+                    const double gEnds = std::max(gradU(lo0, lo1, va, vb), gradU(hi0, hi1, va, vb));
+                    const double gEndsV = std::max(gradV(lo0, lo1, va, vb), gradV(hi0, hi1, va, vb));
+                    const double interior = cosMax * gradV(lo0, hi1, va, vb);
+                    return r * std::max(interior, sinMax * gEnds + cosMax * gEndsV) + 2.0;
+                },
+                [&](double pa, double pb, double phase) {
+                    const int n = nodes.Nodes(phase);
+                    const std::vector<double> &gx = gl.x[n], &gw = gl.w[n];
+                    for (int i = 0; i < n; ++i) {
+                        const double psi = 0.5 * (pa + pb) + 0.5 * (pb - pa) * gx[i];
+                        const double v = piece.cv + r * std::sin(psi),
+                                     wv = 0.5 * (pb - pa) * gw[i] * r * std::cos(psi);
+                        const double uLo = piece.ULo(v), uHi = piece.UHi(v);
+                        if (uHi > uLo && wv > 0) line(v, wv, uLo, uHi, t);
+                    }
+                });
+        } else {
+            // Trapezoids: the u limits move by |slope| per unit v, so the phase at a limit changes
+            // by up to |∂φ/∂v| + |slope|·|∂φ/∂u| per unit v.
+            const double uA = std::min(piece.ULo(piece.v0), piece.ULo(piece.v1));
+            const double uB = std::max(piece.UHi(piece.v0), piece.UHi(piece.v1));
+            if (!(uB > uA)) continue;
+            const double slope = std::max(std::abs(piece.loB), std::abs(piece.hiB));
+            MarchPanels(
+                piece.v0, piece.v1, lmax, phiMax,
+                [&](double va, double vb) {
+                    return gradV(uA, uB, va, vb) + (slope > 0 ? slope * gradU(uA, uB, va, vb) : 0.0);
+                },
+                [&](double va, double vb, double phase) {
+                    const int n = nodes.Nodes(phase);
+                    const std::vector<double> &gx = gl.x[n], &gw = gl.w[n];
+                    for (int i = 0; i < n; ++i) {
+                        const double v = 0.5 * (va + vb) + 0.5 * (vb - va) * gx[i],
+                                     wv = 0.5 * (vb - va) * gw[i];
+                        const double uLo = piece.ULo(v), uHi = piece.UHi(v);
+                        if (uHi > uLo) line(v, wv, uLo, uHi, t);
+                    }
+                });
+        }
+    }
+    acc[0] = ur;
+    acc[1] = ui;
+    acc[2] = dr;
+    acc[3] = di;
+}
+
+void Propagator::Field2D(const Local &p, double acc[4]) const {
+    const GaussTable &gl = Gauss();
+    const NodeRule &nodes = *nodes_;
+    const double k = k_, X = p.x, Z = p.z, Z2 = Z * Z;
+    const double lmax = rule_.maxPanelOverDistance * Z;
+    // The reference phase kZ − 3π/4 is dropped from every node (rs.h: phases are relative).
+    const Complex refPhase = std::polar(1.0, -(k * Z - 3 * Pi / 4));
+    double ur = 0, ui = 0, dr = 0, di = 0;
+    auto gradU = [&](double ua, double ub) {
+        double lo, hi;
+        CosineRange(X - ub, X - ua, Z, Z, &lo, &hi);
+        return k * std::max(std::abs(du_ - hi), std::abs(du_ - lo));
+    };
+    for (const MaskPiece &piece : pieces_) {
+        const double vm = 0.5 * (piece.v0 + piece.v1);
+        const double uLo = piece.ULo(vm), uHi = piece.UHi(vm);
+        if (!(uHi > uLo)) continue;
+        MarchPanels(uLo, uHi, lmax, rule_.maxPanelPhase, gradU, [&](double ua, double ub, double phase) {
+            const int n = nodes.Nodes(phase);
+            const std::vector<double> &gx = gl.x[n], &gw = gl.w[n];
+            const double half = 0.5 * (ub - ua), mid = 0.5 * (ua + ub);
+            for (int i = 0; i < n; ++i) {
+                const double u = mid + half * gx[i];
+                const double a = amp_ * piece.t * half * gw[i];
+                const double dx = X - u, r2 = dx * dx + Z2, r = std::sqrt(r2), x = k * r;
+                const double phiInc = k * du_ * u;
+                // h0, h1 = H₀⁽¹⁾(kR), H₁⁽¹⁾(kR) without the common factor e^{i(kZ − 3π/4)}.
+                Complex h0, h1;
+                if (x >= HankelAsymptoticMin) {
+                    Complex p0, p1;
+                    HankelSeries(x, &p0, &p1);
+                    const Complex e = std::polar(std::sqrt(2 / (Pi * x)), k * dx * dx / (r + Z));
+                    h1 = e * p1;
+                    h0 = Complex(0, 1) * e * p0;  // e^{−iπ/4} = i·e^{−3iπ/4}
+                } else {
+                    Hankel01(x, &h0, &h1);
+                    h0 *= refPhase;
+                    h1 *= refPhase;
+                }
+                const Complex e = a * std::polar(1.0, phiInc);
+                // F = H₁(kR)/R, F' = (kR·H₀ − 2H₁)/R² (H₁' = H₀ − H₁/x); U ∝ Z·F,
+                // ∂U/∂m ∝ m_n·F + Z·F'·(m_u·dx + m_n·Z)/R.
+                const Complex f = h1 / r, fp = (x * h0 - 2.0 * h1) / r2;
+                const Complex tu = Z * f, td = p.mn * f + Z * fp * ((p.mu * dx + p.mn * Z) / r);
+                const Complex cu = e * tu, cd = e * td;
+                ur += cu.real();
+                ui += cu.imag();
+                dr += cd.real();
+                di += cd.imag();
+            }
+        });
+    }
+    acc[0] = ur;
+    acc[1] = ui;
+    acc[2] = dr;
+    acc[3] = di;
+}
+
+double Propagator::DirectionSpread(const Vec3 &p, const Vec3 &axis) const {
+    if (bounds_.Empty()) return 0;
+    const Vec3 d = p - plate_.origin;
+    const double X = Dot(d, plate_.e1), Y = Dot(d, plate_.e2);
+    double lo = Infinity, hi = -Infinity;
+    auto add = [&](double u, double v) {
+        const Vec3 w = Normalize(p - plate_.ToWorld(Vec2(u, v)));
+        const double c = Dot(w, axis);
+        lo = std::min(lo, c);
+        hi = std::max(hi, c);
+    };
+    const double u0 = bounds_.lo.x, u1 = bounds_.hi.x;
+    // Extremes lie at corners, at the points of the edges nearest to p's foot, or (if the axis
+    // leaves the plane) where p − t·axis meets the plate.
+    const int n = 64;
+    if (twoD_) {
+        for (int i = 0; i <= n; ++i) add(u0 + (u1 - u0) * i / n, Y);
+        add(std::clamp(X, u0, u1), Y);
+    } else {
+        const double v0 = bounds_.lo.y, v1 = bounds_.hi.y;
+        for (int i = 0; i <= n; ++i) {
+            const double u = u0 + (u1 - u0) * i / n, v = v0 + (v1 - v0) * i / n;
+            add(u, v0);
+            add(u, v1);
+            add(u0, v);
+            add(u1, v);
+        }
+        add(std::clamp(X, u0, u1), v0);
+        add(std::clamp(X, u0, u1), v1);
+        add(u0, std::clamp(Y, v0, v1));
+        add(u1, std::clamp(Y, v0, v1));
+        const double an = Dot(axis, plate_.n);
+        if (std::abs(an) > 1e-12) {
+            const double t = Dot(d, plate_.n) / an;
+            const Vec3 hit = p - axis * t;
+            const Vec2 uv = plate_.ToPlate(hit);
+            if (uv.x >= u0 && uv.x <= u1 && uv.y >= v0 && uv.y <= v1) add(uv.x, uv.y);
+        }
+    }
+    return hi - lo;
+}
+
+// ---- Sensor quadrature ----------------------------------------------------------------------------
+
+namespace {
+
+/// Pixel sensitivity along one axis at offset d from the pixel centre (theory §0 D2), with unit
+/// integral: Gaussian N(0, σ²) or box ⊛ Gaussian.
+double PixelWeight(double d, double sigma, double pitch, bool gaussian) {
+    if (gaussian) return std::exp(-0.5 * d * d / (sigma * sigma)) / (std::sqrt(2 * Pi) * sigma);
+    const double s = 1 / (std::sqrt(2.0) * sigma);
+    return 0.5 * (std::erf((d + 0.5 * pitch) * s) - std::erf((d - 0.5 * pitch) * s)) / pitch;
+}
+
+double WindowHalfWidth(const SensorPlaneGeometry &g, double pitch) {
+    return 6 * g.sigma + (g.gaussianPixel ? 0.0 : 0.5 * pitch);
+}
+
+/// Uniform nodes over [lo, hi] with spacing ≤ hMax, keeping those within `ext` of a pixel centre
+/// c0 + i·pitch (i < n).
+std::vector<double> AxisNodes(double lo, double hi, double hMax, double c0, double pitch, int n, double ext,
+                              double *h) {
+    const long long intervals = std::max(1LL, (long long)std::ceil((hi - lo) / hMax));
+    if (intervals > 50000000) throw Error("rs: the sensor grid would need more than 5e7 nodes along an axis");
+    *h = (hi - lo) / intervals;
+    std::vector<double> out;
+    for (long long a = 0; a <= intervals; ++a) {
+        const double x = lo + a * *h;
+        const double i = std::clamp(std::round((x - c0) / pitch), 0.0, double(n - 1));
+        if (std::abs(x - (c0 + i * pitch)) <= ext) out.push_back(x);
+    }
+    return out;
+}
+
+}  // namespace
+
+SensorGrid MakeGrid(const SensorPlaneGeometry &g, const Propagator &prop) {
+    SensorGrid grid;
+    if (!(g.sigma > 0) || g.nx < 1 || g.ny < 1) throw Error("rs: the sensor plane has no valid pixels");
+    const double extX = WindowHalfWidth(g, g.pitchX), extY = WindowHalfWidth(g, g.pitchY);
+    const Vec2 c00 = g.PixelCenter(0, 0), c11 = g.PixelCenter(g.nx - 1, g.ny - 1);
+    const double xLo = c00.x - extX, xHi = c11.x + extX;  // x grows with i, y falls with j
+    const double yLo = c11.y - extY, yHi = c00.y + extY;
+    if (prop.TwoD()) {
+        const Vec3 e2 = prop.Plate().e2;
+        if (std::abs(Dot(g.frame.t, e2)) >= 1 - 1e-9)
+            grid.collapseY = true;
+        else if (std::abs(Dot(g.frame.s, e2)) >= 1 - 1e-9)
+            grid.collapseX = true;
+        else
+            throw Error("the 2-D mode needs a sensor axis parallel to the slits (the plate's y axis)");
+    }
+    // Band limit of the intensity along each axis (rs.cpp header): sample the window.
+    double spreadS = 0, spreadT = 0;
+    const int ns = grid.collapseX ? 1 : 9, nt = grid.collapseY ? 1 : 9;
+    for (int a = 0; a < ns; ++a)
+        for (int b = 0; b < nt; ++b) {
+            const double x = ns == 1 ? 0.5 * (xLo + xHi) : xLo + (xHi - xLo) * a / (ns - 1);
+            const double y = nt == 1 ? 0.5 * (yLo + yHi) : yLo + (yHi - yLo) * b / (nt - 1);
+            const Vec3 p = g.origin + g.frame.s * x + g.frame.t * y;
+            if (!grid.collapseX) spreadS = std::max(spreadS, prop.DirectionSpread(p, g.frame.s));
+            if (!grid.collapseY) spreadT = std::max(spreadT, prop.DirectionSpread(p, g.frame.t));
+        }
+    const double k = prop.K();
+    if (grid.collapseX) {
+        grid.xs = {0.5 * (xLo + xHi)};
+        grid.hx = 1;
+    } else {
+        const double hMax = 2 * Pi / (k * 1.05 * spreadS + 5 / g.sigma);
+        grid.xs = AxisNodes(xLo, xHi, hMax, c00.x, g.pitchX, g.nx, extX, &grid.hx);
+    }
+    if (grid.collapseY) {
+        grid.ys = {0.5 * (yLo + yHi)};
+        grid.hy = 1;
+    } else {
+        const double hMax = 2 * Pi / (k * 1.05 * spreadT + 5 / g.sigma);
+        // Pixel centres along y run downwards from c00.y; reuse AxisNodes on the reversed axis.
+        grid.ys = AxisNodes(yLo, yHi, hMax, c11.y, g.pitchY, g.ny, extY, &grid.hy);
+    }
+    return grid;
+}
+
+int ProgressUnits(const SensorGrid &grid) {
+    if (grid.ys.size() > 1) return int(grid.ys.size());
+    return std::max(1, int((grid.xs.size() + 63) / 64));
+}
+
+std::vector<double> IntegrateSensor(const SensorPlaneGeometry &g, const Propagator &prop,
+                                    const SensorGrid &grid, Quantity q,
+                                    const std::function<bool(int)> &rowDone) {
+    const std::size_t nxg = grid.xs.size(), nyg = grid.ys.size(), total = nxg * nyg;
+    std::vector<double> field(total, 0.0);
+    const int units = ProgressUnits(grid);
+    for (int u = 0; u < units; ++u) {
+        const std::size_t begin = total * u / units, end = total * (u + 1) / units;
+        tbb::parallel_for(
+            tbb::blocked_range<std::size_t>(begin, end, 1), [&](const tbb::blocked_range<std::size_t> &r) {
+                for (std::size_t idx = r.begin(); idx < r.end(); ++idx) {
+                    const double x = grid.xs[idx % nxg], y = grid.ys[idx / nxg];
+                    const Vec3 p = g.origin + g.frame.s * x + g.frame.t * y;
+                    field[idx] = q == Quantity::Flux ? prop.Flux(p, g.frame.n) : prop.Intensity(p);
+                }
+            });
+        if (rowDone && !rowDone(u + 1)) return {};
+    }
+    // Separable pixel sums: G(b, i) = Σ_a w_x(x_a − x_i)·F(a, b)·h_x, then Σ_b w_y·G·h_y, over the
+    // nodes within each pixel's window (the node lists are sorted).
+    struct Taps {
+        std::size_t first = 0;
+        std::vector<double> w;  // quadrature weights w(node − centre)·h of nodes first, first + 1, …
+    };
+    auto taps = [&](const std::vector<double> &nodes, double centre, double pitch, double h) {
+        const double ext = WindowHalfWidth(g, pitch);
+        Taps t;
+        t.first = std::size_t(std::lower_bound(nodes.begin(), nodes.end(), centre - ext) - nodes.begin());
+        for (std::size_t a = t.first; a < nodes.size() && nodes[a] <= centre + ext; ++a)
+            t.w.push_back(PixelWeight(nodes[a] - centre, g.sigma, pitch, g.gaussianPixel) * h);
+        return t;
+    };
+    std::vector<Taps> tapsX(g.nx), tapsY(g.ny);
+    if (!grid.collapseX)
+        for (int i = 0; i < g.nx; ++i) tapsX[i] = taps(grid.xs, g.PixelCenter(i, 0).x, g.pitchX, grid.hx);
+    if (!grid.collapseY)
+        for (int j = 0; j < g.ny; ++j) tapsY[j] = taps(grid.ys, g.PixelCenter(0, j).y, g.pitchY, grid.hy);
+    std::vector<double> rowSums(nyg * std::size_t(g.nx), 0.0);
+    tbb::parallel_for(std::size_t(0), nyg, [&](std::size_t b) {
+        for (int i = 0; i < g.nx; ++i) {
+            double s = 0;
+            if (grid.collapseX) {
+                s = field[b * nxg];
+            } else {
+                const Taps &t = tapsX[i];
+                for (std::size_t a = 0; a < t.w.size(); ++a) s += t.w[a] * field[b * nxg + t.first + a];
+            }
+            rowSums[b * g.nx + i] = s;
+        }
+    });
+    std::vector<double> pixels(std::size_t(g.nx) * g.ny, 0.0);
+    tbb::parallel_for(0, g.ny, [&](int j) {
+        for (int i = 0; i < g.nx; ++i) {
+            double s = 0;
+            if (grid.collapseY) {
+                s = rowSums[i];
+            } else {
+                const Taps &t = tapsY[j];
+                for (std::size_t b = 0; b < t.w.size(); ++b) s += t.w[b] * rowSums[(t.first + b) * g.nx + i];
+            }
+            pixels[std::size_t(j) * g.nx + i] = s;
+        }
+    });
+    return pixels;
+}
+
+}  // namespace rs
+
+// ---- The integrator ---------------------------------------------------------------------------------
+
+class RsIntegrator final : public Integrator {
+  public:
+    enum class Mode { Auto, TwoD, ThreeD };
+    RsIntegrator(Mode mode, double auto2dLength) : mode_(mode), auto2dLength_(auto2dLength) {}
+
+    static const Schema &GetSchema() {
+        static const Schema s{
+            "integrator",
+            "rs",
+            "Forward Rayleigh-Sommerfeld reference: coherent plane waves / point sources through one "
+            "aperture plate onto a virtual_plane (double precision, pixel-integrated flux).",
+            {P::String("mode",
+                       "2d: slits infinite along the plate's y axis; 3d: full surface integral; auto: 2d "
+                       "when valid (long slits, plane wave without a y component, aligned sensor)")
+                 .Default(Value::String("auto"))
+                 .Choices({"auto", "2d", "3d"}),
+             P::Length("auto_2d_length",
+                       "shortest slit length that `auto` treats as infinite (default 100 x the widest slit)")
+                 .Min(0, true)}};
+        return s;
+    }
+    static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
+        const std::string m = d.GetString("mode");
+        const Mode mode = m == "2d" ? Mode::TwoD : (m == "3d" ? Mode::ThreeD : Mode::Auto);
+        return std::make_unique<RsIntegrator>(mode,
+                                              d.Has("auto_2d_length") ? d.GetNumber("auto_2d_length") : 0.0);
+    }
+
+    RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override {
+        const auto start = std::chrono::steady_clock::now();
+        std::unique_ptr<tbb::global_control> threads;
+        if (opt.threads > 0)
+            threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
+                                                            opt.threads);
+
+        // ---- Checks (every unsupported scene is a clear error naming the object) -------------
+        const Detector &det = scene.GetDetector();
+        const SensorPlaneGeometry *sensor = det.SensorPlane();
+        if (!sensor)
+            throw Error("integrator 'rs' needs a virtual_plane detector (a sensor plane); detector '" +
+                        det.name + "' is not one");
+        if (scene.Lights().empty())
+            throw Error("integrator 'rs' needs at least one coherent light; the scene has none");
+        for (const Light *light : scene.Lights())
+            if (!light->CoherentField())
+                throw Error(
+                    "light '" + light->name +
+                    "' has no coherent field: integrator 'rs' needs monochromatic (line-spectrum) plane "
+                    "waves or isotropic point lights");
+        const auto &shapes = scene.Shapes();
+        if (shapes.empty())
+            throw Error(
+                "integrator 'rs' needs exactly one shape, a planar aperture plate (material with openings, "
+                "e.g. 'aperture') between the source and the sensor; the scene has none");
+        if (shapes.size() > 1) {
+            std::string names;
+            for (std::size_t i = 0; i < shapes.size() && i < 6; ++i)
+                names += (i ? ", '" : "'") + shapes[i]->name + "'";
+            throw Error(
+                "integrator 'rs' handles exactly one planar aperture plate between source and sensor; the "
+                "scene has " +
+                std::to_string(shapes.size()) + " shapes (" + names + (shapes.size() > 6 ? ", …" : "") + ")");
+        }
+        const Shape &shape = *shapes[0];
+        const ApertureMask *mask = shape.material ? shape.material->Openings() : nullptr;
+        if (!mask)
+            throw Error("integrator 'rs' needs an aperture plate: shape '" + shape.name +
+                        "' has no material with openings (use the 'aperture' material)");
+        if (!shape.IsPlanar())
+            throw Error("integrator 'rs': the aperture plate '" + shape.name + "' is not planar");
+        PlateFrame plate;
+        try {
+            plate = PlateFrame::FromTransform(shape.objectToWorld);
+        } catch (const Error &e) {
+            throw Error("aperture plate '" + shape.name + "': " + e.Message());
+        }
+
+        // Sensor side: the whole evaluation window must lie strictly on one side, ≥ 1 λ away.
+        const double extX = 6 * sensor->sigma + 0.5 * sensor->pitchX,
+                     extY = 6 * sensor->sigma + 0.5 * sensor->pitchY;
+        const Vec2 c00 = sensor->PixelCenter(0, 0), c11 = sensor->PixelCenter(sensor->nx - 1, sensor->ny - 1);
+        double hMin = Infinity, hMax = -Infinity;
+        for (int c = 0; c < 4; ++c) {
+            const double x = (c & 1) ? c11.x + extX : c00.x - extX, y = (c & 2) ? c00.y + extY : c11.y - extY;
+            const double h =
+                Dot(sensor->origin + sensor->frame.s * x + sensor->frame.t * y - plate.origin, plate.n);
+            hMin = std::min(hMin, h);
+            hMax = std::max(hMax, h);
+        }
+        if (!(hMin > 0) && !(hMax < 0))
+            throw Error("sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
+                        "': it reaches the plate's plane");
+        const bool flip = hMax < 0;
+        const Vec3 towardsSensor = flip ? -plate.n : plate.n;
+        if (!(Dot(sensor->frame.n, towardsSensor) < 0))
+            throw Error("sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
+                        "': its front side (+z) faces away from the plate");
+
+        struct Job {
+            const Light *light;
+            CoherentWave wave;
+            std::unique_ptr<rs::Propagator> prop;
+            rs::SensorGrid grid;
+        };
+        std::vector<Job> jobs;
+        int totalUnits = 0;
+        for (const Light *light : scene.Lights()) {
+            const auto wave = light->CoherentField();
+            const double minHeight = std::min(std::abs(hMin), std::abs(hMax));
+            if (minHeight < wave->lambda)
+                throw Error("sensor '" + det.name +
+                            "' is closer than one wavelength to the aperture plate '" + shape.name +
+                            "' (Kirchhoff boundary values need a distant sensor)");
+            const bool sameSide = wave->kind == CoherentWave::Kind::Plane
+                                      ? !(Dot(Normalize(wave->dir), towardsSensor) > 0)
+                                      : !(Dot(wave->pos - plate.origin, towardsSensor) < 0);
+            if (sameSide)
+                throw Error("light '" + light->name + "' and sensor '" + det.name +
+                            "' are on the same side of the aperture plate '" + shape.name +
+                            "' (rs propagates from the source through the plate to the sensor)");
+            const bool twoD = Choose2d(*mask, plate, *wave, *sensor, light->name);
+            Job job{light, *wave, std::make_unique<rs::Propagator>(plate, *mask, *wave, flip, twoD), {}};
+            job.grid = rs::MakeGrid(*sensor, *job.prop);
+            totalUnits += rs::ProgressUnits(job.grid);
+            jobs.push_back(std::move(job));
+        }
+
+        // ---- Field and pixel integrals, one light at a time (intensities add) ------------------
+        RenderStats stats;
+        const int nx = sensor->nx, ny = sensor->ny;
+        std::vector<Vec3> channels(std::size_t(nx) * ny);
+        std::vector<double> intensity(std::size_t(nx) * ny, 0.0);
+        int unitsDone = 0;
+        const double eRef = sensor->referenceIrradiance > 0 ? sensor->referenceIrradiance : 1.0;
+        for (const Job &job : jobs) {
+            const int base = unitsDone;
+            auto onRows = [&](int done) {
+                unitsDone = base + done;
+                if (opt.progress) opt.progress(unitsDone, totalUnits);
+                return !(opt.cancel && opt.cancel->load());
+            };
+            std::vector<double> flux =
+                rs::IntegrateSensor(*sensor, *job.prop, job.grid, rs::Quantity::Flux, onRows);
+            if (flux.empty()) {
+                stats.cancelled = true;
+                stats.seconds =
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+                return stats;
+            }
+            const Vec3 wc = film.Response().Channels(job.wave.lambda);
+            const double wi = film.Response().Intensity(job.wave.lambda);
+            for (std::size_t p = 0; p < flux.size(); ++p) {
+                const double v = flux[p] / eRef;
+                channels[p] += wc * v;
+                intensity[p] += wi * v;
+            }
+        }
+        // Round-off can leave tiny negative sums in dark pixels; the film rejects negatives.
+        double peak = 0;
+        for (double v : intensity) peak = std::max(peak, v);
+        for (int j = 0; j < ny; ++j)
+            for (int i = 0; i < nx; ++i) {
+                const std::size_t p = std::size_t(j) * nx + i;
+                Vec3 c = channels[p];
+                double v = intensity[p];
+                if (v < -1e-9 * peak) ++stats.invalidSamples;
+                c = Vec3(std::max(c.x, 0.0), std::max(c.y, 0.0), std::max(c.z, 0.0));
+                film.AddReduced(i, j, c, std::max(v, 0.0));
+            }
+        stats.sppReached = 1;
+        stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return stats;
+    }
+
+    std::string ToString() const override {
+        const char *m = mode_ == Mode::TwoD ? "2d" : (mode_ == Mode::ThreeD ? "3d" : "auto");
+        return std::string("rs { mode = ") + m + ", auto_2d_length = " + std::to_string(auto2dLength_) +
+               " m }";
+    }
+
+  private:
+    /// Whether the 2-D mode applies (rs.cpp header); throws for `mode = "2d"` when it cannot.
+    bool Choose2d(const ApertureMask &mask, const PlateFrame &plate, const CoherentWave &wave,
+                  const SensorPlaneGeometry &sensor, const std::string &lightName) const {
+        if (mode_ == Mode::ThreeD) return false;
+        const bool forced = mode_ == Mode::TwoD;
+        auto fail = [&](const std::string &why) {
+            if (forced) throw Error("integrator 'rs' with mode = \"2d\": " + why);
+            return false;
+        };
+        double v0 = 0, v1 = 0;
+        if (!mask.IsSlitsAlongV(0, &v0, &v1))
+            return fail(
+                "the openings must be rectangles that share one range along the plate's y axis (slits)");
+        if (wave.kind != CoherentWave::Kind::Plane || std::abs(Dot(Normalize(wave.dir), plate.e2)) > 1e-9)
+            return fail("light '" + lightName + "' must be a plane wave with no component along the slits");
+        const bool alongT = std::abs(Dot(sensor.frame.t, plate.e2)) >= 1 - 1e-9;
+        const bool alongS = std::abs(Dot(sensor.frame.s, plate.e2)) >= 1 - 1e-9;
+        if (!alongT && !alongS)
+            return fail("a sensor axis must be parallel to the slits (the plate's y axis)");
+        if (forced) return true;
+        // auto: long enough slits, and the sensor window inside their v range.
+        double widest = 0;
+        mask.ForEachPiece(mask.Bounds(), [&](const MaskPiece &p) {
+            const double vm = 0.5 * (p.v0 + p.v1);
+            widest = std::max(widest, p.UHi(vm) - p.ULo(vm));
+        });
+        const double minLength = auto2dLength_ > 0 ? auto2dLength_ : 100 * widest;
+        if (!mask.IsSlitsAlongV(minLength)) return false;
+        const double ext = 6 * sensor.sigma + 0.5 * std::max(sensor.pitchX, sensor.pitchY);
+        const Vec2 c00 = sensor.PixelCenter(0, 0), c11 = sensor.PixelCenter(sensor.nx - 1, sensor.ny - 1);
+        for (int c = 0; c < 4; ++c) {
+            const double x = (c & 1) ? c11.x + ext : c00.x - ext, y = (c & 2) ? c00.y + ext : c11.y - ext;
+            const double v =
+                Dot(sensor.origin + sensor.frame.s * x + sensor.frame.t * y - plate.origin, plate.e2);
+            if (v < v0 || v > v1) return false;
+        }
+        return true;
+    }
+
+    Mode mode_;
+    double auto2dLength_;
+};
+
+PHASOR_EXPORT_PLUGIN(Integrator, RsIntegrator)
+
+}  // namespace phasor
