@@ -35,6 +35,9 @@ find_package(OpenColorIO 2.1 REQUIRED)
 find_package(OpenSubdiv 3.5 REQUIRED)
 find_package(TinyGLTF 2.7 REQUIRED)
 find_package(Threads REQUIRED)
+# libcerf (complex error / Faddeeva function; Debian ships no CMake config).
+find_library(CERF_LIBRARY cerf REQUIRED)
+find_path(CERF_INCLUDE_DIR cerf.h)
 
 if(PHASOR_BUILD_TESTS)
   find_package(GTest REQUIRED)

@@ -30,7 +30,8 @@ namespace phasor {
 
 class GrtIntegrator final : public PixelIntegrator {
   public:
-    GrtIntegrator(int maxDepth, int rrDepth) : maxDepth_(maxDepth), rrDepth_(rrDepth) {}
+    GrtIntegrator(int maxDepth, int rrDepth, int lightSamples)
+        : maxDepth_(maxDepth), rrDepth_(rrDepth), lightSamples_(lightSamples) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -44,11 +45,18 @@ class GrtIntegrator final : public PixelIntegrator {
              P::Integer("rr_depth",
                         "bounces before Russian roulette starts (never before the first measurement)")
                  .Default(Value::Integer(3))
-                 .Min(0)}};
+                 .Min(0),
+             P::Integer("light_samples",
+                        "next-event estimates per vertex (stratified when a square); more of them "
+                        "reduce the noise from extended sources, e.g. through apertures")
+                 .Default(Value::Integer(1))
+                 .Min(1)
+                 .Max(4096)}};
         return s;
     }
     static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
-        return std::make_unique<GrtIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"));
+        return std::make_unique<GrtIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"),
+                                               d.GetInt("light_samples"));
     }
 
     RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override {
@@ -101,6 +109,7 @@ class GrtIntegrator final : public PixelIntegrator {
         // lobes become deltas, delta sources are not measured again, area and distant sources by
         // direction only).
         bool spreadFree = false;
+        FootprintSample footprint;  // the last spread-free sample, until its ray hits something
         auto skipClosedForm = [](const Light *l) { return l->MeasuredInClosedForm(); };
         for (int depth = 0;; ++depth) {
             ++stats.rays;
@@ -114,6 +123,13 @@ class GrtIntegrator final : public PixelIntegrator {
             }
             g.Propagate(si->t);  // ABCD free-space update of every wavelength's footprint
             g.o = si->p;
+            if (footprint.active) {
+                // The footprint-aware lobe was sampled as a response to a plane wave; light from
+                // this hit arrives as a spherical wave from distance t (the same integrand as
+                // NEE, EvalFrom): re-weight the throughput by EvalFrom(t)/Eval.
+                T *= footprint.Correction(si->t);
+                footprint.active = false;
+            }
             L += T * path::HitEmission(scene, *si, g.d, wl, mis);
             const Material *mat = si->material;
             if (!mat || depth == maxDepth_) break;
@@ -135,7 +151,24 @@ class GrtIntegrator final : public PixelIntegrator {
             const double uLight = sampler.Get1D();
             const Vec2 uLightPos = sampler.Get2D();
             if (!mat->IsDeltaOnly()) {
-                L += T * path::SampleDirectLight(scene, *si, *mat, q, uLight, uLightPos, wl, stats);
+                // `light_samples` estimates per vertex, their light positions on a rotated
+                // m×m lattice when the count is a square m² (stratified), else independent.
+                const int m = int(std::lround(std::sqrt(double(lightSamples_))));
+                SampledSpectrum direct(0.0);
+                for (int j = 0; j < lightSamples_; ++j) {
+                    Vec2 u = uLightPos;
+                    double ul = uLight;
+                    if (j > 0 && m * m == lightSamples_) {
+                        u = Vec2(std::fmod(uLightPos.x + double(j % m) / m, 1.0),
+                                 std::fmod(uLightPos.y + double(j / m) / m, 1.0));
+                        ul = std::fmod(uLight + double(j) / lightSamples_, 1.0);
+                    } else if (j > 0) {
+                        ul = sampler.Get1D();
+                        u = sampler.Get2D();
+                    }
+                    direct += path::SampleDirectLight(scene, *si, *mat, q, ul, u, wl, stats);
+                }
+                L += T * direct / double(lightSamples_);
                 measured = true;
             }
 
@@ -145,6 +178,7 @@ class GrtIntegrator final : public PixelIntegrator {
             if (!bs || bs->weight.IsZero()) break;
             if (bs->flags & ScatterDispersive) wl.TerminateSecondary();
             T *= bs->weight;
+            if ((bs->flags & ScatterSpreadFree) && q.gr) footprint.Remember(q, *si, g, *mat, *bs);
             const Vec3 wo = frame.ToWorld(bs->wo);
             g.Redirect(wo, bs->eta);
             g.o = si->SpawnOrigin(wo);
@@ -165,10 +199,42 @@ class GrtIntegrator final : public PixelIntegrator {
 
     std::string ToString() const override {
         return "grt { max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) +
-               " }";
+               ", light_samples = " + std::to_string(lightSamples_) + " }";
     }
 
   private:
+    /// A sample of a footprint-aware kernel (theory §9) waiting for the distance to what its ray
+    /// hits: the kernel's response depends on the incident wave's curvature (EvalFrom), and its
+    /// Sample weight assumed a plane wave.
+    struct FootprintSample {
+        bool active = false;
+        ScatterQuery q;
+        SurfaceInteraction si;
+        SpectralGenRay gr;
+        const Material *mat = nullptr;
+        Vec3 wo;             // local
+        SampledSpectrum f;   // Eval(q, wo) (plane wave)
+        void Remember(const ScatterQuery &query, const SurfaceInteraction &hit, const SpectralGenRay &g,
+                      const Material &m, const ScatterSample &bs) {
+            active = true;
+            q = query;
+            si = hit;
+            gr = g;
+            q.si = &si;
+            q.gr = &gr;
+            mat = &m;
+            wo = bs.wo;
+            f = bs.weight * (bs.pdf / std::max(std::abs(bs.wo.z), 1e-300));
+        }
+        /// EvalFrom(q, wo, dist) / Eval(q, wo) per wavelength (0 where Eval is 0).
+        SampledSpectrum Correction(double dist) const {
+            const SampledSpectrum g = mat->EvalFrom(q, wo, dist);
+            SampledSpectrum r(0.0);
+            for (int i = 0; i < NumWavelengths; ++i) r[i] = f[i] > 0 ? g[i] / f[i] : 0;
+            return r;
+        }
+    };
+
     /// Σ over closed-form lights of k²·M for the GR g (traced; measured as its time reverse, D3),
     /// each if unoccluded from g's origin (from the surface `si` when g leaves one).
     static SampledSpectrum MeasureClosedForm(const Scene &scene, const SpectralGenRay &g,
@@ -192,7 +258,7 @@ class GrtIntegrator final : public PixelIntegrator {
         return sum;
     }
 
-    int maxDepth_, rrDepth_;
+    int maxDepth_, rrDepth_, lightSamples_;
 };
 
 PHASOR_EXPORT_PLUGIN(Integrator, GrtIntegrator)

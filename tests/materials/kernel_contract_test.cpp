@@ -10,6 +10,11 @@
 // and obey the law of reflection or Snell's law (tangential wave vector kept, η = ScatterSample::eta).
 // Statistical checks use proper tests (χ², Welch / one-sample t) with fixed seeds and a Šidák
 // correction over the whole instantiation at family-wise level 1 %.
+//
+// Footprint-aware kernels (Material::IsFootprintAware, e.g. `aperture`) are queried in the wave
+// regime with an incident generalized ray (β = 0.5 µm, ρ = 0.5, along −wi) hitting a planar test
+// plate (z = 0, identity to_world) near its origin; two checks change meaning for them (see
+// WhiteFurnace and the sample counts of the statistical tests).
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -18,6 +23,8 @@
 #include <map>
 #include <sstream>
 
+#include "core/genray.h"
+#include "core/shape.h"
 #include "material_test_util.h"
 #include "support/stats.h"
 
@@ -160,6 +167,47 @@ std::string WriteChi2Data(const std::string &name, int nCos, int nPhi, const std
     return file.string();
 }
 
+// The plate a footprint-aware kernel is queried on: the plane z = 0 with identity to_world, so
+// local, world and plate coordinates coincide.
+class ContractPlate final : public Shape {
+  public:
+    ContractPlate() { name = "contract_plate"; }
+    SurfaceInteraction Interaction(const Ray &, double, unsigned, double, double) const override {
+        return {};
+    }
+    Bounds3 Bounds() const override { return {}; }
+    double Area() const override { return 0; }
+    ShapeSample Sample(const Vec2 &) const override { return {}; }
+    std::string ToString() const override { return "rectangle (contract plate)"; }
+    bool IsPlanar() const override { return true; }
+};
+
+// The incident GR of footprint-aware kernels: β [m] and ρ at the hit, the same for every
+// wavelength; the hit point near the plate's origin (the presets place openings there).
+constexpr double ContractBeta = 0.5e-6, ContractRho = 0.5;
+const Vec3 ContractHit(0.3e-6, -0.4e-6, 0);
+
+// Points q at a GR arriving along −wi at si.p (wave regime).
+void AttachFootprint(ScatterQuery &q, SpectralGenRay &gr, SurfaceInteraction &si,
+                     const ContractPlate &plate) {
+    si.n = Vec3(0, 0, 1);
+    si.shading = Frame();
+    si.shape = &plate;
+    gr.o = si.p;
+    gr.d = -q.wi;
+    gr.count = q.wl->Count();
+    for (int i = 0; i < gr.count; ++i) {
+        gr.k[i] = 2 * Pi * q.etaOutside / q.wl->lambda[i];
+        gr.beta2[i] = ContractBeta * ContractBeta;
+        gr.rho[i] = ContractRho;
+    }
+    q.rayOptics = false;
+    q.beta2 = gr.beta2[0];
+    q.rho = gr.rho[0];
+    q.gr = &gr;
+    q.si = &si;
+}
+
 class MaterialContract : public ::testing::TestWithParam<ContractCase> {
   protected:
     void SetUp() override {
@@ -183,18 +231,49 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
         q_.etaOutside = 1;
         q_.rayOptics = true;
         q_.uv = Vec2(0.13 + 0.19 * c_.incident, 0.61 - 0.07 * c_.incident);
+        footprint_ = material_->IsFootprintAware();
+        if (footprint_) {
+            ASSERT_NO_THROW(material_->CheckShape(plate_));
+            si_.p = ContractHit;
+            AttachFootprint(q_, gr_, si_, plate_);
+            // The statistical tests draw ~10⁵ samples, each evaluating the diffraction integral
+            // for every carried wavelength: they carry the hero alone (the per-wavelength weights
+            // are checked by SampleWeightMatchesEval and FiniteEverywhere with all four).
+            lineWl_ = LineWavelength(Lambdas[c_.lambdaIndex]);
+            qLine_ = q_;
+            qLine_.wl = &lineWl_;
+            siLine_ = si_;
+            AttachFootprint(qLine_, grLine_, siLine_, plate_);
+            qs_ = &qLine_;
+        }
     }
 
+    /// Sample counts. A footprint-aware kernel evaluates a 2-D diffraction integral for every
+    /// sample's weight (µs each), so it runs a tenth of the samples (the tests keep their form and
+    /// level; only their power drops).
+    long long Count(long long n) const { return footprint_ ? n / 10 : n; }
+
     TestRng Rng(const char *test) const { return TestRng(SeedFor(c_.Name() + "/" + test)); }
-    std::optional<ScatterSample> Draw(TestRng &rng) const {
+    std::optional<ScatterSample> Draw(TestRng &rng) const { return DrawWith(q_, rng); }
+    /// For the statistical tests (χ², importance, furnace, discrete orders): the query `Stat()`.
+    std::optional<ScatterSample> DrawStat(TestRng &rng) const { return DrawWith(*qs_, rng); }
+    const ScatterQuery &Stat() const { return *qs_; }
+    std::optional<ScatterSample> DrawWith(const ScatterQuery &q, TestRng &rng) const {
         const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
-        return material_->Sample(q_, u0, Vec2(u1, u2));
+        return material_->Sample(q, u0, Vec2(u1, u2));
     }
 
     ContractCase c_;
     std::shared_ptr<Material> material_;
     SampledWavelengths wl_;
     ScatterQuery q_;
+    bool footprint_ = false;
+    ContractPlate plate_;
+    SurfaceInteraction si_, siLine_;
+    SpectralGenRay gr_, grLine_;
+    SampledWavelengths lineWl_;
+    ScatterQuery qLine_;
+    const ScatterQuery *qs_ = &q_;  // the statistical tests' query
 };
 
 // χ² grid (style.md §2.6): 2N × N cells over (φ, cosθ), N odd.
@@ -250,17 +329,17 @@ TEST_P(MaterialContract, Chi2SamplingMatchesPdf) {
     // M = 10⁶ at the 550 nm hero, 2.5·10⁵ at 400/700 nm (the continuous kernels' angular shape
     // rarely depends on λ; this halves the suite's run time). Delta-only kernels have nothing to
     // histogram: a short run checks that no continuous sample appears.
-    const long long m = material_->IsDeltaOnly() ? 10000 : (c_.lambdaIndex == 1 ? 1000000 : 250000);
+    const long long m = material_->IsDeltaOnly() ? 10000 : Count(c_.lambdaIndex == 1 ? 1000000 : 250000);
     TestRng rng = Rng("chi2");
     std::vector<double> obs(std::size_t(GridCos) * GridPhi + 1, 0);
     for (long long i = 0; i < m; ++i) {
-        auto s = Draw(rng);
+        auto s = DrawStat(rng);
         if (!s || (s->flags & ScatterNearDelta))
             obs.back() += 1;
         else
             obs[std::size_t(CellOf(s->wo))] += 1;
     }
-    PdfGrid g = IntegratePdf(*material_, q_);
+    PdfGrid g = IntegratePdf(*material_, Stat());
     ASSERT_TRUE(g.finite);
     std::vector<double> ex(obs.size());
     for (std::size_t i = 0; i + 1 < ex.size(); ++i) ex[i] = double(m) * g.cell[i];
@@ -304,7 +383,7 @@ TEST_P(MaterialContract, PdfIntegratesToAtMostOne) {
 TEST_P(MaterialContract, SampleWeightMatchesEval) {
     TestRng rng = Rng("weight");
     int continuous = 0;
-    for (int i = 0; i < 10000; ++i) {
+    for (int i = 0; i < int(Count(10000)); ++i) {
         auto s = Draw(rng);
         if (!s) continue;
         if (s->flags & ScatterNearDelta) {
@@ -339,16 +418,16 @@ TEST_P(MaterialContract, ImportanceVsUniformEstimate) {
     // ∫ f(wi, wo)|cosθo| dωo over the continuous lobes, by the kernel's own sampling and by uniform
     // sphere sampling; the two estimates must agree (Welch's t-test).
     // A delta-only kernel has nothing to estimate (Eval ≡ 0): a short run confirms it.
-    const int n = material_->IsDeltaOnly() ? 10000 : 100000;
+    const int n = material_->IsDeltaOnly() ? 10000 : int(Count(100000));
     TestRng rng = Rng("importance");
     Moments imp, uni;
     for (int i = 0; i < n; ++i) {
-        auto s = Draw(rng);
+        auto s = DrawStat(rng);
         imp.Add(s && !(s->flags & ScatterNearDelta) ? s->weight[0] : 0.0);
     }
     for (int i = 0; i < n; ++i) {
         const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
-        uni.Add(material_->Eval(q_, wo)[0] * std::abs(wo.z) * 4 * Pi);
+        uni.Add(material_->Eval(Stat(), wo)[0] * std::abs(wo.z) * 4 * Pi);
     }
     TTestResult t =
         WelchTTest(imp.mean, imp.VarianceOfMean(), imp.n - 1, uni.mean, uni.VarianceOfMean(), uni.n - 1);
@@ -363,21 +442,26 @@ TEST_P(MaterialContract, WhiteFurnace) {
     // significantly exceed 1 (one-sided t-test), per wavelength slot.
     // Deterministic weights (every sample of the first 10⁴ identical, e.g. a single-lobe mirror)
     // end the run early: the mean is then known exactly.
-    constexpr int n = 100000;
+    const int n = int(Count(100000));
     TestRng rng = Rng("furnace");
-    std::vector<Moments> e(std::size_t(wl_.Count()));
+    std::vector<Moments> e(std::size_t(Stat().wl->Count()));
     for (int i = 0; i < n; ++i) {
         if (i == 10000 && std::all_of(e.begin(), e.end(), [](const Moments &x) { return x.m2 == 0; })) break;
-        auto s = Draw(rng);
-        for (int j = 0; j < wl_.Count(); ++j) {
+        auto s = DrawStat(rng);
+        for (int j = 0; j < Stat().wl->Count(); ++j) {
             double x = 0;
             // Companions of a dispersive sample follow the hero's direction and are dropped by the
             // integrator (theory §0 D10); count them as absorbed (a lower bound).
             if (s && (j == 0 || !(s->flags & ScatterDispersive))) x = EnergyWeight(*s, j);
+            // A footprint-aware kernel's weight is a radiance ratio whose lobe spreads over
+            // directions with other cosines (|A|²|cosθi|/(λ²|cosθo|), theory §9), so its mean may
+            // exceed 1 where diffraction is wide. The flux it passes, weight·|cosθo|/|cosθi|
+            // (= ∫|A|² d²κ/(2π)², Parseval), is at most the GR's unit norm: test that.
+            if (s && footprint_) x *= std::abs(s->wo.z) / std::abs(q_.wi.z);
             e[std::size_t(j)].Add(x);
         }
     }
-    for (int j = 0; j < wl_.Count(); ++j) {
+    for (int j = 0; j < Stat().wl->Count(); ++j) {
         const Moments &mj = e[std::size_t(j)];
         if (mj.mean <= 1) continue;
         if (mj.VarianceOfMean() == 0) {
@@ -436,6 +520,8 @@ TEST_P(MaterialContract, FiniteEverywhere) {
     const SampledWavelengths line = LineWavelength(Lambdas[c_.lambdaIndex]);
     for (int i = 0; i < 4000; ++i) {
         ScatterQuery q = q_;
+        SpectralGenRay gr;
+        SurfaceInteraction si = si_;
         q.wl = (i % 2) ? &line : &wl_;
         // Random incident directions, plus exactly grazing and nearly grazing ones.
         switch (i % 8) {
@@ -455,6 +541,11 @@ TEST_P(MaterialContract, FiniteEverywhere) {
                 q.wi = UniformSphere(rng.Uniform(), rng.Uniform());
         }
         q.uv = Vec2(4 * rng.Uniform() - 2, 4 * rng.Uniform() - 2);
+        if (footprint_) {
+            // The GR follows wi; the hit wanders over ±10 µm (openings in, partly in, out of the window).
+            si.p = Vec3(2e-5 * rng.Uniform() - 1e-5, 2e-5 * rng.Uniform() - 1e-5, 0);
+            AttachFootprint(q, gr, si, plate_);
+        }
         const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
         const SampledSpectrum f = material_->Eval(q, wo);
         const double pdf = material_->Pdf(q, wo);
@@ -485,7 +576,7 @@ TEST_P(MaterialContract, FiniteEverywhere) {
 TEST_P(MaterialContract, DiscreteOrders) {
     // Categorical χ² of the lobe choice against the probabilities each lobe reports, plus the
     // geometry of every near-delta direction.
-    constexpr int n = 100000;
+    const int n = int(Count(100000));
     TestRng rng = Rng("discrete");
     std::map<int, std::pair<double, double>> lobes;  // lobe → (count, stated probability)
     double other = 0;
@@ -493,7 +584,7 @@ TEST_P(MaterialContract, DiscreteOrders) {
     for (int i = 0; i < n; ++i, ++drawn) {
         // A deterministic choice (one lobe of stated probability 1 for 10⁴ draws) ends early.
         if (i == 10000 && other == 0 && lobes.size() == 1 && lobes.begin()->second.second == 1) break;
-        auto s = Draw(rng);
+        auto s = DrawStat(rng);
         if (!s || !(s->flags & ScatterNearDelta)) {
             other += 1;
             continue;
@@ -562,7 +653,7 @@ TEST(MaterialRegistry, EveryKernelHasTwoToFivePresets) {
 }
 
 TEST(MaterialRegistry, ExpectedKernelsAreRegistered) {
-    for (const char *name : {"diffuse", "conductor", "dielectric"})
+    for (const char *name : {"diffuse", "conductor", "dielectric", "aperture"})
         EXPECT_NE(Registry<Material>::Find(name), nullptr) << name;
 }
 

@@ -1,0 +1,71 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the footprint integral of the `aperture` kernel (theory §9, docs/kernels.md "aperture").
+//
+// A generalized ray (GR) meets a planar mask. Its traced wave function on the plate (the oblique
+// cut of theory §6.3 step 3), the mask transmission t and an incident plane or spherical wave
+// combine into one Gaussian integrand in plate coordinates (x, y) relative to the hit point:
+//
+//     A = C · ∫∫ t(x, y) · exp(−(axx x² + 2 axy x y + ayy y²) + i (bx x + by y)) dx dy,
+//
+// restricted to the locality window |x| ≤ hx, |y| ≤ hy (theory §0 D13). Re[[axx, axy], [axy, ayy]]
+// is positive definite. Over each mask piece (core/aperture.h: a trapezoid with linear limits or a
+// clipped disc) one axis is integrated in closed form with the Faddeeva function w and the other
+// with Gauss–Legendre quadrature whose order follows from the integrand's variation over the
+// interval (see IntegratePiece). docs/kernels.md "aperture" describes the whole chain.
+#pragma once
+
+#include "core/aperture.h"
+#include "core/math.h"
+
+namespace phasor {
+
+/// Faddeeva function w(z) = e^{−z²}·erfc(−iz) for any z (libcerf; the reference, ~1e-14).
+Complex FaddeevaW(Complex z);
+/// w(z) for Im z ≥ 0 by Weideman's rational approximation (SIAM J. Numer. Anal. 31, 1994) with
+/// N = 28 terms: |error| ≤ 2·10⁻¹² over the closed upper half-plane (|w| ≤ 1 there). About 3×
+/// faster than libcerf one at a time and vectorisable in batches; the kernel's fast path.
+Complex FaddeevaWUpper(Complex z);
+
+/// ∫_{x0}^{x1} exp(−αx² + βx) dx for Re α > 0, in a closed form that neither overflows nor
+/// cancels: with m = β/(2α), z(x) = √α(x − m) and E(x) = exp(−αx² + βx), the antiderivative is
+/// F(x) = −(√π/(2√α))·erfc(z)·e^{αm²}, where erfc(z)e^{αm²} = w(iz)·E(x) if Re z ≥ 0 and
+/// 2e^{αm²} − w(−iz)·E(x) otherwise (so w is only needed in the upper half-plane).
+Complex GaussianSegmentIntegral(Complex alpha, Complex beta, double x0, double x1);
+
+/// The integrand of one wavelength in plate coordinates relative to the hit point (see above).
+struct PlateGaussian {
+    Complex axx, axy, ayy;                // [1/m²]
+    double bx = 0, by = 0;                // [rad/m]
+    double hx = Infinity, hy = Infinity;  // window half-widths [m]
+    /// The window truncates the quadrature axis of a piece at hx (or hy) and its closed-form axis
+    /// at far·hx (far·hy): truncating there saves nothing, and at 2× the D13 window the GR's
+    /// amplitude is < e^{−2·window²} (e^{−32} for window = 4), so a slit longer than the
+    /// footprint costs one closed form. far = 1 gives the plain box (used by tests).
+    double far = 2;
+};
+
+/// The coefficients of theory §9 for the traced GR at the hit point — unit mean direction d
+/// (world, pointing into the plate), wavenumber k [rad/m], β² [m²], ρ (traced convention, ρ > 0
+/// diverging along d) — measured against an incident wave travelling along the unit vector s
+/// (world, direction of light flow) whose wavefront has radius `dist` [m] (Infinity: a plane
+/// wave). (e1, e2, n) are the plate's axes; `window` is the locality radius in units of β.
+/// With γ = (1−iρ)/(2β²), κ = k/(2·dist) and dᵢ = d·eᵢ, sᵢ = s·eᵢ, d_n = d·n:
+///   axx = γ(1−d1²) − iκ(1−s1²),  axy = −γ d1 d2 + iκ s1 s2,  ayy = γ(1−d2²) − iκ(1−s2²),
+///   bx = k(d1+s1),  by = k(d2+s2),  hx = ϱ√(1 + d1²/d_n²),  hy = ϱ√(1 + d2²/d_n²), ϱ = window·β
+/// (the box bounding the oblique cut |Δ⊥d| ≤ ϱ). Requires d_n ≠ 0.
+PlateGaussian MakePlateGaussian(const Vec3 &d, const Vec3 &s, const Vec3 &e1, const Vec3 &e2, const Vec3 &n,
+                                double k, double beta2, double rho, double dist, double window);
+
+/// ∫∫ over (piece ∩ window) of exp(−(axx x² + 2axy xy + ayy y²) + i(bx x + by y)) dx dy, where
+/// the piece is given in plate coordinates and `origin` is the hit point's plate position (so
+/// x = u − origin.x, y = v − origin.y); the window is the box of PlateGaussian (see `far`). The
+/// piece's transmission is not applied. Rectangles and discs put the quadrature along the shorter
+/// side of their part inside the window (a choice that depends on geometry only, so that every
+/// direction of one GR measures the same truncated state); trapezoids are done in closed form
+/// along x. A rectangle longer than the footprint along its closed-form axis collapses to one
+/// more closed form. The Gauss–Legendre order follows a quadratic model of the exponent and the
+/// Bernstein-ellipse error bound (see the .cpp), for an error ≲ 1e-10 of ∫|integrand| over the
+/// piece (checked against adaptive brute force in tests/materials/aperture_test.cpp).
+Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec2 &origin);
+
+}  // namespace phasor
