@@ -301,23 +301,117 @@ void SortSmall(double *v, int n) {
 
 // ---- One strip: GL along s, closed form along x -----------------------------------------------------
 
+// The exponent of one piece, c0 − (axx x² + 2axy xy + ayy y²) + i(bx x + by y), in plate
+// coordinates relative to the hit point; b and c0 are complex once the beams' evolution along
+// their axes is re-expanded about the piece (Expand).
+struct Quadratic {
+    Complex axx, axy, ayy, bx, by, c0;
+};
+
+constexpr Complex I1{0, 1};
+
+// Value, gradient and Hessian of a correction to the exponent at one point.
+struct Jet {
+    Complex f, g[2], h[2][2];
+};
+
+// The traced GR's exact paraxial beam minus its quadratic form at the hit point (PlateGaussian):
+// Δf = (ik/2)·T·(1/(q+a) − 1/q) − ln(1 + a/q), a = d·Δ, T = |Δ|² − a² (the Gaussian beam
+// ψ ∝ (q/(q+a))·exp(ik a + ikT/(2(q+a))), Siegman, "Lasers", §16.7; q grows along the traced d).
+Jet BeamCorrection(const PlateGaussian &g, double x, double y) {
+    const double d[2] = {g.d1, g.d2}, p[2] = {x, y};
+    const double a = g.d1 * x + g.d2 * y, t = x * x + y * y - a * a;
+    const Complex u = g.invQ / (1.0 + a * g.invQ);  // 1/(q + a)
+    const Complex w = -a * g.invQ * u;              // 1/(q + a) − 1/q, without cancellation
+    const Complex ik2 = 0.5 * g.k * I1;
+    Jet j;
+    j.f = ik2 * t * w - std::log(1.0 + a * g.invQ);
+    double dt[2];
+    Complex du[2];
+    for (int i = 0; i < 2; ++i) {
+        dt[i] = 2 * (p[i] - a * d[i]);
+        du[i] = -u * u * d[i];
+        j.g[i] = ik2 * (dt[i] * w + t * du[i]) - u * d[i];
+    }
+    for (int i = 0; i < 2; ++i)
+        for (int l = 0; l < 2; ++l) {
+            const double ddt = 2 * ((i == l ? 1.0 : 0.0) - d[i] * d[l]);
+            const Complex ddu = 2.0 * u * u * u * (d[i] * d[l]);
+            j.h[i][l] = ik2 * (ddt * w + dt[i] * du[l] + dt[l] * du[i] + t * ddu) + u * u * (d[i] * d[l]);
+        }
+    return j;
+}
+
+// The exact spherical wave (R/r)·e^{ik(r − R)}, r = |Δ + R s|, minus its quadratic form at the
+// hit point ik(a_s + (|Δ|² − a_s²)/(2R)), a_s = s·Δ.
+Jet SphereCorrection(const PlateGaussian &g, double x, double y) {
+    const double R = g.dist, s[2] = {g.s1, g.s2}, p[2] = {x, y};
+    const double as = g.s1 * x + g.s2 * y, p2 = x * x + y * y;
+    const double r = std::sqrt(R * R + 2 * R * as + p2), e = (2 * R * as + p2) / (r + R);  // e = r − R
+    const double nv[2] = {(R * s[0] + x) / r, (R * s[1] + y) / r};                          // ∇r
+    Jet j;
+    j.f = I1 * (g.k * (e - as - (p2 - as * as) / (2 * R))) - std::log1p(e / R);
+    for (int i = 0; i < 2; ++i) j.g[i] = I1 * (g.k * (nv[i] - s[i] - (p[i] - as * s[i]) / R)) - nv[i] / r;
+    for (int i = 0; i < 2; ++i)
+        for (int l = 0; l < 2; ++l) {
+            const double del = i == l ? 1.0 : 0.0;
+            j.h[i][l] = I1 * (g.k * ((del - nv[i] * nv[l]) / r - (del - s[i] * s[l]) / R)) -
+                        (del - 2 * nv[i] * nv[l]) / (r * r);
+        }
+    return j;
+}
+
+// The exponent for a piece whose (piece ∩ window) is centred at (cx, cy): the hit point's
+// quadratic form plus the second-order Taylor expansion of the corrections about the centre,
+// Δf ≈ Δf(c) + G·(p − c) + ½(p − c)ᵀH(p − c) rewritten in p. Falls back to the plain form if the
+// expansion would not be a decaying Gaussian (a footprint deeper than the GR's Rayleigh range).
+Quadratic Expand(const PlateGaussian &g, double cx, double cy) {
+    Quadratic q{g.axx, g.axy, g.ayy, g.bx, g.by, 0};
+    if (!g.evolve || !std::isfinite(cx) || !std::isfinite(cy)) return q;
+    Jet j = BeamCorrection(g, cx, cy);
+    if (std::isfinite(g.dist) && g.dist > 0) {
+        const Jet js = SphereCorrection(g, cx, cy);
+        j.f += js.f;
+        for (int i = 0; i < 2; ++i) {
+            j.g[i] += js.g[i];
+            for (int l = 0; l < 2; ++l) j.h[i][l] += js.h[i][l];
+        }
+    }
+    const double c[2] = {cx, cy};
+    Complex lin[2];  // G − H c
+    for (int i = 0; i < 2; ++i) lin[i] = j.g[i] - (j.h[i][0] * c[0] + j.h[i][1] * c[1]);
+    Quadratic e;
+    e.axx = g.axx - 0.5 * j.h[0][0];
+    e.axy = g.axy - 0.25 * (j.h[0][1] + j.h[1][0]);
+    e.ayy = g.ayy - 0.5 * j.h[1][1];
+    e.bx = g.bx - I1 * lin[0];
+    e.by = g.by - I1 * lin[1];
+    e.c0 = j.f - (j.g[0] * c[0] + j.g[1] * c[1]) +
+           0.5 * (c[0] * (j.h[0][0] * c[0] + j.h[0][1] * c[1]) + c[1] * (j.h[1][0] * c[0] + j.h[1][1] * c[1]));
+    const double rxx = e.axx.real(), rxy = e.axy.real(), ryy = e.ayy.real();
+    const bool ok = rxx > 0 && ryy > 0 && rxx * ryy > rxy * rxy && std::isfinite(std::abs(e.c0)) &&
+                    std::isfinite(std::abs(e.bx) + std::abs(e.by));
+    return ok ? e : q;
+}
+
 // The integrand in the orientation used for a piece: x is the closed-form axis, y the quadrature
 // axis; hx = far × the window along x, hy = the window along y.
 struct Oriented {
-    Complex axx, axy, ayy;
-    double bx, by, hx, hy;
+    Complex axx, axy, ayy, bx, by, c0;
+    double hx, hy;
     // Derived.
     Complex sa, inv2a, inv4a, k;  // √axx, 1/(2axx), 1/(4axx), √π/(2√axx)
 };
 
-Oriented Orient(const PlateGaussian &g, bool transpose) {
+Oriented Orient(const Quadratic &q, const PlateGaussian &g, bool transpose) {
     Oriented o;
     if (!transpose) {
-        o.axx = g.axx, o.ayy = g.ayy, o.bx = g.bx, o.by = g.by, o.hx = g.far * g.hx, o.hy = g.hy;
+        o.axx = q.axx, o.ayy = q.ayy, o.bx = q.bx, o.by = q.by, o.hx = g.far * g.hx, o.hy = g.hy;
     } else {
-        o.axx = g.ayy, o.ayy = g.axx, o.bx = g.by, o.by = g.bx, o.hx = g.far * g.hy, o.hy = g.hx;
+        o.axx = q.ayy, o.ayy = q.axx, o.bx = q.by, o.by = q.bx, o.hx = g.far * g.hy, o.hy = g.hx;
     }
-    o.axy = g.axy;
+    o.axy = q.axy;
+    o.c0 = q.c0;
     o.sa = std::sqrt(o.axx);  // principal root: Re > 0 since Re axx > 0
     o.inv2a = 0.5 / o.axx;
     o.inv4a = 0.25 / o.axx;
@@ -325,17 +419,17 @@ Oriented Orient(const PlateGaussian &g, bool transpose) {
     return o;
 }
 
-// Exponent −(axx x² + 2axy xy + ayy y²) + i(bx x + by y).
+// Exponent c0 − (axx x² + 2axy xy + ayy y²) + i(bx x + by y).
 inline Complex Exponent(const Oriented &o, double x, double y) {
-    return -(o.axx * (x * x) + o.axy * (2 * x * y) + o.ayy * (y * y)) + Complex(0, o.bx * x + o.by * y);
+    return o.c0 - (o.axx * (x * x) + o.axy * (2 * x * y) + o.ayy * (y * y)) + I1 * (o.bx * x + o.by * y);
 }
 
 // ∂Φ/∂x and ∂Φ/∂y of the exponent at (x, y).
 inline Complex DxPhi(const Oriented &o, double x, double y) {
-    return Complex(0, o.bx) - 2.0 * (o.axx * x + o.axy * y);
+    return I1 * o.bx - 2.0 * (o.axx * x + o.axy * y);
 }
 inline Complex DyPhi(const Oriented &o, double x, double y) {
-    return Complex(0, o.by) - 2.0 * (o.axy * x + o.ayy * y);
+    return I1 * o.by - 2.0 * (o.axy * x + o.ayy * y);
 }
 
 // Quadrature plan for y ∈ [y0, y1] (y = s) with linear limits x = xl + sl·(y − ym),
@@ -375,7 +469,7 @@ Complex IntegrateStrip(const Oriented &o, double s0, double s1, const Plan &plan
             if (!(xh > xl)) continue;
             const double wj = half * rule.w[std::size_t(j)] * jv[j];
             // Inner integral over x: α = axx, β = −2axy y + i bx, m = β/(2α), z = √α(x − m).
-            const Complex beta = Complex(0, o.bx) - o.axy * (2 * y);
+            const Complex beta = I1 * o.bx - o.axy * (2 * y);
             const Complex m = beta * o.inv2a;
             const Complex zl = o.sa * (xl - m), zh = o.sa * (xh - m);
             if (ShortInterval(zl, zh)) {
@@ -393,7 +487,7 @@ Complex IntegrateStrip(const Oriented &o, double s0, double s1, const Plan &plan
             const bool posL = zl.real() >= 0, posH = zh.real() >= 0;
             if (!posL && posH) {
                 // The stationary point lies inside: the full-line term 2e^{αm²}·e^{y-part}.
-                const Complex full = beta * beta * o.inv4a - o.ayy * (y * y) + Complex(0, o.by * y);
+                const Complex full = beta * beta * o.inv4a - o.ayy * (y * y) + I1 * (o.by * y) + o.c0;
                 if (full.real() > CutExponent) {
                     fr[fulls] = full.real(), fi[fulls] = full.imag(), fcoef[fulls] = 2 * wj;
                     ++fulls;
@@ -569,7 +663,8 @@ double MaxRealExponent(const Oriented &o, double x, double y0, double y1) {
     double m = std::max(re(y0), re(y1));
     const double c = o.ayy.real();
     if (c > 0) {
-        const double ys = -o.axy.real() * x / c;
+        // d/dy Re(…) = −2Re(axy)x − 2Re(ayy)y − Im(by) = 0.
+        const double ys = -(2 * o.axy.real() * x + o.by.imag()) / (2 * c);
         if (ys > y0 && ys < y1) m = std::max(m, re(ys));
     }
     return m;
@@ -582,15 +677,15 @@ double MaxRealExponent(const Oriented &o, double x, double y0, double y1) {
 // closed form (the common case of a slit longer than the footprint). Otherwise quadrature.
 Complex RectStrip(const Oriented &o, double xl, double xh, double y0, double y1) {
     auto rez = [&](double x, double y) {
-        const Complex m = (Complex(0, o.bx) - o.axy * (2 * y)) * o.inv2a;
+        const Complex m = (I1 * o.bx - o.axy * (2 * y)) * o.inv2a;
         return (o.sa * (x - m)).real();
     };
     if (MaxRealExponent(o, xl, y0, y1) < CutExponent && MaxRealExponent(o, xh, y0, y1) < CutExponent &&
         rez(xl, y0) < 0 && rez(xl, y1) < 0 && rez(xh, y0) >= 0 && rez(xh, y1) >= 0) {
         const Complex r = o.axy / o.axx;
         const Complex alpha = o.ayy - o.axy * r;  // Schur complement: Re > 0
-        const Complex beta = Complex(0, o.by) - Complex(0, o.bx) * r;
-        const Complex c0 = -o.bx * o.bx * o.inv4a;
+        const Complex beta = I1 * o.by - I1 * o.bx * r;
+        const Complex c0 = -o.bx * o.bx * o.inv4a + o.c0;
         return 2.0 * o.k * std::exp(c0) * GaussianSegmentIntegral(alpha, beta, y0, y1);
     }
     const Plan plan = LinearPlan(o, y0, y1, xl, 0, xh, 0);
@@ -655,6 +750,12 @@ PlateGaussian MakePlateGaussian(const Vec3 &d, const Vec3 &s, const Vec3 &e1, co
     g.ayy = gamma * (1 - d2 * d2) - Complex(0, kr * (1 - s2 * s2));
     g.bx = k * (d1 + s1);
     g.by = k * (d2 + s2);
+    // The exact beams, re-expanded per piece (IntegratePiece): 1/q = (ρ + i)/(kβ²).
+    g.evolve = true;
+    g.k = k;
+    g.d1 = d1, g.d2 = d2, g.s1 = s1, g.s2 = s2;
+    g.invQ = Complex(rho, 1) / (k * beta2);
+    g.dist = kr > 0 ? dist : Infinity;
     // The box bounding the oblique cut |Δ⊥d| ≤ ϱ (theory §0 D13).
     const double varrho = window * std::sqrt(beta2);
     g.hx = varrho * std::sqrt(1 + d1 * d1 / (dn * dn));
@@ -673,7 +774,8 @@ Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec
         const double v0 = std::max({piece.v0 - oy, cy - r, -g.hy}),
                      v1 = std::min({piece.v1 - oy, cy + r, g.hy});
         if (!(u1 > u0 && v1 > v0)) return 0;
-        const Oriented ov = Orient(g, false), ou = Orient(g, true);
+        const Quadratic q = Expand(g, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
+        const Oriented ov = Orient(q, g, false), ou = Orient(q, g, true);
         if (v1 - v0 <= u1 - u0)
             return Disc(ov, cx, cy, r, piece.uMin - ox, piece.uMax - ox, piece.v0 - oy, piece.v1 - oy);
         return Disc(ou, cy, cx, r, piece.v0 - oy, piece.v1 - oy, piece.uMin - ox, piece.uMax - ox);
@@ -688,14 +790,22 @@ Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec
         // then measures the same truncated wave function, so Parseval and the energy bound hold
         // exactly for the truncated state.
         if (!(std::min(b0, g.hx) > std::max(a0, -g.hx) && std::min(y1, g.hy) > std::max(y0, -g.hy))) return 0;
-        const Oriented ov = Orient(g, false), ou = Orient(g, true);          // closed form in u / in v
+        const Quadratic q = Expand(g, 0.5 * (std::max(a0, -g.hx) + std::min(b0, g.hx)),
+                                   0.5 * (std::max(y0, -g.hy) + std::min(y1, g.hy)));
+        const Oriented ov = Orient(q, g, false), ou = Orient(q, g, true);  // closed form in u / in v
         const double vu0 = std::max(a0, -ov.hx), vu1 = std::min(b0, ov.hx);  // ov: u limits
         const double vv0 = std::max(y0, -ov.hy), vv1 = std::min(y1, ov.hy);  // ov: v range
         const double uv0 = std::max(y0, -ou.hx), uv1 = std::min(y1, ou.hx);  // ou: v limits
         const double uu0 = std::max(a0, -ou.hy), uu1 = std::min(b0, ou.hy);  // ou: u range
         return vv1 - vv0 <= uu1 - uu0 ? RectStrip(ov, vu0, vu1, vv0, vv1) : RectStrip(ou, uv0, uv1, uu0, uu1);
     }
-    return Trapezoid(Orient(g, false), y0, y1, a0, piece.loB, b0, piece.hiB);
+    // The expansion centre: the middle of the piece's bounding box inside the D13 box.
+    const double ya = std::max(y0, -g.hy), yb = std::min(y1, g.hy);
+    if (!(yb > ya)) return 0;
+    const double xa = std::max(std::min(a0 + piece.loB * ya, a0 + piece.loB * yb), -g.hx);
+    const double xb = std::min(std::max(b0 + piece.hiB * ya, b0 + piece.hiB * yb), g.hx);
+    const Quadratic q = xb > xa ? Expand(g, 0.5 * (xa + xb), 0.5 * (ya + yb)) : Expand(g, 0, 0.5 * (ya + yb));
+    return Trapezoid(Orient(q, g, false), y0, y1, a0, piece.loB, b0, piece.hiB);
 }
 
 }  // namespace phasor

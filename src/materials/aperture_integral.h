@@ -33,10 +33,26 @@ Complex FaddeevaWUpper(Complex z);
 Complex GaussianSegmentIntegral(Complex alpha, Complex beta, double x0, double x1);
 
 /// The integrand of one wavelength in plate coordinates relative to the hit point (see above).
+///
+/// With `evolve` (set by MakePlateGaussian) the quadratic form is only the integrand's expansion
+/// at the hit point; the integrand itself is the GR's exact paraxial beam, which evolves along its
+/// own axis, times the exact spherical incident wave (theory §9; docs/kernels.md "aperture"):
+///     ψ ∝ (q/(q+a))·exp(ik a + ik T/(2(q+a))),  a = d1 x + d2 y,  T = x² + y² − a²,
+/// 1/q = (ρ + i)/(kβ²) (so ik/(2q) = −γ), and U_inc ∝ (R/r)·e^{ik(r − R)}, r = |Δ + R s|.
+/// IntegratePiece re-expands that exponent to second order about the centre of each
+/// (piece ∩ window), so the closed forms get per-piece complex coefficients. At oblique
+/// incidence the axial offset a reaches ±β·window·tanθ and changes the curvature radius by a
+/// relative a/|q|: a phase error odd in the offset (a fringe shift) if ignored.
 struct PlateGaussian {
     Complex axx, axy, ayy;                // [1/m²]
     double bx = 0, by = 0;                // [rad/m]
     double hx = Infinity, hy = Infinity;  // window half-widths [m]
+    bool evolve = false;                  // add the beams' evolution along their axes (see above)
+    double k = 0;                         // wavenumber [rad/m]
+    double d1 = 0, d2 = 0;                // the traced GR's direction on the plate axes
+    Complex invQ;                         // 1/q of the traced GR at the hit point [1/m]
+    double s1 = 0, s2 = 0;                // the incident wave's direction on the plate axes
+    double dist = Infinity;               // its wavefront radius at the hit point [m]
     /// The window truncates the quadrature axis of a piece at hx (or hy) and its closed-form axis
     /// at far·hx (far·hy): truncating there saves nothing, and at 2× the D13 window the GR's
     /// amplitude is < e^{−2·window²} (e^{−32} for window = 4), so a slit longer than the
@@ -52,7 +68,7 @@ struct PlateGaussian {
 /// With γ = (1−iρ)/(2β²), κ = k/(2·dist) and dᵢ = d·eᵢ, sᵢ = s·eᵢ, d_n = d·n:
 ///   axx = γ(1−d1²) − iκ(1−s1²),  axy = −γ d1 d2 + iκ s1 s2,  ayy = γ(1−d2²) − iκ(1−s2²),
 ///   bx = k(d1+s1),  by = k(d2+s2),  hx = ϱ√(1 + d1²/d_n²),  hy = ϱ√(1 + d2²/d_n²), ϱ = window·β
-/// (the box bounding the oblique cut |Δ⊥d| ≤ ϱ). Requires d_n ≠ 0.
+/// (the box bounding the oblique cut |Δ⊥d| ≤ ϱ). Requires d_n ≠ 0. Sets `evolve` and its data.
 PlateGaussian MakePlateGaussian(const Vec3 &d, const Vec3 &s, const Vec3 &e1, const Vec3 &e2, const Vec3 &n,
                                 double k, double beta2, double rho, double dist, double window);
 
@@ -65,7 +81,9 @@ PlateGaussian MakePlateGaussian(const Vec3 &d, const Vec3 &s, const Vec3 &e1, co
 /// along x. A rectangle longer than the footprint along its closed-form axis collapses to one
 /// more closed form. The Gauss–Legendre order follows a quadratic model of the exponent and the
 /// Bernstein-ellipse error bound (see the .cpp), for an error ≲ 1e-10 of ∫|integrand| over the
-/// piece (checked against adaptive brute force in tests/materials/aperture_test.cpp).
+/// piece (checked against adaptive brute force in tests/materials/aperture_test.cpp). With
+/// g.evolve the exact beams are re-expanded about the centre of (piece ∩ D13 box) first (see
+/// PlateGaussian); the residual is their third-order term over the piece.
 Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec2 &origin);
 
 }  // namespace phasor

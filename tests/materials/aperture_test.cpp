@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <cstdio>
 #include <filesystem>
 #include <functional>
 #include <sstream>
@@ -116,7 +117,8 @@ PlateGaussian Oblique(double beta, double rho, double dist, const Vec3 &tilt = V
     const Vec3 s = Normalize(-d + tilt);
     PlateGaussian g =
         MakePlateGaussian(d, s, Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), K, beta * beta, rho, dist, 4);
-    g.far = 1;  // the plain window box, so that the brute force sees the same region
+    g.far = 1;         // the plain window box, so that the brute force sees the same region
+    g.evolve = false;  // the quadratic form itself (the closed-form machinery under test)
     return g;
 }
 
@@ -274,6 +276,57 @@ TEST(ApertureIntegral, LongSlitInClosedForm) {
     EXPECT_LT(std::abs(got - ref), 1e-9 * std::abs(ref)) << got << " vs " << ref;
 }
 
+// The GR's evolution along its own axis (PlateGaussian::evolve): at 5° the plate point at offset Δ
+// has axial offset a = d·Δ, and the exact paraxial beam (q/(q+a))·exp(ik a + ikT/(2(q+a))),
+// T = |Δ|² − a², differs from its quadratic form at the hit point by a phase ~ k·T·a/(2|q|²)
+// (~0.1 rad 300 µm off axis for the double slit's GR). Brute-force 2-D quadrature of the exact
+// beams (coded here independently) against IntegratePiece: the re-expanded form agrees to 1e-6,
+// the plain quadratic form does not (1e-3). Plane wave and point source (exact spherical wave).
+TEST(ApertureIntegral, EvolutionAlongTheAxisAtObliqueIncidence) {
+    const double beta = 141.4e-6, rho = 12.49, th = Radians(5);  // the GR at the slits (theory §6.4)
+    const Vec3 s(std::sin(th), 0, -std::cos(th));                 // the incident wave
+    const Vec3 d = Normalize(-s + Vec3(0.02, 0, 0));               // traced GR, near straight through
+    const Complex invQ = Complex(rho, 1) / (K * beta * beta);
+    MaskPiece slit;  // 25 µm wide, 300 µm off the hit point, longer than the footprint
+    slit.loA = 300e-6, slit.hiA = 325e-6, slit.v0 = -2e-3, slit.v1 = 2e-3;
+    for (double dist : {Infinity, 50e-3}) {
+        PlateGaussian g = MakePlateGaussian(d, s, Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), K, beta * beta,
+                                            rho, dist, 4);
+        g.far = 1;
+        auto exact = [&](double x, double y) {
+            const Vec3 p(x, y, 0);
+            const double a = Dot(d, p), t = x * x + y * y - a * a;
+            const Complex q = 1.0 / invQ;
+            const Complex gr = q / (q + a) * std::exp(Complex(0, K * a) + Complex(0, K * t) / (2.0 * (q + a)));
+            if (!std::isfinite(dist)) return gr * std::exp(Complex(0, K * Dot(s, p)));
+            const double r = Length(p + s * dist);
+            return gr * (dist / r) * std::exp(Complex(0, K * (r - dist)));
+        };
+        auto brute = [&](const std::function<Complex(double, double)> &f) {
+            return Adaptive(
+                [&](double y) {
+                    return Panels([&](double x) { return f(x, y); }, slit.loA, slit.hiA, 4);
+                },
+                -g.hy, g.hy, 1e-14);
+        };
+        const Complex ref = brute(exact);
+        const Complex got = IntegratePiece(g, slit, Vec2(0, 0));
+        PlateGaussian plain = g;
+        plain.evolve = false;
+        const Complex old = IntegratePiece(plain, slit, Vec2(0, 0));
+        // The plain form is the test's quadratic Integrand (so the brute force sees what it should).
+        EXPECT_LT(std::abs(brute([&](double x, double y) { return Integrand(plain, x, y); }) - old),
+                  1e-9 * std::abs(ref));
+        // What the per-piece expansion leaves: the mixed third-order term k·y²·d1·δx/(2|q|²) at
+        // y = β, δx = the slit's half-width (the axial offset varies across the slit).
+        const double third = K * beta * beta * std::abs(d.x) * 12.5e-6 / (2 * std::norm(1.0 / invQ));
+        EXPECT_LT(std::abs(got - ref), third * std::abs(ref)) << "dist " << dist << ": " << got << " vs " << ref;
+        EXPECT_GT(std::abs(old - ref), 10 * third * std::abs(ref)) << "dist " << dist;
+        std::printf("dist %g: |new - exact| = %.2e, |old - exact| = %.2e (relative)\n", dist,
+                    std::abs(got - ref) / std::abs(ref), std::abs(old - ref) / std::abs(ref));
+    }
+}
+
 // ---- Normalisation: Parseval and theory Appendix A ------------------------------------------------
 
 // An open plate: ∫ d²b/(2π)² |A(b)|² = ∫_window |OnPlane|² = 1 (Parseval; b = the transverse
@@ -284,6 +337,7 @@ TEST(ApertureIntegral, OpenPlateParseval) {
         const Vec3 d = Dir(theta, 40, -1);
         PlateGaussian g = MakePlateGaussian(d, -d, Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), K,
                                             beta * beta, rho, Infinity, 4);
+        g.evolve = false;  // the oblique cut has unit norm exactly (the evolving beam to O(a/q))
         MaskPiece open;
         open.loA = -1, open.hiA = 1, open.v0 = -1, open.v1 = 1;
         const double c2 = std::abs(d.z) / (Pi * beta * beta);
@@ -315,8 +369,9 @@ TEST(ApertureIntegral, DoubleSlitMatchesTheAppendixFormula) {
         // Traced GR: from the pixel towards the plate, d = (−sinθ0, 0, −cosθ0); the plane wave
         // travels along +z (n = +z).
         const Vec3 d(-std::sin(th), 0, -cosT), s(0, 0, 1);
-        const PlateGaussian g = MakePlateGaussian(d, s, Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), K,
-                                                  beta * beta, rho, Infinity, 4);
+        PlateGaussian g = MakePlateGaussian(d, s, Vec3(1, 0, 0), Vec3(0, 1, 0), Vec3(0, 0, 1), K,
+                                            beta * beta, rho, Infinity, 4);
+        g.evolve = false;  // Appendix A is the oblique cut without evolution along the GR's axis
         Complex sum3 = 0;
         for (const auto &sl : slits) {
             MaskPiece p;
@@ -526,18 +581,22 @@ TEST(ApertureKernel, OpenPlatePassesRadiance) {
 
 // EvalFrom's spherical wave against the GR's curvature (time reversal, D3): a traced GR that
 // converges (ρ = −kβ²/R) onto a point source at distance R couples to it exactly as a flat GR
-// (ρ = 0) couples to a plane wave — the quadratic phases cancel.
+// (ρ = 0) couples to a plane wave — the quadratic phases cancel. The exact beams (evolution along
+// the GR's axis, exact spherical wave) differ from their quadratic forms at third order,
+// |ρ|·(d·Δ)/R ≲ 6e-3 rad over the footprint's core here, so the match holds to 1e-3 (a sign
+// error in the curvature changes the value by far more than 1e-2).
 TEST(ApertureKernel, SphericalWaveCurvatureCancelsAConvergingGR) {
-    auto m = Aperture(ParamDict().Set("discs", Lengths({2e-6, -1e-6, 6e-6})));
+    auto m = Aperture(ParamDict().Set("discs", Lengths({20e-6, -10e-6, 60e-6})));
     ASSERT_TRUE(m);
     const Plate plate;
-    const double beta = 4 * Lambda, dist = 50 * Lambda;  // ρ = −kβ²/R ≈ −2
+    const double beta = 40 * Lambda, dist = 5000 * Lambda;  // ρ = −kβ²/R ≈ −2
     // Straight through (s = −d), where the two quadratic forms |Δ⊥d|² and |Δ⊥s|² coincide.
     for (const Vec3 &d : {Dir(20, 60, -1), Dir(0, 0, -1), Dir(50, 200, -1)}) {
-        Query conv(plate, d, Vec3(1e-6, 0.5e-6, 0), beta, -K * beta * beta / dist);
-        Query flat(plate, d, Vec3(1e-6, 0.5e-6, 0), beta, 0);
+        Query conv(plate, d, Vec3(10e-6, 5e-6, 0), beta, -K * beta * beta / dist);
+        Query flat(plate, d, Vec3(10e-6, 5e-6, 0), beta, 0);
         const double a = m->EvalFrom(conv.q, d, dist)[0], b = m->Eval(flat.q, d)[0];
-        EXPECT_NEAR(a, b, 1e-9 * b) << ToString(d);
+        EXPECT_NEAR(a, b, 1e-3 * b) << ToString(d);
+        std::printf("%s: |converging·spherical − flat·plane| = %.1e\n", ToString(d).c_str(), std::abs(a - b) / b);
         // … while the plane-wave value of the converging GR differs (so the check can fail).
         EXPECT_GT(std::abs(m->Eval(conv.q, d)[0] - b), 1e-2 * b);
     }
