@@ -86,7 +86,7 @@ int main(int argc, char **argv) {
     const Result rs3 = Run("rs", defines, 1, threads, "3d");
     std::printf("  rs (3-D, reference)            %9.3f s\n", rs3.seconds);
     const Result rs2 = Run("rs", defines, 1, threads, "2d");
-    std::printf("  rs (2-D, infinite slits)       %9.3f s   differs from 3-D by %.2e of peak\n", rs2.seconds,
+    std::printf("  rs (2-D, infinite slits)       %9.4f s   differs from 3-D by %.2e of peak\n", rs2.seconds,
                 ErrorOfPeak(rs2.row, rs3.row));
     double tGrt = 0;
     int nGrt = 0;
@@ -104,7 +104,7 @@ int main(int argc, char **argv) {
         return 1;
     }
     std::printf("same error (<= 2e-3 of peak): grt %dx%d %.3f s vs rs 3-D %.3f s -> rs/grt = %.1fx "
-                "(paper: 27.6x; goal >= 100x); rs 2-D / grt = %.2fx\n",
-                nGrt, nGrt, tGrt, rs3.seconds, rs3.seconds / tGrt, rs2.seconds / tGrt);
+                "(paper: 27.6x; goal >= 100x); grt / rs 2-D = %.0fx (a cheaper, different problem)\n",
+                nGrt, nGrt, tGrt, rs3.seconds, rs3.seconds / tGrt, tGrt / std::max(rs2.seconds, 1e-9));
     return 0;
 }

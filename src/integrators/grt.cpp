@@ -17,8 +17,13 @@
 //     laser) — with a shadow ray towards the source. Such a GR does not measure them again when
 //     it escapes (no double counting); after a continuous lobe they are reached by NEE and by
 //     escaping GRs (Le), MIS-weighted as usual.
-// Russian roulette starts after `rr_depth` bounces and never before the first measurement (NEE or
-// closed form). The film keeps the per-pixel variance of the mean.
+//   * footprint-aware kernels (apertures, theory §9) get the whole incident GR (ScatterQuery::gr)
+//     and return spread-free samples: the path continues as a classical ray; NEE asks them for the
+//     response to a spherical wave from the light sample (EvalFrom), and a sampled lobe is
+//     re-weighted by the distance its ray travels, so both strategies integrate one function.
+// `light_samples` NEE estimates per vertex (stratified). Russian roulette starts after `rr_depth`
+// bounces and never before the first measurement (NEE or closed form). At the last vertex no
+// direction is sampled if only delta lights exist. The film keeps the per-pixel variance of the mean.
 //
 // Simplifications (documented in docs/generalized_rays.md): the footprint is isotropic (D1); the
 // anamorphic stretch on oblique/curved interfaces is ignored (theory §1.6, as in the paper); area
@@ -172,6 +177,10 @@ class GrtIntegrator final : public PixelIntegrator {
                 measured = true;
             }
 
+            // A sampled direction at the last vertex can only find emission; without emitters a
+            // ray can hit (only delta lights), it would contribute nothing.
+            if (depth + 1 == maxDepth_ && !HasHittableEmitters(scene)) break;
+
             // One term of the Eq. 22 mixture: the GR keeps β, ρ; its mean direction turns and |k|
             // follows the medium (S6.4).
             auto bs = mat->Sample(q, sampler.Get1D(), sampler.Get2D());
@@ -203,6 +212,14 @@ class GrtIntegrator final : public PixelIntegrator {
     }
 
   private:
+    /// True if some light can be met by a ray (area lights, lights at infinity with a finite
+    /// extent); delta lights (plane waves, point and spot lights, directional) cannot.
+    static bool HasHittableEmitters(const Scene &scene) {
+        for (const Light *l : scene.Lights())
+            if (!l->IsDelta()) return true;
+        return false;
+    }
+
     /// A sample of a footprint-aware kernel (theory §9) waiting for the distance to what its ray
     /// hits: the kernel's response depends on the incident wave's curvature (EvalFrom), and its
     /// Sample weight assumed a plane wave.

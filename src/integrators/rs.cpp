@@ -326,41 +326,32 @@ void Propagator::Field3D(const Local &p, double acc[4]) const {
     double ur = 0, ui = 0, dr = 0, di = 0;
 
     // Bounds of |∂φ/∂u| and |∂φ/∂v| over a box, φ = k(R − Z) + φ_inc.
-    auto gradU = [&](double ua, double ub, double va, double vb) {
+    // Bound on |∂(kR + phase of U_inc)/∂a| over the panel [a0, a1] × [b0, b1], for the axis a
+    // (field point coordinate A along it, B across; source point (sa, sb); plane-wave slope da).
+    auto gradAlong = [&](double A, double B, double a0, double a1, double b0, double b1, double sa, double sb,
+                         double da) {
         double pLo, pHi, lo, hi;
-        DistanceRange(Y, va, vb, &pLo, &pHi);
-        CosineRange(X - ub, X - ua, std::sqrt(pLo * pLo + Z2), std::sqrt(pHi * pHi + Z2), &lo, &hi);
-        double gLo = -hi, gHi = -lo;  // ∂R/∂u = −(X − u)/R
+        DistanceRange(B, b0, b1, &pLo, &pHi);
+        CosineRange(A - a1, A - a0, std::sqrt(pLo * pLo + Z2), std::sqrt(pHi * pHi + Z2), &lo, &hi);
+        double gLo = -hi, gHi = -lo;  // ∂R/∂a = −(A − a)/R
         if (spherical_) {
             double qLo, qHi, sLo, sHi;
-            DistanceRange(sv_, va, vb, &qLo, &qHi);
-            CosineRange(ua - su_, ub - su_, std::sqrt(qLo * qLo + sz_ * sz_),
-                        std::sqrt(qHi * qHi + sz_ * sz_), &sLo, &sHi);
+            DistanceRange(sb, b0, b1, &qLo, &qHi);
+            CosineRange(a0 - sa, a1 - sa, std::sqrt(qLo * qLo + sz_ * sz_), std::sqrt(qHi * qHi + sz_ * sz_),
+                        &sLo, &sHi);
             gLo += sLo;
             gHi += sHi;
         } else {
-            gLo += du_;
-            gHi += du_;
+            gLo += da;
+            gHi += da;
         }
         return k * std::max(std::abs(gLo), std::abs(gHi));
     };
+    auto gradU = [&](double ua, double ub, double va, double vb) {
+        return gradAlong(X, Y, ua, ub, va, vb, su_, sv_, du_);
+    };
     auto gradV = [&](double ua, double ub, double va, double vb) {
-        double pLo, pHi, lo, hi;
-        DistanceRange(X, ua, ub, &pLo, &pHi);
-        CosineRange(Y - vb, Y - va, std::sqrt(pLo * pLo + Z2), std::sqrt(pHi * pHi + Z2), &lo, &hi);
-        double gLo = -hi, gHi = -lo;
-        if (spherical_) {
-            double qLo, qHi, sLo, sHi;
-            DistanceRange(su_, ua, ub, &qLo, &qHi);
-            CosineRange(va - sv_, vb - sv_, std::sqrt(qLo * qLo + sz_ * sz_),
-                        std::sqrt(qHi * qHi + sz_ * sz_), &sLo, &sHi);
-            gLo += sLo;
-            gHi += sHi;
-        } else {
-            gLo += dv_;
-            gHi += dv_;
-        }
-        return k * std::max(std::abs(gLo), std::abs(gHi));
+        return gradAlong(Y, X, va, vb, ua, ub, sv_, su_, dv_);
     };
 
     // One line v = const of a piece: the u integral, weight wv (outer node weight × Jacobian).

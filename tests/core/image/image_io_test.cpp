@@ -18,6 +18,7 @@
 #include "core/diagnostics.h"
 #include "core/image_io.h"
 #include "support/stats.h"
+#include "support/temp_dir.h"
 
 namespace phasor {
 namespace {
@@ -25,25 +26,13 @@ namespace {
 namespace fs = std::filesystem;
 
 // A fresh, empty directory per test, removed afterwards.
-class ImageIoTest : public testing::Test {
+class ImageIoTest : public test::TempDirTest {
   protected:
+    ImageIoTest() : TempDirTest("phasor_image_io") {}
     void SetUp() override {
-        const auto *info = testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::path(testing::TempDir()) /
-               ("phasor_image_io_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-        // These tests use the built-in OCIO config.
-        unsetenv("OCIO");
+        TempDirTest::SetUp();
+        unsetenv("OCIO");  // these tests use the built-in OCIO config
     }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string Path(const std::string &name) const { return (dir_ / name).string(); }
-    std::vector<std::string> Listing() const {
-        std::vector<std::string> names;
-        for (const auto &e : fs::directory_iterator(dir_)) names.push_back(e.path().filename());
-        return names;
-    }
-    fs::path dir_;
 };
 
 uint32_t Bits(float f) {

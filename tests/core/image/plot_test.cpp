@@ -15,29 +15,16 @@
 #include "core/diagnostics.h"
 #include "core/image_io.h"
 #include "core/plot.h"
+#include "support/temp_dir.h"
 
 namespace phasor {
 namespace {
 
 namespace fs = std::filesystem;
 
-class PlotTest : public testing::Test {
+class PlotTest : public test::TempDirTest {
   protected:
-    void SetUp() override {
-        const auto *info = testing::UnitTest::GetInstance()->current_test_info();
-        dir_ = fs::path(testing::TempDir()) /
-               ("phasor_plot_" + std::string(info->name()) + "_" + std::to_string(getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-    std::string Path(const std::string &name) const { return (dir_ / name).string(); }
-    std::vector<std::string> Listing() const {
-        std::vector<std::string> names;
-        for (const auto &e : fs::directory_iterator(dir_)) names.push_back(e.path().filename());
-        return names;
-    }
-    fs::path dir_;
+    PlotTest() : TempDirTest("phasor_plot") {}
 };
 
 Vec3 Pixel(const Image &img, int i, int j) {
