@@ -143,7 +143,14 @@ int Render(const CliOptions &o) {
     try {
         st = scene->GetIntegrator().Render(*scene, film, opt);
     } catch (const Error &e) {
-        std::cerr << (bar ? "\n" : "") << "error: " << e.Message() << "\n";
+        if (bar) std::cerr << "\n";
+        if (e.Loc().Known()) {  // an error about a scene object: file:line:col with its source line
+            Diagnostics located;
+            located.Report(e);
+            located.Print(std::cerr);
+        } else {
+            std::cerr << "error: " << e.Message() << "\n";
+        }
         return 1;
     }
     std::signal(SIGINT, SIG_DFL);

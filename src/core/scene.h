@@ -40,6 +40,9 @@ class Scene {
     const Accel &GetAccel() const { return *accel_; }
     const std::vector<const Light *> &Lights() const { return lights_; }
     const std::vector<std::shared_ptr<Shape>> &Shapes() const { return shapes_; }
+    /// Where a plug-in object (light, shape, detector, …) was defined, for errors found at render
+    /// time; unknown for objects the scene did not create from a description.
+    FileLoc Where(const void *object) const;
     const std::vector<const Light *> &InfiniteLights() const { return infiniteLights_; }
     const Detector &GetDetector() const { return *detector_; }
     const Integrator &GetIntegrator() const { return *integrator_; }

@@ -765,13 +765,15 @@ class RsIntegrator final : public Integrator {
         const Detector &det = scene.GetDetector();
         const SensorPlaneGeometry *sensor = det.SensorPlane();
         if (!sensor)
-            throw Error("integrator 'rs' needs a virtual_plane detector (a sensor plane); detector '" +
+            throw Error(scene.Where(&det),
+                        "integrator 'rs' needs a virtual_plane detector (a sensor plane); detector '" +
                         det.name + "' is not one");
         if (scene.Lights().empty())
             throw Error("integrator 'rs' needs at least one coherent light; the scene has none");
         for (const Light *light : scene.Lights())
             if (!light->CoherentField())
                 throw Error(
+                    scene.Where(light),
                     "light '" + light->name +
                     "' has no coherent field: integrator 'rs' needs monochromatic (line-spectrum) plane "
                     "waves or isotropic point lights");
@@ -785,6 +787,7 @@ class RsIntegrator final : public Integrator {
             for (std::size_t i = 0; i < shapes.size() && i < 6; ++i)
                 names += (i ? ", '" : "'") + shapes[i]->name + "'";
             throw Error(
+                scene.Where(shapes[1].get()),
                 "integrator 'rs' handles exactly one planar aperture plate between source and sensor; the "
                 "scene has " +
                 std::to_string(shapes.size()) + " shapes (" + names + (shapes.size() > 6 ? ", …" : "") + ")");
@@ -792,15 +795,15 @@ class RsIntegrator final : public Integrator {
         const Shape &shape = *shapes[0];
         const ApertureMask *mask = shape.material ? shape.material->Openings() : nullptr;
         if (!mask)
-            throw Error("integrator 'rs' needs an aperture plate: shape '" + shape.name +
+            throw Error(scene.Where(&shape), "integrator 'rs' needs an aperture plate: shape '" + shape.name +
                         "' has no material with openings (use the 'aperture' material)");
         if (!shape.IsPlanar())
-            throw Error("integrator 'rs': the aperture plate '" + shape.name + "' is not planar");
+            throw Error(scene.Where(&shape), "integrator 'rs': the aperture plate '" + shape.name + "' is not planar");
         PlateFrame plate;
         try {
             plate = PlateFrame::FromTransform(shape.objectToWorld);
         } catch (const Error &e) {
-            throw Error("aperture plate '" + shape.name + "': " + e.Message());
+            throw Error(scene.Where(&shape), "aperture plate '" + shape.name + "': " + e.Message());
         }
 
         // Sensor side: the whole evaluation window must lie strictly on one side, ≥ 1 λ away.
@@ -816,12 +819,12 @@ class RsIntegrator final : public Integrator {
             hMax = std::max(hMax, h);
         }
         if (!(hMin > 0) && !(hMax < 0))
-            throw Error("sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
+            throw Error(scene.Where(&det), "sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
                         "': it reaches the plate's plane");
         const bool flip = hMax < 0;
         const Vec3 towardsSensor = flip ? -plate.n : plate.n;
         if (!(Dot(sensor->frame.n, towardsSensor) < 0))
-            throw Error("sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
+            throw Error(scene.Where(&det), "sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
                         "': its front side (+z) faces away from the plate");
 
         struct Job {
@@ -836,14 +839,14 @@ class RsIntegrator final : public Integrator {
             const auto wave = light->CoherentField();
             const double minHeight = std::min(std::abs(hMin), std::abs(hMax));
             if (minHeight < wave->lambda)
-                throw Error("sensor '" + det.name +
+                throw Error(scene.Where(&det), "sensor '" + det.name +
                             "' is closer than one wavelength to the aperture plate '" + shape.name +
                             "' (Kirchhoff boundary values need a distant sensor)");
             const bool sameSide = wave->kind == CoherentWave::Kind::Plane
                                       ? !(Dot(Normalize(wave->dir), towardsSensor) > 0)
                                       : !(Dot(wave->pos - plate.origin, towardsSensor) < 0);
             if (sameSide)
-                throw Error("light '" + light->name + "' and sensor '" + det.name +
+                throw Error(scene.Where(light), "light '" + light->name + "' and sensor '" + det.name +
                             "' are on the same side of the aperture plate '" + shape.name +
                             "' (rs propagates from the source through the plate to the sensor)");
             const bool twoD = Choose2d(*mask, plate, *wave, *sensor, light->name);

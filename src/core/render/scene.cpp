@@ -163,6 +163,11 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     return scene;
 }
 
+FileLoc Scene::Where(const void *object) const {
+    const SceneEntity *e = ctx_ ? ctx_->EntityOf(object) : nullptr;
+    return e ? e->loc : FileLoc{};
+}
+
 bool Scene::Occluded(const SurfaceInteraction &from, const Vec3 &to) const {
     Vec3 d = to - from.p;
     Vec3 o = from.SpawnOrigin(d);
