@@ -213,19 +213,36 @@ int Format(const CliOptions &o) {
     return 0;
 }
 
-int List(const CliOptions &o) {
-    bool any = false;
+/// The family a command-line word names: "material", "Material", "materials", or "kernel(s)" for
+/// materials. Empty (with an error and a suggestion printed) when it names none.
+std::string ResolveFamily(const std::string &word) {
+    std::string w = word;
+    if (w.size() > 1 && (w.back() == 's' || w.back() == 'S')) {
+        bool known = false;  // keep a trailing 's' that belongs to the name
+        for (const FamilyInfo &f : AllFamilies()) known |= (w == f.family || w == f.keyword);
+        if (!known) w.pop_back();
+    }
+    if (w == "kernel" || w == "Kernel") w = "material";
+    std::vector<std::string> names;
     for (const FamilyInfo &f : AllFamilies()) {
-        if (!o.family.empty() && o.family != f.family && o.family != f.keyword &&
-            !(o.family == "kernel" && f.family == "material"))
-            continue;
-        any = true;
+        if (w == f.family || w == f.keyword) return f.family;
+        names.push_back(f.family);
+    }
+    const std::string sug = Suggest(w, names);
+    std::cerr << "error: unknown family '" << word << "'"
+              << (sug.empty() ? "" : "; did you mean '" + sug + "'?") << " (families:";
+    for (const std::string &n : names) std::cerr << " " << n;
+    std::cerr << ")\n";
+    return {};
+}
+
+int List(const CliOptions &o) {
+    const std::string family = o.family.empty() ? "" : ResolveFamily(o.family);
+    if (!o.family.empty() && family.empty()) return 1;
+    for (const FamilyInfo &f : AllFamilies()) {
+        if (!family.empty() && family != f.family) continue;
         std::cout << f.family << " (" << f.keyword << "):\n";
         for (const Schema *s : f.schemas) std::cout << "  " << s->name << " — " << s->doc << "\n";
-    }
-    if (!any) {
-        std::cerr << "error: unknown family '" << o.family << "'\n";
-        return 1;
     }
     return 0;
 }
@@ -240,14 +257,16 @@ int Describe(const CliOptions &o) {
         }
         return 0;
     }
-    const Schema *s = FindSchema(o.family, o.name);
+    const std::string family = ResolveFamily(o.family);
+    if (family.empty()) return 1;
+    const Schema *s = FindSchema(family, o.name);
     if (!s) {
         std::vector<std::string> names;
         for (const FamilyInfo &f : AllFamilies())
-            if (f.family == o.family || f.keyword == o.family)
+            if (f.family == family)
                 for (const Schema *x : f.schemas) names.push_back(x->name);
         std::string sug = Suggest(o.name, names);
-        std::cerr << "error: no " << o.family << " named '" << o.name << "'"
+        std::cerr << "error: no " << family << " named '" << o.name << "'"
                   << (sug.empty() ? "" : "; did you mean '" + sug + "'?") << "\n";
         return 1;
     }
