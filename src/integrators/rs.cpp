@@ -15,7 +15,8 @@
 //   the sensor's reference irradiance. Several lights add incoherently (intensities add).
 //   In the double-slit set-up F differs from |U|² by 2.8e-5 of peak (measured in rs_test.cpp).
 //
-// Quadrature (docs/rs.md; target 1e-4 of peak, measured 5e-7 — the sensor grid's aliasing):
+// Quadrature (docs/rs.md; `accuracy`, default 1e-4 of peak, sets the tolerances below through
+// QuadratureRule::ForAccuracy; measured errors are far smaller, see docs/rs.md §4):
 //  * Aperture integral, per field point, per mask piece {v ∈ [v0, v1], u ∈ [ULo(v), UHi(v)]}:
 //    Gauss–Legendre panels along v, and for each v node along u. Panels are marched so that
 //    (bound of |∂φ/∂u| or |∂φ/∂v| over the panel's box) × length ≤ 6π, φ = kR + incident phase;
@@ -23,23 +24,24 @@
 //    plus |slope|·|∂φ/∂u| for the moving limits of trapezoids. Panels are at most half the distance
 //    to the field point (and to a point source) so the 1/R amplitudes are resolved. Nodes per
 //    panel: the fewest n ∈ [6, 20] whose Gauss–Legendre error for a linear phase Φ,
-//    Φ^{2n}(n!)⁴/((2n+1)((2n)!)³) (A&S 25.4.30), is below 1e-14 (n ≈ 16 at Φ = 6π; 2π panels
-//    give the same double-slit row to 1e-12 in ~4× the time). Discs are integrated in ψ,
-//    v = c_v + r·sin ψ (smooth chord limits), with the ψ bound of docs/rs.md §2.
+//    Φ^{2n}(n!)⁴/((2n+1)((2n)!)³) (A&S 25.4.30), is below the per-panel tolerance (accuracy·1e-3;
+//    n = 12 at Φ = 6π for the default). Discs are integrated in ψ, v = c_v + r·sin ψ (smooth
+//    chord limits), with the ψ bound of docs/rs.md §2.
 //  * 2-D mode: only the u integral (slits infinite along v), same panels; H₀, H₁ by their
 //    asymptotic series for kR ≥ 25 (error < 1e-16), std::cyl_bessel_j / cyl_neumann below.
 //  * Sensor: the field on a uniform grid over all pixel centres ± 6σ (± pitch/2 + 6σ for box
-//    pixels), spacing h ≤ 2π/(k·Δ + 5/σ) per axis, Δ = 1.05 × the largest spread of the direction
-//    components along that axis from the openings to any point of the window (the band limit of
-//    the intensity); nodes no pixel window reaches are skipped (a one-row sensor evaluates only
-//    its row's nodes). Each pixel is Σ w(node)·F(node)·h_x·h_y: the trapezoid rule on a band-
-//    limited integrand times a Gaussian, accurate to ~e^{−12.5} of the local intensity.
-//  * 2-D mode (`mode = "2d"`, or `auto` when every opening is a rectangle with one common v range
-//    at least `auto_2d_length` long — default 100 × the widest slit, which theory §9 measured at
-//    1.3e-4 of peak for the double slit — the light is a plane wave with no component along v,
-//    a sensor axis is parallel to the slits and the sensor window lies within the slits' v
-//    range): the field is constant along the slits, so the pixel sensitivity along them
-//    integrates to 1 and that grid axis collapses to one node.
+//    pixels), spacing h ≤ 2π/(k·Δ + c/σ) per axis, Δ = an interval bound, tile by tile over the
+//    window, of the spread of the direction components along that axis from the openings' box to
+//    any one point (the band limit of the intensity); nodes no pixel window reaches are skipped (a
+//    one-row sensor evaluates only its row's nodes). Each pixel is Σ w(node)·F(node)·h_x·h_y: the
+//    trapezoid rule on a band-limited integrand times a Gaussian, aliasing ≈ e^{−c²/2} of the
+//    local intensity (e^{−c²/2} = accuracy/10).
+//  * 2-D mode (`mode = "2d"`, or `auto` when every opening is a rectangle with one common v range,
+//    the light is a plane wave with no component along v, a sensor axis is parallel to the slits,
+//    and SlitEndError — the Fresnel factor of the finite slit length averaged over each pixel —
+//    predicts at most `auto_2d_tolerance`, default 2e-4 of the local intensity; 1.3e-4 for the
+//    paper's 4000 µm slits): the field is constant along the slits, so the pixel sensitivity
+//    along them integrates to 1 and that grid axis collapses to one node.
 // Parallel over grid nodes with TBB; every node and every pixel sum is computed in a fixed
 // order, so the result does not depend on the thread count.
 #include "integrators/rs.h"
@@ -57,6 +59,7 @@
 #include "core/material.h"
 #include "core/registry.h"
 #include "core/scene.h"
+#include "materials/aperture_integral.h"
 
 namespace phasor {
 namespace rs {
@@ -223,6 +226,14 @@ void Hankel01(double x, Complex *h0, Complex *h1) {
 }
 
 // ---- Propagator -------------------------------------------------------------------------------------
+
+QuadratureRule QuadratureRule::ForAccuracy(double accuracy) {
+    QuadratureRule r;
+    const double a = std::clamp(accuracy, 1e-12, 0.1);
+    r.tolerance = std::max(1e-15, 1e-3 * a);
+    r.gridMargin = std::sqrt(2 * std::log(10 / a));
+    return r;
+}
 
 /// A field point in plate coordinates: (X, Y) along e1, e2, Z > 0 towards the sensor; m the
 /// derivative direction in the same coordinates.
@@ -529,46 +540,45 @@ void Propagator::Field2D(const Local &p, double acc[4]) const {
     acc[3] = di;
 }
 
-double Propagator::DirectionSpread(const Vec3 &p, const Vec3 &axis) const {
+double Propagator::DirectionSpread(const Vec3 &corner, const Vec3 &es, const Vec3 &et, const Vec3 &axis) const {
     if (bounds_.Empty()) return 0;
-    const Vec3 d = p - plate_.origin;
-    const double X = Dot(d, plate_.e1), Y = Dot(d, plate_.e2);
-    double lo = Infinity, hi = -Infinity;
-    auto add = [&](double u, double v) {
-        const Vec3 w = Normalize(p - plate_.ToWorld(Vec2(u, v)));
-        const double c = Dot(w, axis);
-        lo = std::min(lo, c);
-        hi = std::max(hi, c);
-    };
-    const double u0 = bounds_.lo.x, u1 = bounds_.hi.x;
-    // Extremes lie at corners, at the points of the edges nearest to p's foot, or (if the axis
-    // leaves the plane) where p − t·axis meets the plate.
-    const int n = 64;
-    if (twoD_) {
-        for (int i = 0; i <= n; ++i) add(u0 + (u1 - u0) * i / n, Y);
-        add(std::clamp(X, u0, u1), Y);
+    // The difference vectors w = p − q (p in the region, q on the openings' box) form a convex
+    // polytope whose vertices are differences of vertices, so the box of their projections onto
+    // a frame (axis, fb, fc) contains them all. c = w_a/√(w_a² + ρ²), ρ² = w_b² + w_c², grows with
+    // w_a and, for w_a > 0, falls with ρ (rises for w_a < 0): its extremes over that box are at
+    // (max w_a, ρ_min or ρ_max) and (min w_a, ρ_max or ρ_min).
+    const Vec3 fb = Normalize(std::abs(axis.x) < 0.9 ? Cross(axis, Vec3(1, 0, 0)) : Cross(axis, Vec3(0, 1, 0)));
+    const Vec3 fc = Cross(axis, fb);
+    const Vec3 region[4] = {corner, corner + es, corner + et, corner + es + et};
+    std::vector<Vec3> box;
+    if (twoD_) {  // the slits' u range; components along the slits do not enter the 2-D field
+        box = {plate_.ToWorld(Vec2(bounds_.lo.x, 0)), plate_.ToWorld(Vec2(bounds_.hi.x, 0))};
     } else {
-        const double v0 = bounds_.lo.y, v1 = bounds_.hi.y;
-        for (int i = 0; i <= n; ++i) {
-            const double u = u0 + (u1 - u0) * i / n, v = v0 + (v1 - v0) * i / n;
-            add(u, v0);
-            add(u, v1);
-            add(u0, v);
-            add(u1, v);
-        }
-        add(std::clamp(X, u0, u1), v0);
-        add(std::clamp(X, u0, u1), v1);
-        add(u0, std::clamp(Y, v0, v1));
-        add(u1, std::clamp(Y, v0, v1));
-        const double an = Dot(axis, plate_.n);
-        if (std::abs(an) > 1e-12) {
-            const double t = Dot(d, plate_.n) / an;
-            const Vec3 hit = p - axis * t;
-            const Vec2 uv = plate_.ToPlate(hit);
-            if (uv.x >= u0 && uv.x <= u1 && uv.y >= v0 && uv.y <= v1) add(uv.x, uv.y);
-        }
+        for (int c = 0; c < 4; ++c)
+            box.push_back(plate_.ToWorld(
+                Vec2((c & 1) ? bounds_.hi.x : bounds_.lo.x, (c & 2) ? bounds_.hi.y : bounds_.lo.y)));
     }
-    return hi - lo;
+    double lo[3] = {Infinity, Infinity, Infinity}, hi[3] = {-Infinity, -Infinity, -Infinity};
+    for (const Vec3 &p : region)
+        for (const Vec3 &q : box) {
+            Vec3 w = p - q;
+            if (twoD_) w = w - plate_.e2 * Dot(w, plate_.e2);
+            const double c[3] = {Dot(w, axis), Dot(w, fb), Dot(w, fc)};
+            for (int i = 0; i < 3; ++i) {
+                lo[i] = std::min(lo[i], c[i]);
+                hi[i] = std::max(hi[i], c[i]);
+            }
+        }
+    auto nearest = [](double l, double h) { return l > 0 ? l : (h < 0 ? -h : 0.0); };
+    const double rhoMin = std::hypot(nearest(lo[1], hi[1]), nearest(lo[2], hi[2]));
+    const double rhoMax = std::hypot(std::max(std::abs(lo[1]), std::abs(hi[1])), std::max(std::abs(lo[2]), std::abs(hi[2])));
+    auto cosine = [](double a, double rho) {
+        const double n = std::hypot(a, rho);
+        return n > 0 ? a / n : 0.0;
+    };
+    const double cMax = cosine(hi[0], hi[0] >= 0 ? rhoMin : rhoMax);
+    const double cMin = cosine(lo[0], lo[0] >= 0 ? rhoMax : rhoMin);
+    return cMax - cMin;
 }
 
 // ---- Sensor quadrature ----------------------------------------------------------------------------
@@ -621,30 +631,41 @@ SensorGrid MakeGrid(const SensorPlaneGeometry &g, const Propagator &prop) {
         else
             throw Error("the 2-D mode needs a sensor axis parallel to the slits (the plate's y axis)");
     }
-    // Band limit of the intensity along each axis (rs.cpp header): sample the window.
+    // Band limit of the intensity along each axis (rs.cpp header): the largest direction spread
+    // seen from any point of the window, bounded tile by tile. A tile of size T overestimates the
+    // spread by at most ~T/distance, so tiles a quarter of the openings' extent (at most 256 per
+    // axis) keep the grid within ~25 % of the spacing the exact maximum would allow.
+    const Bounds2 ob = prop.OpeningBounds();
+    const double tileMin = ob.Empty() ? Infinity : 0.25 * std::max(ob.hi.x - ob.lo.x, ob.hi.y - ob.lo.y);
+    auto tiles = [&](double lo, double hi, bool collapsed) {
+        if (collapsed) return 1;
+        const double n = std::ceil((hi - lo) / std::max(tileMin, (hi - lo) / 256));
+        return std::clamp(int(n), 1, 256);
+    };
+    const int ns = tiles(xLo, xHi, grid.collapseX), nt = tiles(yLo, yHi, grid.collapseY);
+    const double tx = grid.collapseX ? 0 : (xHi - xLo) / ns, ty = grid.collapseY ? 0 : (yHi - yLo) / nt;
+    const double x0 = grid.collapseX ? 0.5 * (xLo + xHi) : xLo, y0 = grid.collapseY ? 0.5 * (yLo + yHi) : yLo;
     double spreadS = 0, spreadT = 0;
-    const int ns = grid.collapseX ? 1 : 9, nt = grid.collapseY ? 1 : 9;
     for (int a = 0; a < ns; ++a)
         for (int b = 0; b < nt; ++b) {
-            const double x = ns == 1 ? 0.5 * (xLo + xHi) : xLo + (xHi - xLo) * a / (ns - 1);
-            const double y = nt == 1 ? 0.5 * (yLo + yHi) : yLo + (yHi - yLo) * b / (nt - 1);
-            const Vec3 p = g.origin + g.frame.s * x + g.frame.t * y;
-            if (!grid.collapseX) spreadS = std::max(spreadS, prop.DirectionSpread(p, g.frame.s));
-            if (!grid.collapseY) spreadT = std::max(spreadT, prop.DirectionSpread(p, g.frame.t));
+            const Vec3 corner = g.origin + g.frame.s * (x0 + a * tx) + g.frame.t * (y0 + b * ty);
+            const Vec3 es = g.frame.s * tx, et = g.frame.t * ty;
+            if (!grid.collapseX) spreadS = std::max(spreadS, prop.DirectionSpread(corner, es, et, g.frame.s));
+            if (!grid.collapseY) spreadT = std::max(spreadT, prop.DirectionSpread(corner, es, et, g.frame.t));
         }
     const double k = prop.K();
     if (grid.collapseX) {
         grid.xs = {0.5 * (xLo + xHi)};
         grid.hx = 1;
     } else {
-        const double hMax = 2 * Pi / (k * 1.05 * spreadS + 5 / g.sigma);
+        const double hMax = 2 * Pi / (k * spreadS + prop.Rule().gridMargin / g.sigma);
         grid.xs = AxisNodes(xLo, xHi, hMax, c00.x, g.pitchX, g.nx, extX, &grid.hx);
     }
     if (grid.collapseY) {
         grid.ys = {0.5 * (yLo + yHi)};
         grid.hy = 1;
     } else {
-        const double hMax = 2 * Pi / (k * 1.05 * spreadT + 5 / g.sigma);
+        const double hMax = 2 * Pi / (k * spreadT + prop.Rule().gridMargin / g.sigma);
         // Pixel centres along y run downwards from c00.y; reuse AxisNodes on the reversed axis.
         grid.ys = AxisNodes(yLo, yHi, hMax, c11.y, g.pitchY, g.ny, extY, &grid.hy);
     }
@@ -722,6 +743,84 @@ std::vector<double> IntegrateSensor(const SensorPlaneGeometry &g, const Propagat
     return pixels;
 }
 
+// ---- Slit-end error of the 2-D mode -----------------------------------------------------------------
+
+namespace {
+
+/// erf(a·s) for a = (√π/2)(1 − i): with E = C + iS the Fresnel integrals, E(s) = ((1 + i)/2)·erf(a·s).
+/// Through the Faddeeva function, erf(z) = 1 − e^{−z²}·w(iz), where e^{−z²} = e^{iπs²/2} and iz lies
+/// on the first quadrant's diagonal for s ≥ 0 (odd in s).
+Complex ErfDiagonal(double s) {
+    const double as = std::abs(s), c = 0.5 * std::sqrt(Pi) * as;
+    const Complex e = Complex(1, 0) - std::polar(1.0, 0.5 * Pi * as * as) * FaddeevaW(Complex(c, c));
+    return s < 0 ? -e : e;
+}
+
+}  // namespace
+
+Complex SlitLengthFactor(double y, double v0, double v1, double k, double r) {
+    const double f = std::sqrt(k / (Pi * r));
+    return 0.5 * (ErfDiagonal(f * (v1 - y)) - ErfDiagonal(f * (v0 - y)));
+}
+
+double SlitEndError(const PlateFrame &plate, const Bounds2 &slits, const SensorPlaneGeometry &g, double k) {
+    const Vec3 e2 = plate.e2;
+    const bool alongT = std::abs(Dot(g.frame.t, e2)) >= 1 - 1e-9;
+    const double pitch = alongT ? g.pitchY : g.pitchX, ext = WindowHalfWidth(g, pitch);
+    const int nAlong = alongT ? g.ny : g.nx, nAcross = alongT ? g.nx : g.ny;
+    // In-plane (⊥ slits) distances between the slits' u range and the window: the extremes of a
+    // segment-to-segment distance lie at end points.
+    auto inPlane = [&](const Vec3 &p) {  // (u, height) of p
+        const Vec3 d = p - plate.origin;
+        return Vec2(Dot(d, plate.e1), std::abs(Dot(d, plate.n)));
+    };
+    auto centre = [&](int along, int across) {
+        const Vec2 c = alongT ? g.PixelCenter(across, along) : g.PixelCenter(along, across);
+        return g.origin + g.frame.s * c.x + g.frame.t * c.y;
+    };
+    const Vec3 acrossDir = alongT ? g.frame.s : g.frame.t;
+    const Vec2 w0 = inPlane(centre(0, 0) - acrossDir * ext), w1 = inPlane(centre(0, nAcross - 1) + acrossDir * ext);
+    auto pointToSlit = [&](Vec2 w) { return std::hypot(std::max({0.0, slits.lo.x - w.x, w.x - slits.hi.x}), w.y); };
+    auto pointToWindow = [&](double u) {  // distance from (u, 0) to the segment w0–w1
+        const Vec2 d = w1 - w0, q = Vec2(u - w0.x, -w0.y);
+        const double t = Dot(d, d) > 0 ? std::clamp(Dot(q, d) / Dot(d, d), 0.0, 1.0) : 0.0;
+        return Length(q - d * t);
+    };
+    const double rMin = std::min({pointToSlit(w0), pointToSlit(w1), pointToWindow(slits.lo.x), pointToWindow(slits.hi.x)});
+    const double rMax = std::max({std::hypot(w0.x - slits.lo.x, w0.y), std::hypot(w0.x - slits.hi.x, w0.y),
+                                  std::hypot(w1.x - slits.lo.x, w1.y), std::hypot(w1.x - slits.hi.x, w1.y)});
+    if (!(rMin > 0)) return Infinity;
+    const double v0 = slits.lo.y, v1 = slits.hi.y;
+    double worst = 0;
+    for (int j = 0; j < nAlong; ++j) {
+        const double yc = Dot(centre(j, 0) - plate.origin, e2);
+        // |G|² − 1 oscillates at k·|y − v_end|/R; resolve it with 8 nodes a period (and σ/4).
+        const double far = std::max(std::abs(yc - v0), std::abs(yc - v1)) + ext;
+        const double h = std::min(g.sigma / 4, 2 * Pi / (k * far / rMin) / 8);
+        const int n = int(std::ceil(ext / h));
+        for (double r : {rMin, rMax}) {
+            double e;
+            if (n <= 20000) {  // the pixel-averaged error (trapezoid rule under the pixel weight)
+                double acc = 0;
+                for (int a = -n; a <= n; ++a) {
+                    const double d = a * ext / n;
+                    acc += PixelWeight(d, g.sigma, pitch, g.gaussianPixel) *
+                           (std::norm(SlitLengthFactor(yc + d, v0, v1, k, r)) - 1);
+                }
+                e = std::abs(acc * ext / n);
+            } else {  // too many fringes to average: bound |G|² − 1 by the edge tails at the window
+                const double f = std::sqrt(k / (Pi * r));
+                const double s0 = f * (yc - ext - v0), s1 = f * (v1 - yc - ext);
+                if (s0 <= 0 || s1 <= 0) return Infinity;
+                const double t = 0.5 * (std::abs(1.0 - ErfDiagonal(s0)) + std::abs(1.0 - ErfDiagonal(s1)));
+                e = 2 * t + t * t;
+            }
+            worst = std::max(worst, e);
+        }
+    }
+    return worst;
+}
+
 }  // namespace rs
 
 // ---- The integrator ---------------------------------------------------------------------------------
@@ -729,7 +828,8 @@ std::vector<double> IntegrateSensor(const SensorPlaneGeometry &g, const Propagat
 class RsIntegrator final : public Integrator {
   public:
     enum class Mode { Auto, TwoD, ThreeD };
-    RsIntegrator(Mode mode, double auto2dLength) : mode_(mode), auto2dLength_(auto2dLength) {}
+    RsIntegrator(Mode mode, double auto2dTolerance, double accuracy)
+        : mode_(mode), auto2dTolerance_(auto2dTolerance), accuracy_(accuracy) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -739,19 +839,27 @@ class RsIntegrator final : public Integrator {
             "aperture plate onto a virtual_plane (double precision, pixel-integrated flux).",
             {P::String("mode",
                        "2d: slits infinite along the plate's y axis; 3d: full surface integral; auto: 2d "
-                       "when valid (long slits, plane wave without a y component, aligned sensor)")
+                       "where it applies (slits, a plane wave without a y component, a sensor axis along "
+                       "the slits) and the slit ends' predicted effect is within auto_2d_tolerance")
                  .Default(Value::String("auto"))
                  .Choices({"auto", "2d", "3d"}),
-             P::Length("auto_2d_length",
-                       "shortest slit length that `auto` treats as infinite (default 100 x the widest slit)")
-                 .Min(0, true)}};
+             P::Number("auto_2d_tolerance",
+                       "largest predicted error (relative to the local intensity) of ignoring the slit ends "
+                       "that `auto` accepts for the 2-D mode")
+                 .Default(Value::Number(2e-4))
+                 .Min(0),
+             P::Number("accuracy",
+                       "target accuracy of the quadratures: largest pixel error relative to the row's peak "
+                       "(sets the Gauss-Legendre node rule and the sensor grid; docs/rs.md)")
+                 .Default(Value::Number(1e-4))
+                 .Min(1e-12)
+                 .Max(0.1)}};
         return s;
     }
     static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
         const std::string m = d.GetString("mode");
         const Mode mode = m == "2d" ? Mode::TwoD : (m == "3d" ? Mode::ThreeD : Mode::Auto);
-        return std::make_unique<RsIntegrator>(mode,
-                                              d.Has("auto_2d_length") ? d.GetNumber("auto_2d_length") : 0.0);
+        return std::make_unique<RsIntegrator>(mode, d.GetNumber("auto_2d_tolerance"), d.GetNumber("accuracy"));
     }
 
     RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override {
@@ -769,7 +877,7 @@ class RsIntegrator final : public Integrator {
                         "integrator 'rs' needs a virtual_plane detector (a sensor plane); detector '" +
                         det.name + "' is not one");
         if (scene.Lights().empty())
-            throw Error("integrator 'rs' needs at least one coherent light; the scene has none");
+            throw Error(scene.Where(this), "integrator 'rs' needs at least one coherent light; the scene has none");
         for (const Light *light : scene.Lights())
             if (!light->CoherentField())
                 throw Error(
@@ -780,6 +888,7 @@ class RsIntegrator final : public Integrator {
         const auto &shapes = scene.Shapes();
         if (shapes.empty())
             throw Error(
+                scene.Where(this),
                 "integrator 'rs' needs exactly one shape, a planar aperture plate (material with openings, "
                 "e.g. 'aperture') between the source and the sensor; the scene has none");
         if (shapes.size() > 1) {
@@ -849,9 +958,15 @@ class RsIntegrator final : public Integrator {
                 throw Error(scene.Where(light), "light '" + light->name + "' and sensor '" + det.name +
                             "' are on the same side of the aperture plate '" + shape.name +
                             "' (rs propagates from the source through the plate to the sensor)");
-            const bool twoD = Choose2d(*mask, plate, *wave, *sensor, light->name);
-            Job job{light, *wave, std::make_unique<rs::Propagator>(plate, *mask, *wave, flip, twoD), {}};
-            job.grid = rs::MakeGrid(*sensor, *job.prop);
+            const bool twoD = Choose2d(scene, *mask, plate, *wave, *sensor, light->name);
+            Job job{light, *wave, std::make_unique<rs::Propagator>(plate, *mask, *wave, flip, twoD,
+                                                                  rs::QuadratureRule::ForAccuracy(accuracy_)),
+                    {}};
+            try {
+                job.grid = rs::MakeGrid(*sensor, *job.prop);
+            } catch (const Error &e) {
+                throw Error(scene.Where(&det), "sensor '" + det.name + "': " + e.Message());
+            }
             totalUnits += rs::ProgressUnits(job.grid);
             jobs.push_back(std::move(job));
         }
@@ -905,18 +1020,18 @@ class RsIntegrator final : public Integrator {
 
     std::string ToString() const override {
         const char *m = mode_ == Mode::TwoD ? "2d" : (mode_ == Mode::ThreeD ? "3d" : "auto");
-        return std::string("rs { mode = ") + m + ", auto_2d_length = " + std::to_string(auto2dLength_) +
-               " m }";
+        return std::string("rs { mode = ") + m + ", auto_2d_tolerance = " + std::to_string(auto2dTolerance_) +
+               ", accuracy = " + std::to_string(accuracy_) + " }";
     }
 
   private:
     /// Whether the 2-D mode applies (rs.cpp header); throws for `mode = "2d"` when it cannot.
-    bool Choose2d(const ApertureMask &mask, const PlateFrame &plate, const CoherentWave &wave,
+    bool Choose2d(const Scene &scene, const ApertureMask &mask, const PlateFrame &plate, const CoherentWave &wave,
                   const SensorPlaneGeometry &sensor, const std::string &lightName) const {
         if (mode_ == Mode::ThreeD) return false;
         const bool forced = mode_ == Mode::TwoD;
         auto fail = [&](const std::string &why) {
-            if (forced) throw Error("integrator 'rs' with mode = \"2d\": " + why);
+            if (forced) throw Error(scene.Where(this), "integrator 'rs' with mode = \"2d\": " + why);
             return false;
         };
         double v0 = 0, v1 = 0;
@@ -930,27 +1045,15 @@ class RsIntegrator final : public Integrator {
         if (!alongT && !alongS)
             return fail("a sensor axis must be parallel to the slits (the plate's y axis)");
         if (forced) return true;
-        // auto: long enough slits, and the sensor window inside their v range.
-        double widest = 0;
-        mask.ForEachPiece(mask.Bounds(), [&](const MaskPiece &p) {
-            const double vm = 0.5 * (p.v0 + p.v1);
-            widest = std::max(widest, p.UHi(vm) - p.ULo(vm));
-        });
-        const double minLength = auto2dLength_ > 0 ? auto2dLength_ : 100 * widest;
-        if (!mask.IsSlitsAlongV(minLength)) return false;
-        const double ext = 6 * sensor.sigma + 0.5 * std::max(sensor.pitchX, sensor.pitchY);
-        const Vec2 c00 = sensor.PixelCenter(0, 0), c11 = sensor.PixelCenter(sensor.nx - 1, sensor.ny - 1);
-        for (int c = 0; c < 4; ++c) {
-            const double x = (c & 1) ? c11.x + ext : c00.x - ext, y = (c & 2) ? c00.y + ext : c11.y - ext;
-            const double v =
-                Dot(sensor.origin + sensor.frame.s * x + sensor.frame.t * y - plate.origin, plate.e2);
-            if (v < v0 || v > v1) return false;
-        }
-        return true;
+        // auto: the slit ends' predicted effect on every pixel (docs/rs.md "2-D mode selection").
+        Bounds2 slits = mask.Bounds();
+        slits.lo.y = v0;
+        slits.hi.y = v1;
+        return rs::SlitEndError(plate, slits, sensor, 2 * Pi / wave.lambda) <= auto2dTolerance_;
     }
 
     Mode mode_;
-    double auto2dLength_;
+    double auto2dTolerance_, accuracy_;
 };
 
 PHASOR_EXPORT_PLUGIN(Integrator, RsIntegrator)

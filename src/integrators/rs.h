@@ -28,6 +28,15 @@ struct QuadratureRule {
     /// Panels are at most this fraction of the distance to the field point (and to a point
     /// source), so that the 1/R amplitudes are resolved in the near field.
     double maxPanelOverDistance = 0.5;
+    /// c of the sensor grid's spacing h ≤ 2π/(kΔ + c/σ): the trapezoid rule's aliasing under the
+    /// Gaussian pixel weight is then ≈ e^{−c²/2} of the local intensity.
+    double gridMargin = 5;
+
+    /// The rule for a target accuracy (largest pixel error relative to the row's peak) of the
+    /// integrator's `accuracy` parameter: per-panel tolerance accuracy·1e-3 (panel integrals
+    /// cancel: their magnitudes sum to ~10²× |U| on long slits) and e^{−c²/2} = accuracy/10.
+    /// The defaults above are tighter than ForAccuracy(1e-6).
+    static QuadratureRule ForAccuracy(double accuracy);
 };
 
 /// The field U [√(W/m²)] and its derivative along a unit vector m, ∂U/∂m = m·∇U [√(W/m²)/m].
@@ -56,13 +65,19 @@ class Propagator {
     /// |U(p)|² [W/m²].
     double Intensity(const Vec3 &p) const;
 
-    /// Largest spread (max − min) of the component along unit `axis` of the unit directions from
-    /// the openings' bounding box (in 2-D mode: the slits' u-range in the x–z plane) to p.
-    double DirectionSpread(const Vec3 &p, const Vec3 &axis) const;
+    /// An upper bound of the spread (max − min) of the component along unit `axis` of the unit
+    /// directions from the openings' bounding box (in 2-D mode: the slits' u range, in the plane
+    /// normal to the slits) to any point of the parallelogram corner + a·es + b·et, a, b ∈ [0, 1]
+    /// (es = et = 0: one point), from interval bounds (never below the true spread). Times k it
+    /// bounds the band of the intensity along `axis` there.
+    double DirectionSpread(const Vec3 &corner, const Vec3 &es, const Vec3 &et, const Vec3 &axis) const;
+    /// The openings' bounding box in plate coordinates [m].
+    const Bounds2 &OpeningBounds() const { return bounds_; }
     /// Signed distance of p from the plate, positive on the sensor side [m].
     double Height(const Vec3 &p) const;
 
     double K() const { return k_; }
+    const QuadratureRule &Rule() const { return rule_; }
     bool TwoD() const { return twoD_; }
     const PlateFrame &Plate() const { return plate_; }
 
@@ -111,6 +126,18 @@ std::vector<double> IntegrateSensor(const SensorPlaneGeometry &sensor, const Pro
                                     const std::function<bool(int)> &rowDone = {});
 /// Number of progress units (batches of rows) IntegrateSensor reports for `grid`.
 int ProgressUnits(const SensorGrid &grid);
+
+/// The factor by which a slit's finite length [v0, v1] (plate y axis) multiplies the field of the
+/// infinite slit at plate height y and in-plane distance r [m] (Fresnel approximation along the
+/// slit, where the 3-D field factorises): G = ½[erf(a·s₁) − erf(a·s₀)], s_j = √(k/(πr))·(v_j − y),
+/// a = (√π/2)(1 − i) — the Fresnel integrals C + iS. G → 1 for an infinite slit.
+Complex SlitLengthFactor(double y, double v0, double v1, double k, double r);
+/// Predicted error of the 2-D mode for slits spanning `slits` (plate coordinates: u range × the
+/// common v range) seen by `sensor`, one of whose axes is parallel to the slits: the largest
+/// |∫ w(y − y_p)·(|G(y)|² − 1) dy| over the pixel rows along the slits (w = the pixel's
+/// sensitivity along them), at the smallest and largest in-plane distance between the slits and
+/// the window — relative to the local 2-D intensity, hence ≥ the error relative to the peak.
+double SlitEndError(const PlateFrame &plate, const Bounds2 &slits, const SensorPlaneGeometry &sensor, double k);
 
 /// H₀⁽¹⁾(x) and H₁⁽¹⁾(x) for x > 0 (asymptotic series for x ≥ 25, std::cyl_bessel_j /
 /// cyl_neumann below).

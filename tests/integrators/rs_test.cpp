@@ -14,6 +14,7 @@
 #include "integrators/rs.h"
 #include "parser/parser.h"
 #include "support/scene_builder.h"
+#include "support/stats.h"
 
 namespace phasor::test {
 namespace {
@@ -65,6 +66,28 @@ double MaxDiff(const std::vector<double> &a, const std::vector<double> &b) {
 
 double Seconds(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+/// The grid with `f` − 1 extra nodes in every interval of its (uncollapsed) axes.
+rs::SensorGrid Refined(const rs::SensorGrid &grid, int f) {
+    auto refine = [f](const std::vector<double> &xs) {
+        std::vector<double> out;
+        for (std::size_t i = 0; i < xs.size(); ++i) {
+            out.push_back(xs[i]);
+            for (int j = 1; j < f && i + 1 < xs.size(); ++j) out.push_back(xs[i] + (xs[i + 1] - xs[i]) * j / f);
+        }
+        return out;
+    };
+    rs::SensorGrid dense = grid;
+    if (!grid.collapseX) {
+        dense.xs = refine(grid.xs);
+        dense.hx = grid.hx / f;
+    }
+    if (!grid.collapseY) {
+        dense.ys = refine(grid.ys);
+        dense.hy = grid.hy / f;
+    }
+    return dense;
 }
 
 // ---- Hankel functions ---------------------------------------------------------------------------
@@ -362,19 +385,7 @@ TEST(Rs, ThreeDSensorQuadratureIsConverged) {
     strict.maxPanelPhase = Pi;
     strict.minNodes = strict.maxNodes = 12;
     const Propagator fine(PlateFrame{}, m, w, true, false, strict);
-    rs::SensorGrid dense = grid;
-    auto refine = [](const std::vector<double> &xs) {
-        std::vector<double> out;
-        for (std::size_t i = 0; i < xs.size(); ++i) {
-            out.push_back(xs[i]);
-            if (i + 1 < xs.size()) out.push_back(0.5 * (xs[i] + xs[i + 1]));
-        }
-        return out;
-    };
-    dense.xs = refine(grid.xs);
-    dense.ys = refine(grid.ys);
-    dense.hx = grid.hx / 2;
-    dense.hy = grid.hy / 2;
+    const rs::SensorGrid dense = Refined(grid, 2);
     const std::vector<double> refGrid = rs::IntegrateSensor(g, prop, dense, rs::Quantity::Flux);
     const std::vector<double> refRule = rs::IntegrateSensor(g, fine, grid, rs::Quantity::Flux);
     const double eGrid = MaxDiff(v, refGrid) / Peak(refGrid), eRule = MaxDiff(v, refRule) / Peak(refRule);
@@ -391,6 +402,92 @@ TEST(Rs, ThreeDSensorQuadratureIsConverged) {
         single = rs::IntegrateSensor(g, prop, grid, rs::Quantity::Flux);
     }
     EXPECT_EQ(single, v);
+}
+
+// The integrator's `accuracy` (QuadratureRule::ForAccuracy) holds its target against a far
+// stricter rule, on a 3-D rectangle under an oblique wave with Gaussian pixels.
+TEST(Rs, AccuracyParameterHoldsItsTarget) {
+    ApertureMask m;
+    m.AddRect(Vec2(-20 * Um, -100 * Um), Vec2(20 * Um, 100 * Um));
+    const CoherentWave w = PlaneWave(1 * Um, Vec3(0.03, 0.01, -1));
+    const SensorPlaneGeometry g = Sensor(2000 * Um, 5, 3, 25 * Um, 7.98 * Um);
+    auto row = [&](double accuracy) {
+        const Propagator p(PlateFrame{}, m, w, true, false, rs::QuadratureRule::ForAccuracy(accuracy));
+        return rs::IntegrateSensor(g, p, rs::MakeGrid(g, p), rs::Quantity::Flux);
+    };
+    const std::vector<double> ref = row(1e-10);
+    for (double a : {1e-4, 2e-3, 1e-2}) {
+        const double e = MaxDiff(row(a), ref) / Peak(ref);
+        std::printf("accuracy %.0e: %.2e of peak from accuracy 1e-10\n", a, e);
+        EXPECT_LE(e, a);
+    }
+}
+
+// The band limit of the grid rule is bounded over the whole window, not sampled: a sensor 30 µm
+// behind a 30 µm square at u = 70 µm sees directions spreading by 0.89 only under the opening, a
+// spot a 9 × 9 sample of the 1 mm window missed (the grid was then 2.5× too coarse: 1.4e-2 of
+// peak). The spacing must satisfy the rule h ≤ 2π/(kΔ + 5/σ) for the spread Δ seen from every
+// point of the row (sampled densely here).
+TEST(Rs, SensorGridResolvesTheBandUnderAnOffsetOpening) {
+    ApertureMask m;
+    m.AddRect(Vec2(55 * Um, -15 * Um), Vec2(85 * Um, 15 * Um));
+    const double z = 30 * Um, sigma = 7.98 * Um, k = 2 * Pi / Um;
+    const SensorPlaneGeometry g = Sensor(z, 41, 1, 25 * Um, sigma);
+    const Propagator prop(PlateFrame{}, m, PlaneWave(1 * Um, Vec3(0, 0, -1)), true, false);
+    const rs::SensorGrid grid = rs::MakeGrid(g, prop);
+    double spread = 0;
+    for (double x = -560 * Um; x <= 560 * Um; x += 1 * Um) {
+        double lo = Infinity, hi = -Infinity;
+        for (int i = 0; i <= 30; ++i)
+            for (int j = 0; j <= 30; ++j) {
+                const Vec3 q((55 + i) * Um, (-15 + j) * Um, 0);
+                const double c = Normalize(Vec3(x, 0, -z) - q).x;
+                lo = std::min(lo, c);
+                hi = std::max(hi, c);
+            }
+        spread = std::max(spread, hi - lo);
+    }
+    const double hRule = 2 * Pi / (k * spread + 5 / sigma);
+    std::printf("30 um square 30 um from the sensor: spread %.3f, grid h = %.3f um (rule: <= %.3f um)\n", spread,
+                grid.hx / Um, hRule / Um);
+    EXPECT_GT(spread, 0.85);
+    EXPECT_LE(grid.hx, hRule);
+    EXPECT_GT(grid.hx, 0.5 * hRule);  // the bound is not wastefully loose
+}
+
+// DirectionSpread never falls below the spread seen from any point of the region (checked on a
+// dense sample of the openings' box from random points), in 3-D and 2-D modes.
+TEST(Rs, DirectionSpreadBoundsEveryPointOfTheRegion) {
+    ApertureMask m;
+    m.AddRect(Vec2(-40 * Um, -300 * Um), Vec2(-20 * Um, 300 * Um));
+    m.AddRect(Vec2(60 * Um, -300 * Um), Vec2(90 * Um, 300 * Um));
+    TestRng rng(7);
+    for (bool twoD : {false, true}) {
+        const Propagator prop(PlateFrame{}, m, PlaneWave(1 * Um, Vec3(0.05, 0, -1)), true, twoD);
+        for (int trial = 0; trial < 20; ++trial) {
+            const Vec3 corner((rng.Uniform() - 0.5) * 2e-3, (rng.Uniform() - 0.5) * 1e-3, -(20 + 2000 * rng.Uniform()) * Um);
+            const Vec3 es(200 * Um * rng.Uniform(), 0, 0), et(0, 200 * Um * rng.Uniform(), 0);
+            for (const Vec3 &axis : {Vec3(1, 0, 0), Vec3(0, 1, 0)}) {
+                if (twoD && axis.y != 0) continue;  // the 2-D mode collapses the axis along the slits
+                const double bound = prop.DirectionSpread(corner, es, et, axis);
+                double worst = 0;
+                for (int s = 0; s < 16; ++s) {
+                    const Vec3 p = corner + es * rng.Uniform() + et * rng.Uniform();
+                    double lo = Infinity, hi = -Infinity;
+                    for (int i = 0; i <= 60; ++i)
+                        for (int j = 0; j <= (twoD ? 0 : 60); ++j) {
+                            const Vec3 q(-40 * Um + 130 * Um * i / 60, twoD ? p.y : -300 * Um + 600 * Um * j / 60, 0);
+                            const double c = Dot(Normalize(p - q), axis);
+                            lo = std::min(lo, c);
+                            hi = std::max(hi, c);
+                        }
+                    worst = std::max(worst, hi - lo);
+                }
+                EXPECT_GE(bound, worst) << "trial " << trial << (twoD ? " (2-D)" : "");
+                EXPECT_LT(bound, 3 * worst + 0.3) << "trial " << trial;  // not absurdly loose
+            }
+        }
+    }
 }
 
 // Finite slits of length L against infinite ones, on the row through their middle: the ends add
@@ -414,6 +511,40 @@ TEST(Rs, ThreeDLongSlitsApproachTwoD) {
                 length / Um, grid3.Nodes(), t3, e, expected);
     EXPECT_LT(e, 2 * expected);
     EXPECT_GT(e, 0.3 * expected);  // the 3-D mode does see the slit ends
+}
+
+// The 2-D mode's error predictor (the Fresnel factor of the slit length, averaged over the pixel)
+// against the measured 3-D − 2-D difference: on the middle row and on a row 50 µm from the slit
+// ends, where it is a thousand times larger. The factorisation is paraxial along the slits, so the
+// prediction is good to tens of per cent, which is what choosing a mode needs.
+TEST(Rs, SlitEndErrorPredictsTheThreeDDifference) {
+    const double lambda = 1 * Um, k = 2 * Pi / lambda, z = 1000 * Um, b = 10 * Um, d = 30 * Um, length = 600 * Um;
+    const ApertureMask mask = Slits(d, b, length);
+    const CoherentWave w = PlaneWave(lambda, Vec3(0, 0, -1));
+    const Propagator p2(PlateFrame{}, mask, w, true, true), p3(PlateFrame{}, mask, w, true, false);
+    Bounds2 slits = mask.Bounds();
+    for (double y : {0.0, 250 * Um}) {
+        SensorPlaneGeometry g = Sensor(z, 6, 1, 10 * Um, 3 * Um);
+        g.origin.y = y;
+        const std::vector<double> v3 = rs::IntegrateSensor(g, p3, rs::MakeGrid(g, p3), rs::Quantity::Flux);
+        const std::vector<double> v2 = rs::IntegrateSensor(g, p2, rs::MakeGrid(g, p2), rs::Quantity::Flux);
+        double measured = 0;  // relative to the local intensity, as predicted
+        for (std::size_t i = 0; i < v2.size(); ++i)
+            if (v2[i] > 0.1 * Peak(v2)) measured = std::max(measured, std::abs(v3[i] - v2[i]) / v2[i]);
+        const double predicted = rs::SlitEndError(PlateFrame{}, slits, g, k);
+        std::printf("row at y = %.0f um: 3-D vs 2-D %.3e, predicted %.3e\n", y / Um, measured, predicted);
+        EXPECT_GT(predicted, 0.6 * measured) << y;
+        EXPECT_LT(predicted, 1.6 * measured) << y;
+    }
+    // 2 m slits: too many fringes under the pixel to average, so the unaveraged edge-wave bound
+    // 2t + t², t ≈ √(λz/2)/(π·1 m) = 7e-6, is used; a row beyond the ends sees almost nothing.
+    Bounds2 longer = slits;
+    longer.lo.y = -1;
+    longer.hi.y = 1;
+    EXPECT_LT(rs::SlitEndError(PlateFrame{}, longer, Sensor(z, 6, 1, 10 * Um, 3 * Um), k), 3e-5);
+    SensorPlaneGeometry beyond = Sensor(z, 6, 1, 10 * Um, 3 * Um);
+    beyond.origin.y = 400 * Um;
+    EXPECT_GT(rs::SlitEndError(PlateFrame{}, slits, beyond, k), 0.5);
 }
 
 // Point source on the axis behind a large disc: the field is the spherical wave I/R² (plus the
@@ -583,6 +714,27 @@ TEST(RsScene, RotatedPlateAndSensorColumn) {
     for (int i = 0; i < 48; ++i)
         EXPECT_NEAR(b.At(0, i, b.ChannelIndex("intensity")), a.At(47 - i, 0, a.ChannelIndex("intensity")),
                     1e-6);
+}
+
+// `auto` takes the 2-D mode only where the slit ends are predicted to matter less than
+// auto_2d_tolerance: short slits (600 µm) seen 1 mm away on the middle row (predicted 5.7e-4)
+// are 2-D for a tolerance of 1e-3 and 3-D for the default 2e-4; a row 50 µm from the ends is
+// 3-D even for 1e-3.
+TEST(RsScene, AutoModeFollowsThePredictedSlitEndError) {
+    const std::string slits = "Material \"aperture\" \"slits\" { rects = [-20 -300 -10 300 10 -300 20 300] um }";
+    auto row = [&](const std::string &y, const std::string &rs) {
+        auto scene = BuildDoubleSlit({{"@APERTURE@", slits},
+                                      {"@SENSOR@", "translate([0 m " + y + " -1 mm])"},
+                                      {"@EXTENT@", "[100 25] um"},
+                                      {"@RS@", rs}});
+        return scene ? IntensityRow(RenderImage(*scene, 1)) : std::vector<double>{};
+    };
+    const std::vector<double> two = row("0 m", "mode = \"2d\""), three = row("0 m", "mode = \"3d\"");
+    ASSERT_EQ(two.size(), 4u);
+    ASSERT_GT(MaxDiff(two, three), 1e-4 * Peak(three));  // the modes do differ here
+    EXPECT_EQ(row("0 m", "auto_2d_tolerance = 1e-3"), two);
+    EXPECT_EQ(row("0 m", ""), three);
+    EXPECT_EQ(row("250 um", "auto_2d_tolerance = 1e-3"), row("250 um", "mode = \"3d\""));
 }
 
 TEST(RsScene, CancelStopsBeforeWriting) {
