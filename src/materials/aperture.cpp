@@ -182,10 +182,34 @@ class ApertureMaterial final : public Material {
                 throw Error(d.Loc("polygon"), "'polygon' needs at least 3 vertices (x y pairs)");
             std::vector<Vec2> v;
             for (std::size_t i = 0; i < p.size(); i += 2) v.emplace_back(p[i], p[i + 1]);
+            const double tp = d.GetNumber("polygon_transmission");
+            ApertureMask alone;  // the polygon by itself, to test it against the other openings
             try {
-                mask.AddPolygon(v, d.GetNumber("polygon_transmission"));
+                mask.AddPolygon(v, tp);
+                alone.AddPolygon(v, 1);
             } catch (const Error &e) {
                 throw Error(d.Loc("polygon"), "'polygon': " + e.Message());
+            }
+            if (tp > 0) {
+                for (std::size_t j = 0; j < boxes.size(); ++j) {
+                    double area = 0;  // of polygon ∩ rectangle, from the polygon's slabs in the box
+                    alone.ForEachPiece({boxes[j].lo, boxes[j].hi}, [&](const MaskPiece &pc) {
+                        const double vm = 0.5 * (pc.v0 + pc.v1);
+                        area += std::max(0.0, pc.UHi(vm) - pc.ULo(vm)) * (pc.v1 - pc.v0);
+                    });
+                    const Vec2 e = boxes[j].hi - boxes[j].lo;
+                    if (area > 1e-9 * e.x * e.y) overlap("the polygon and rectangle " + std::to_string(j));
+                }
+                for (std::size_t j = 0; j < circles.size(); ++j) {
+                    // They overlap iff the centre is inside the polygon or an edge passes closer than r.
+                    bool meets = alone.Transmission(circles[j].c) > 0;
+                    for (std::size_t i = 0; i < v.size() && !meets; ++i) {
+                        const Vec2 a = v[i], b = v[(i + 1) % v.size()], ab = b - a;
+                        const double t = std::clamp(Dot(circles[j].c - a, ab) / Dot(ab, ab), 0.0, 1.0);
+                        meets = Length(a + ab * t - circles[j].c) < circles[j].r * (1 - 1e-12);
+                    }
+                    if (meets) overlap("the polygon and disc " + std::to_string(j));
+                }
             }
         }
         if (d.Has("mask")) {
@@ -196,6 +220,17 @@ class ApertureMaterial final : public Material {
             const std::string path = ctx.ResolveFile(d, "mask").string();
             if (!(e[2] > e[0] && e[3] > e[1]))
                 throw Error(d.Loc("mask_extent"), "'mask_extent' needs u0 < u1 and v0 < v1");
+            // The bitmap's extent must stay clear of the other openings (its texels would add).
+            const Bounds2 extent{Vec2(e[0], e[1]), Vec2(e[2], e[3])};
+            bool clear = true;
+            mask.ForEachPiece(extent, [&](const MaskPiece &pc) {
+                const double vm = 0.5 * (pc.v0 + pc.v1);
+                if (pc.t > 0 && pc.v1 > pc.v0 && pc.UHi(vm) > pc.ULo(vm)) clear = false;
+            });
+            if (!clear)
+                throw Error(d.Loc("mask_extent"),
+                            "'mask_extent' overlaps another opening (rects, discs or polygon); openings must "
+                            "not overlap");
             try {
                 mask.AddBitmap(path, Vec2(e[0], e[1]), Vec2(e[2], e[3]));
             } catch (const Error &err) {

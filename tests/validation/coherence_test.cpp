@@ -25,6 +25,16 @@ TEST(CircularAperture, FirstDarkRingAtTheAiryRadius) {
     std::printf("Airy: first minimum at %.1f um (expected %.1f um, pitch %.0f um); I_min/I_0 = %.2e\n",
                 r.x[i] * 1e6, expected * 1e6, pitch * 1e6, r.v[i] / r.v[centre]);
     EXPECT_NEAR(r.x[i], expected, pitch);
+    // The central value: on the axis of a hole of radius a the paraxial field is exact in closed
+    // form, I(0) = 4·E·sin²(π·a²/(2λz)) = 0.024623 (Fresnel number a²/λz = 0.05; Fraunhofer
+    // (πa²/λz)² = 0.02467). Near the axis the pattern falls as 1 − u²/4, u = k·a·r/z, and the
+    // Gaussian pixel at offset x averages r² to x² + 2σ²: 1.5e-3 here.
+    const double a = 50e-6, z = 0.05, k = 2 * Pi / 1e-6, sigma = 7.98e-6;
+    const double i0 = 4 * std::pow(std::sin(Pi * a * a / (2 * 1e-6 * z)), 2);
+    const double expectedCentre = i0 * (1 - 0.25 * Sqr(k * a / z) * (Sqr(r.x[centre]) + 2 * sigma * sigma));
+    std::printf("Airy: I at x = %.1f um = %.6f (closed form %.6f, on the axis %.6f)\n", r.x[centre] * 1e6,
+                r.v[centre], expectedCentre, i0);
+    EXPECT_NEAR(r.v[centre] / expectedCentre, 1, 1e-3);
 }
 
 /// V = (P − P₁ − P₂)/(P₁ + P₂) at x = 0 (theory §9) for the given source Defines.

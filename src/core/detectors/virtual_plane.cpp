@@ -185,9 +185,11 @@ class VirtualPlane final : public Detector {
         std::vector<Vec3> out;
         const ApertureMask *open = aim.material ? aim.material->Openings() : nullptr;
         if (open && !open->Empty()) {
-            const PlateFrame pf = PlateFrame::FromTransform(aim.objectToWorld);
+            // Through the transform itself: a plate that is not a rigid motion is the shape's
+            // error (Material::CheckShape reports it at its definition), not the sensor's.
             const Bounds2 b = open->Bounds();
-            for (int i = 0; i < 4; ++i) out.push_back(pf.ToWorld(Vec2((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y)));
+            for (int i = 0; i < 4; ++i)
+                out.push_back(aim.objectToWorld.Point(Vec3((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, 0)));
             return out;
         }
         const Bounds3 b = aim.Bounds();

@@ -51,6 +51,7 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
         local.combine_each([&](const PathStats &p) {
             stats.rays += p.rays;
             stats.footprintAfterSpreadFree += p.footprintAfterSpreadFree;
+            stats.specularAfterSpreadFree += p.specularAfterSpreadFree;
         });
         done = end;
         batch = std::min(batch * 2, 16);
