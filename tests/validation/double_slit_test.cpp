@@ -72,7 +72,7 @@ TEST(DoubleSlit, GrtMatchesRsAndRsMatchesAnIndependentReference) {
         const double dd = d * 1e-6, b = 40e-6;
         const std::vector<double> ref =
             Hankel2D({{-dd / 2 - b / 2, -dd / 2 + b / 2}, {dd / 2 - b / 2, dd / 2 + b / 2}}, 1e-6, 1e-2, 0, 7.98e-6, rs.x);
-        Row refRow{rs.x, ref, 0};
+        Row refRow{rs.x, ref, {}, 0};
         const double eRef = MaxDiffOfPeak(rs, refRow);
         std::printf("d = %3d um: max|grt-rs| = %.2e of peak (grt %.2f s, 64x64 lattice), |rs-ref| = %.2e (rs %.3f s)\n",
                     d, e, grt.seconds, eRef, rs.seconds);

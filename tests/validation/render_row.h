@@ -22,6 +22,7 @@ inline std::string ValidationScene(const std::string &name) {
 
 struct Row {
     std::vector<double> x, v;  // pixel centres [m], intensity (flux / E)
+    std::vector<double> var;   // variance of each pixel's mean (0 for rs)
     double seconds = 0;
     double Peak() const { return *std::max_element(v.begin(), v.end()); }
 };
@@ -44,10 +45,11 @@ inline Row RenderRow(const std::string &scene, const DefineList &defines, const 
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const SensorPlaneGeometry *sp = built->GetDetector().SensorPlane();
     EXPECT_TRUE(sp);
-    const int c = img.ChannelIndex("intensity"), y = img.height / 2;
+    const int c = img.ChannelIndex("intensity"), cv = img.ChannelIndex("variance"), y = img.height / 2;
     for (int i = 0; i < img.width; ++i) {
         r.x.push_back(sp ? sp->PixelCenter(i, y).x : i);
         r.v.push_back(img.At(i, y, c));
+        r.var.push_back(cv >= 0 ? img.At(i, y, cv) : 0.0);
     }
     return r;
 }
