@@ -191,8 +191,8 @@ int Render(const CliOptions &o) {
                          "(only the first footprint-aware kernel on a path diffracts)\n";
         if (st.specularAfterSpreadFree > 0)
             std::cerr << "warning: " << st.specularAfterSpreadFree
-                      << " path vertices scattered specularly after an aperture; delta and closed-form "
-                         "lights (plane waves, point, spot, distant) are not reached through such a "
+                      << " path vertices scattered specularly after an aperture; delta lights (plane "
+                         "waves, point, spot, directional, laser beams) are not reached through such a "
                          "surface, so their light behind it is missing (theory §9 item 5)\n";
         if (st.invalidSamples > 0)
             std::cerr << "warning: " << st.invalidSamples << " samples were NaN/Inf/negative and were discarded\n";

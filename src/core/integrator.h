@@ -34,9 +34,9 @@ struct RenderStats {
     /// Footprint-aware kernels (apertures) reached by a GR that had already left one: they acted
     /// geometrically (re-fitting the footprint after an aperture is future work; theory §9.5).
     long long footprintAfterSpreadFree = 0;
-    /// Specular (delta) scattering of a spread-free GR in a scene with delta or closed-form
-    /// lights: a classical ray cannot reach those through a specular surface, so their light
-    /// behind it is missing (theory §9 item 5).
+    /// Specular (delta) scattering of a spread-free GR in a scene with delta lights: a classical
+    /// ray cannot reach those through a specular surface, so their light behind it is missing
+    /// (theory §9 item 5).
     long long specularAfterSpreadFree = 0;
 };
 

@@ -17,7 +17,7 @@ struct PathStats {
     long long rays = 0;
     /// Vertices where a footprint-aware kernel met a spread-free GR and acted geometrically.
     long long footprintAfterSpreadFree = 0;
-    /// Specular vertices of spread-free GRs in scenes with delta or closed-form lights.
+    /// Specular vertices of spread-free GRs in scenes with delta lights.
     long long specularAfterSpreadFree = 0;
     PixelSampleIndex sample;
 };

@@ -192,7 +192,7 @@ class GrtIntegrator final : public PixelIntegrator {
             g.Redirect(wo, bs->eta);
             g.o = si->SpawnOrigin(wo);
             const bool nearDelta = (bs->flags & ScatterNearDelta) != 0;
-            if (spreadFree && nearDelta && HasClosedFormLights(scene)) ++stats.specularAfterSpreadFree;
+            if (spreadFree && nearDelta && HasDeltaLights(scene)) ++stats.specularAfterSpreadFree;
             spreadFree = spreadFree || (bs->flags & ScatterSpreadFree) != 0;
             mis = path::MisState{nearDelta, bs->pdf, LightSampleContext{si->p, si->n}};
             closedFormDone = nearDelta && !spreadFree;
@@ -213,11 +213,12 @@ class GrtIntegrator final : public PixelIntegrator {
     }
 
   private:
-    /// True if some light is a delta or measured in closed form (plane waves, point-like and
-    /// distant sources): light a spread-free classical ray cannot find through a specular surface.
-    static bool HasClosedFormLights(const Scene &scene) {
+    /// True if some light is a delta in position or direction (plane waves, point, spot,
+    /// directional, laser beams): light a spread-free classical ray cannot find through a specular
+    /// surface (sources of finite extent, area and distant, it still hits by direction).
+    static bool HasDeltaLights(const Scene &scene) {
         for (const Light *l : scene.Lights())
-            if (l->IsDelta() || l->MeasuredInClosedForm()) return true;
+            if (l->IsDelta()) return true;
         return false;
     }
     /// True if some light can be met by a ray (area lights, lights at infinity with a finite
