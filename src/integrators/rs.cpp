@@ -547,21 +547,18 @@ double Propagator::DirectionSpread(const Vec3 &corner, const Vec3 &es, const Vec
     // a frame (axis, fb, fc) contains them all. c = w_a/√(w_a² + ρ²), ρ² = w_b² + w_c², grows with
     // w_a and, for w_a > 0, falls with ρ (rises for w_a < 0): its extremes over that box are at
     // (max w_a, ρ_min or ρ_max) and (min w_a, ρ_max or ρ_min).
-    const Vec3 fb = Normalize(std::abs(axis.x) < 0.9 ? Cross(axis, Vec3(1, 0, 0)) : Cross(axis, Vec3(0, 1, 0)));
-    const Vec3 fc = Cross(axis, fb);
+    const Frame f = Frame::FromNormal(axis);
+    const Vec3 fb = f.s, fc = f.t;
     const Vec3 region[4] = {corner, corner + es, corner + et, corner + es + et};
-    std::vector<Vec3> box;
-    if (twoD_) {  // the slits' u range; components along the slits do not enter the 2-D field
-        box = {plate_.ToWorld(Vec2(bounds_.lo.x, 0)), plate_.ToWorld(Vec2(bounds_.hi.x, 0))};
-    } else {
-        for (int c = 0; c < 4; ++c)
-            box.push_back(plate_.ToWorld(
-                Vec2((c & 1) ? bounds_.hi.x : bounds_.lo.x, (c & 2) ? bounds_.hi.y : bounds_.lo.y)));
-    }
+    // The box's corners (2-D mode: the slits' u range; components along the slits do not enter).
+    const int nBox = twoD_ ? 2 : 4;
+    Vec3 box[4];
+    for (int c = 0; c < nBox; ++c)
+        box[c] = plate_.ToWorld(Vec2((c & 1) ? bounds_.hi.x : bounds_.lo.x, (c & 2) ? bounds_.hi.y : bounds_.lo.y));
     double lo[3] = {Infinity, Infinity, Infinity}, hi[3] = {-Infinity, -Infinity, -Infinity};
     for (const Vec3 &p : region)
-        for (const Vec3 &q : box) {
-            Vec3 w = p - q;
+        for (int j = 0; j < nBox; ++j) {
+            Vec3 w = p - box[j];
             if (twoD_) w = w - plate_.e2 * Dot(w, plate_.e2);
             const double c[3] = {Dot(w, axis), Dot(w, fb), Dot(w, fc)};
             for (int i = 0; i < 3; ++i) {

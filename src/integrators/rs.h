@@ -35,7 +35,7 @@ struct QuadratureRule {
     /// The rule for a target accuracy (largest pixel error relative to the row's peak) of the
     /// integrator's `accuracy` parameter: per-panel tolerance accuracy·1e-3 (panel integrals
     /// cancel: their magnitudes sum to ~10²× |U| on long slits) and e^{−c²/2} = accuracy/10.
-    /// The defaults above are tighter than ForAccuracy(1e-6).
+    /// The defaults above (1e-14 per panel, c = 5) are the strict rule the unit tests use.
     static QuadratureRule ForAccuracy(double accuracy);
 };
 
