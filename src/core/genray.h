@@ -120,6 +120,31 @@ struct SpectralGenRay {
     SpectralGenRay TimeReversed() const;
 };
 
+// ---- Coherent TEM₀₀ Gaussian beams (the `gaussian_beam` light, theory §2.2) ---------------------
+
+/// A Gaussian beam by its geometry: waist centre, unit axis (direction of travel) and β_s² of the
+/// waist [m²] (w₀ = √2·β_s, the 1/e² intensity radius). For wavenumber k, with z = axis·(p − waist),
+/// r = the distance of p from the axis, z_R = kβ_s² and q = z − i·z_R, the field of a beam of unit
+/// power is (paraxial; Siegman, "Lasers", §17.1, in the GR convention of theory §1.3)
+///     ψ(p) = (πβ_s²)^{−1/2}·(q(0)/q(z))·exp(ik z + ik r²/(2q(z))),
+/// so |ψ|² = exp(−r²/β²(z))/(πβ²(z)), β²(z) = β_s²(1 + (z/z_R)²), and the wavefront diverges for
+/// z > 0 (e^{ikr} convention of a spherical wave).
+struct GaussianBeamGeometry {
+    Vec3 waist;
+    Vec3 axis{0, 0, 1};
+    double beta2 = 0;  // β_s² [m²]
+
+    /// z = axis·(p − waist) [m].
+    double Axial(const Vec3 &p) const { return Dot(p - waist, axis); }
+    /// q(z) = z − i·kβ_s² [m].
+    Complex Q(double z, double k) const { return Complex(z, -k * beta2); }
+    /// β²(z) = β_s²(1 + (z/z_R)²) [m²].
+    double Beta2At(double z, double k) const;
+    /// ψ(p) of a unit-power beam [1/m] (above), with the phase k·zRef removed (only relative phases
+    /// matter; keeps the argument small far from the waist).
+    Complex Field(const Vec3 &p, double k, double zRef = 0) const;
+};
+
 // ---- Closed-form measurements (Eq. 24, theory §2.4) ------------------------------------------
 // `g` is always the *physical* GR (d = direction of light flow, ρ > 0 diverging along it). The
 // returned M is the phase-space overlap ∫∫ 𝒲_s g in the source's units times m² (M = L/k² for a

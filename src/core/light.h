@@ -27,6 +27,12 @@ struct LightSample {
     double dist = 0;  // distance to the sampled point (Infinity for directional lights)
     double pdf = 0;   // solid-angle density; 1 for delta lights
     bool delta = false;
+    /// Gaussian-beam lights: the beam's geometry and its irradiance on the axis at the receiver's
+    /// axial position (per wavelength, normal to the axis), for footprint-aware kernels, which
+    /// integrate the beam's field over their footprint (IncidentWave). L stays the local
+    /// irradiance at the receiver, which is what every other kernel needs.
+    std::optional<GaussianBeamGeometry> beam = std::nullopt;
+    SampledSpectrum beamAxisIrradiance{0.0};
 };
 
 /// Coherence description of the light arriving at a point (theory §0 D5), for sample-solve:
@@ -39,15 +45,17 @@ struct LightCoherence {
 };
 
 /// A coherent monochromatic field for the forward `rs` integrator (theory §6.2): a plane wave of
-/// irradiance `strength` [W/m², normal to `dir`] travelling along `dir`, or a spherical wave from a
-/// point at `pos` of intensity `strength` [W/sr] (isotropic within `Falloff`-free point lights).
+/// irradiance `strength` [W/m², normal to `dir`] travelling along `dir`, a spherical wave from a
+/// point at `pos` of intensity `strength` [W/sr] (isotropic within `Falloff`-free point lights), or
+/// a TEM₀₀ Gaussian beam of power `strength` [W] with its waist (β_s² = `beta2`) centred at `pos`.
 /// Amplitude convention: |U|² = irradiance normal to the local direction of travel.
 struct CoherentWave {
-    enum class Kind { Plane, Spherical } kind = Kind::Plane;
-    Vec3 dir{0, 0, -1};   // plane: unit direction of travel
-    Vec3 pos;             // spherical: source position [m]
-    double strength = 0;  // plane: irradiance E [W/m²]; spherical: intensity I [W/sr]
+    enum class Kind { Plane, Spherical, GaussianBeam } kind = Kind::Plane;
+    Vec3 dir{0, 0, -1};   // plane, beam: unit direction of travel (the beam's axis)
+    Vec3 pos;             // spherical: source position; beam: centre of the waist [m]
+    double strength = 0;  // plane: irradiance E [W/m²]; spherical: intensity I [W/sr]; beam: power P [W]
     double lambda = 0;    // vacuum wavelength of the line [m]
+    double beta2 = 0;     // beam: β_s² of the waist [m²] (GaussianBeamGeometry; |U|² = P·|ψ|²)
 };
 
 /// Cross-section π r² of the scene's bounding sphere [m²]: the area through which a light at

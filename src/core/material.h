@@ -17,6 +17,7 @@ namespace phasor {
 
 struct SpectralGenRay;
 struct SurfaceInteraction;
+struct GaussianBeamGeometry;
 class Shape;
 class ApertureMask;
 
@@ -58,6 +59,21 @@ struct ScatterQuery {
     const SurfaceInteraction *si = nullptr;
 };
 
+/// The wave a light sample sends to a receiver, as footprint-aware kernels need it (EvalFrom):
+/// over the GR's footprint the incident field is not a plane wave.
+///   * `dist`: the wavefront radius at the receiver [m] — a spherical wave from a source at that
+///     distance (point and area lights); Infinity for a plane wave.
+///   * `beam`: a coherent TEM₀₀ Gaussian beam (core/genray.h). Its amplitude varies across the
+///     footprint, so the kernel integrates the beam's own field, normalised to unit amplitude on
+///     the beam axis at the receiver's axial position: EvalFrom's value is then per unit
+///     *on-axis* irradiance (LightSample::beamAxisIrradiance), not per unit irradiance at the hit
+///     point (which underflows when a footprint far wider than the beam is centred off its axis).
+/// Only footprint-aware kernels read it; see path::SampleDirectLight for who multiplies by what.
+struct IncidentWave {
+    double dist = Infinity;
+    const GaussianBeamGeometry *beam = nullptr;
+};
+
 struct ScatterSample {
     Vec3 wo;                  // local, unit, pointing away from the surface
     /// Throughput factor per wavelength: f·|cosθo|/pdf for continuous lobes, a_j/p_j for
@@ -90,10 +106,12 @@ class Material {
     /// Footprint-aware kernels (theory §9) use the incident GR's wave function (ScatterQuery::gr)
     /// and return spread-free samples; with !q.rayOptics they need q.gr and q.si.
     virtual bool IsFootprintAware() const { return false; }
-    /// Like Eval, for light from a source at distance `dist` [m] along −wo (a spherical wave whose
-    /// curvature over the GR's footprint matters to footprint-aware kernels); Infinity gives Eval.
-    virtual SampledSpectrum EvalFrom(const ScatterQuery &q, const Vec3 &wo, double dist) const {
-        (void)dist;
+    /// Like Eval, for the wave `w` arriving along −wo: a spherical wave from a source at distance
+    /// w.dist [m] (its curvature over the GR's footprint matters to footprint-aware kernels;
+    /// Infinity gives Eval) or a Gaussian beam (w.beam; the value is then per unit on-axis
+    /// irradiance, see IncidentWave). Kernels that are not footprint-aware ignore w.
+    virtual SampledSpectrum EvalFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const {
+        (void)w;
         return Eval(q, wo);
     }
     /// Called by the scene builder for every shape that uses this kernel; throws phasor::Error

@@ -48,17 +48,23 @@ inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceIntera
     const Light *light = lights[li];
     const LightSampleContext ctx{si.p, si.n};
     auto ls = light->SampleLi(ctx, uPos, wl);
-    if (!ls || !(ls->pdf > 0) || ls->L.IsZero()) return SampledSpectrum(0.0);
+    if (!ls || !(ls->pdf > 0) || (ls->L.IsZero() && !ls->beam)) return SampledSpectrum(0.0);
     const Vec3 wo = si.shading.ToLocal(ls->wi);
-    const SampledSpectrum f = mat.EvalFrom(q, wo, ls->dist) * std::abs(wo.z);
-    if (f.IsZero()) return SampledSpectrum(0.0);
+    // A footprint-aware kernel integrates a Gaussian beam's own field over the GR's footprint and
+    // answers per unit on-axis irradiance (IncidentWave); every other kernel sees the local
+    // irradiance at the hit.
+    const bool beamField = ls->beam && mat.IsFootprintAware() && q.gr && !q.rayOptics;
+    const IncidentWave wave{ls->dist, beamField ? &*ls->beam : nullptr};
+    const SampledSpectrum &incident = beamField ? ls->beamAxisIrradiance : ls->L;
+    const SampledSpectrum f = mat.EvalFrom(q, wo, wave) * std::abs(wo.z);
+    if (f.IsZero() || incident.IsZero()) return SampledSpectrum(0.0);
     ++stats.rays;
     const bool blocked = std::isinf(ls->dist) ? scene.OccludedDirection(si, ls->wi)
                                               : scene.Occluded(si, si.p + ls->wi * ls->dist);
     if (blocked) return SampledSpectrum(0.0);
-    if (ls->delta) return f * ls->L / selectPdf;
+    if (ls->delta) return f * incident / selectPdf;
     const double pl = ls->pdf * selectPdf;
-    return f * ls->L * (PowerHeuristic(pl, mat.Pdf(q, wo)) / pl);
+    return f * incident * (PowerHeuristic(pl, mat.Pdf(q, wo)) / pl);
 }
 
 /// Radiance emitted by the area light at si towards the path (direction of travel rayDir),

@@ -254,7 +254,7 @@ class GrtIntegrator final : public PixelIntegrator {
         }
         /// EvalFrom(q, wo, dist) / Eval(q, wo) per wavelength (0 where Eval is 0).
         SampledSpectrum Correction(double dist) const {
-            const SampledSpectrum g = mat->EvalFrom(q, wo, dist);
+            const SampledSpectrum g = mat->EvalFrom(q, wo, IncidentWave{dist});
             SampledSpectrum r(0.0);
             for (int i = 0; i < NumWavelengths; ++i) r[i] = f[i] > 0 ? g[i] / f[i] : 0;
             return r;

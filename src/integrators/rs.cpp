@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rs`: the forward Rayleigh–Sommerfeld reference (theory §6.2, §9; design.md §4.3). Coherent,
 // monochromatic sources (`plane_wave` with a line spectrum at any incidence, isotropic `point`
-// with a line spectrum) shine on ONE planar aperture plate — the scene's only shape, whose
+// with a line spectrum, `gaussian_beam` with a line spectrum: its exact paraxial TEM₀₀ field,
+// GaussianBeamGeometry, with the waist anywhere) shine on ONE planar aperture plate — the scene's only shape, whose
 // material has openings (Material::Openings, e.g. `aperture`) — and the scalar field behind it is
 // computed in double precision on the `virtual_plane` sensor:
 //   Kirchhoff boundary values U₀ = t·U_inc on the openings (the plate is infinite and opaque
@@ -65,6 +66,9 @@ namespace phasor {
 namespace rs {
 
 namespace {
+
+// Gaussian beams: openings farther than this many β(z) from the beam's axis are not integrated.
+constexpr double BeamCutoff = 8;
 
 // ---- Gauss–Legendre rules ------------------------------------------------------------------------
 
@@ -269,6 +273,12 @@ Propagator::Propagator(const PlateFrame &plate, const ApertureMask &mask, const 
     k_ = 2 * Pi / wave.lambda;
     amp_ = std::sqrt(wave.strength);
     spherical_ = wave.kind == CoherentWave::Kind::Spherical;
+    beam_ = wave.kind == CoherentWave::Kind::GaussianBeam;
+    if (beam_) {
+        if (!(wave.beta2 > 0)) throw Error("rs: the Gaussian beam has no waist");
+        beamGeo_ = GaussianBeamGeometry{wave.pos, Normalize(wave.dir), wave.beta2};
+        beamZRef_ = beamGeo_.Axial(plate.origin);
+    }
     if (spherical_) {
         const Vec3 d = wave.pos - plate.origin;
         su_ = Dot(d, plate.e1);
@@ -280,25 +290,79 @@ Propagator::Propagator(const PlateFrame &plate, const ApertureMask &mask, const 
         du_ = Dot(d, plate.e1);
         dv_ = Dot(d, plate.e2);
         if (!(zSign_ * Dot(d, plate.n) > 0))
-            throw Error("the plane wave does not travel towards the sensor side of the plate");
+            throw Error(std::string(beam_ ? "the Gaussian beam" : "the plane wave") +
+                        " does not travel towards the sensor side of the plate");
     }
     bounds_ = mask.Bounds();
+    Bounds2 beamBox;
+    if (beam_ && !bounds_.Empty()) {
+        // Only the beam's footprint on the plate carries light: clip the openings to the box of
+        // the points within BeamCutoff·β(z) of its axis (amplitude e^{−32} of the axis value
+        // there), which also keeps the panels from resolving the wavefront's phase where there is
+        // no amplitude. β at the farthest z of the box bounds the footprint (one refinement).
+        const double cn = std::abs(Dot(beamGeo_.axis, plate.n));
+        if (!(cn > 1e-6)) throw Error("the Gaussian beam runs parallel to the aperture plate");
+        const double t = Dot(plate.origin - beamGeo_.waist, plate.n) / Dot(beamGeo_.axis, plate.n);
+        const Vec3 hit = beamGeo_.waist + beamGeo_.axis * t;  // the axis meets the plate here
+        const Vec2 c(Dot(hit - plate.origin, plate.e1), Dot(hit - plate.origin, plate.e2));
+        double half = BeamCutoff * std::sqrt(beamGeo_.Beta2At(t, k_)) / cn;
+        const double slope = std::sqrt(std::max(0.0, 1 - cn * cn));  // |dz/ds| along the plate
+        half = BeamCutoff * std::sqrt(beamGeo_.Beta2At(std::abs(t) + half * slope, k_)) / cn;
+        beamBox = Bounds2{c - Vec2(half, half), c + Vec2(half, half)};
+        bounds_ = bounds_.Intersect(beamBox);
+    }
+    if (beam_ && !bounds_.Empty()) {
+        // Panels no longer than the beam's radius β(z) anywhere on the openings' box, so that
+        // Gauss–Legendre resolves its Gaussian envelope (β(z) is smallest at the z nearest 0).
+        double zLo = Infinity, zHi = -Infinity;
+        for (int c = 0; c < 4; ++c) {
+            const double z = beamGeo_.Axial(
+                plate.ToWorld(Vec2((c & 1) ? bounds_.hi.x : bounds_.lo.x, (c & 2) ? bounds_.hi.y : bounds_.lo.y)));
+            zLo = std::min(zLo, z);
+            zHi = std::max(zHi, z);
+        }
+        const double zNear = (zLo <= 0 && zHi >= 0) ? 0.0 : std::min(std::abs(zLo), std::abs(zHi));
+        beamPanel_ = std::sqrt(beamGeo_.Beta2At(zNear, k_));
+    }
     if (!bounds_.Empty()) {
         Bounds2 box = bounds_;
         const Vec2 pad = 0.01 * (box.hi - box.lo);
         box.lo = box.lo - pad;
         box.hi = box.hi + pad;
+        if (beam_) box = box.Intersect(beamBox);
         mask.ForEachPiece(box, [&](const MaskPiece &p) {
             if (p.t > 0 && p.v1 > p.v0) pieces_.push_back(p);
         });
     }
     if (twoD_) {
-        if (spherical_ || std::abs(dv_) > 1e-9)
+        if (spherical_ || beam_ || std::abs(dv_) > 1e-9)
             throw Error(
                 "the 2-D mode needs a plane wave with no component along the slits (the plate's y axis)");
         if (!mask.IsSlitsAlongV(0))
             throw Error("the 2-D mode needs openings that are rectangles sharing one v range");
     }
+}
+
+double Propagator::BeamSlopeBound(double ua, double ub, double va, double vb) const {
+    // φ = k z + k r² z/(2(z² + z_R²)) − atan(z/z_R) (GaussianBeamGeometry); along a plate axis
+    // |∂r/∂u| ≤ 1 and |∂z/∂u| ≤ a (the axis' largest component on the plate), so beyond k·∂z/∂u
+    // the gradient is at most k·r·max|z|/(z² + z_R²) + a·(k r²/(2 z_R²) + 1/z_R). r (distance from the axis, convex) and z
+    // (linear) take their extremes over the box at its corners.
+    const double zr = k_ * beamGeo_.beta2;
+    const double a = std::max(std::abs(du_), std::abs(dv_));  // |∂z/∂u|, |∂z/∂v| ≤ a
+    double rMax = 0, zLo = Infinity, zHi = -Infinity;
+    for (int c = 0; c < 4; ++c) {
+        const Vec3 p = plate_.ToWorld(Vec2((c & 1) ? ub : ua, (c & 2) ? vb : va));
+        const double z = beamGeo_.Axial(p);
+        rMax = std::max(rMax, std::sqrt(std::max(0.0, LengthSquared(p - beamGeo_.waist) - z * z)));
+        zLo = std::min(zLo, z);
+        zHi = std::max(zHi, z);
+    }
+    auto f = [&](double z) { return std::abs(z) / (z * z + zr * zr); };
+    double fMax = std::max(f(zLo), f(zHi));
+    if (zLo <= zr && zHi >= zr) fMax = std::max(fMax, f(zr));
+    if (zLo <= -zr && zHi >= -zr) fMax = std::max(fMax, f(-zr));
+    return k_ * rMax * fMax + a * (k_ * rMax * rMax / (2 * zr * zr) + 1 / zr);
 }
 
 double Propagator::Height(const Vec3 &p) const { return zSign_ * Dot(p - plate_.origin, plate_.n); }
@@ -332,7 +396,8 @@ void Propagator::Field3D(const Local &p, double acc[4]) const {
     const GaussTable &gl = Gauss();
     const NodeRule &nodes = *nodes_;
     const double k = k_, X = p.x, Y = p.y, Z = p.z, Z2 = Z * Z;
-    const double lmax = rule_.maxPanelOverDistance * (spherical_ ? std::min(Z, sz_) : Z);
+    const double lmax =
+        std::min(rule_.maxPanelOverDistance * (spherical_ ? std::min(Z, sz_) : Z), beamPanel_);
     const double phiMax = rule_.maxPanelPhase;
     double ur = 0, ui = 0, dr = 0, di = 0;
 
@@ -340,7 +405,7 @@ void Propagator::Field3D(const Local &p, double acc[4]) const {
     // Bound on |∂(kR + phase of U_inc)/∂a| over the panel [a0, a1] × [b0, b1], for the axis a
     // (field point coordinate A along it, B across; source point (sa, sb); plane-wave slope da).
     auto gradAlong = [&](double A, double B, double a0, double a1, double b0, double b1, double sa, double sb,
-                         double da) {
+                         double da, double beamExtra) {
         double pLo, pHi, lo, hi;
         DistanceRange(B, b0, b1, &pLo, &pHi);
         CosineRange(A - a1, A - a0, std::sqrt(pLo * pLo + Z2), std::sqrt(pHi * pHi + Z2), &lo, &hi);
@@ -356,13 +421,13 @@ void Propagator::Field3D(const Local &p, double acc[4]) const {
             gLo += da;
             gHi += da;
         }
-        return k * std::max(std::abs(gLo), std::abs(gHi));
+        return k * std::max(std::abs(gLo), std::abs(gHi)) + beamExtra;
     };
     auto gradU = [&](double ua, double ub, double va, double vb) {
-        return gradAlong(X, Y, ua, ub, va, vb, su_, sv_, du_);
+        return gradAlong(X, Y, ua, ub, va, vb, su_, sv_, du_, beam_ ? BeamSlopeBound(ua, ub, va, vb) : 0.0);
     };
     auto gradV = [&](double ua, double ub, double va, double vb) {
-        return gradAlong(Y, X, va, vb, ua, ub, sv_, su_, dv_);
+        return gradAlong(Y, X, va, vb, ua, ub, sv_, su_, dv_, beam_ ? BeamSlopeBound(ua, ub, va, vb) : 0.0);
     };
 
     // One line v = const of a piece: the u integral, weight wv (outer node weight × Jacobian).
@@ -387,6 +452,11 @@ void Propagator::Field3D(const Local &p, double acc[4]) const {
                         const double rho = std::sqrt(q + sz_ * sz_);
                         a /= rho;
                         phi = k * q / (rho + sz_);
+                    } else if (beam_) {
+                        // U_inc = √P·ψ (GaussianBeamGeometry), phase relative to k·z(origin).
+                        const Complex psi = beamGeo_.Field(plate_.ToWorld(Vec2(u, v)), k, beamZRef_);
+                        a *= std::abs(psi);
+                        phi = std::arg(psi);
                     } else {
                         phi = k * du_ * u + phiV;
                     }
@@ -881,7 +951,7 @@ class RsIntegrator final : public Integrator {
                     scene.Where(light),
                     "light '" + light->name +
                     "' has no coherent field: integrator 'rs' needs monochromatic (line-spectrum) plane "
-                    "waves or isotropic point lights");
+                    "waves, isotropic point lights or Gaussian beams");
         const auto &shapes = scene.Shapes();
         if (shapes.empty())
             throw Error(
@@ -948,7 +1018,7 @@ class RsIntegrator final : public Integrator {
                 throw Error(scene.Where(&det), "sensor '" + det.name +
                             "' is closer than one wavelength to the aperture plate '" + shape.name +
                             "' (Kirchhoff boundary values need a distant sensor)");
-            const bool sameSide = wave->kind == CoherentWave::Kind::Plane
+            const bool sameSide = wave->kind != CoherentWave::Kind::Spherical
                                       ? !(Dot(Normalize(wave->dir), towardsSensor) > 0)
                                       : !(Dot(wave->pos - plate.origin, towardsSensor) < 0);
             if (sameSide)

@@ -94,8 +94,17 @@ class Propagator {
     std::shared_ptr<const NodeRule> nodes_;  // panel phase → Gauss–Legendre node count
     std::vector<MaskPiece> pieces_;
     Bounds2 bounds_;
+    /// Gaussian beams: an upper bound, over the plate box [ua, ub] × [va, vb], of how far the
+    /// beam's phase gradient along either plate axis departs from k times its axis' component
+    /// (curvature, the change of curvature along the axis and the Gouy phase) [rad/m].
+    double BeamSlopeBound(double ua, double ub, double va, double vb) const;
+
     // Incident wave in plate coordinates (local z towards the sensor).
     bool spherical_;
+    bool beam_ = false;                 // a Gaussian beam (du_, dv_: its axis on e1, e2)
+    GaussianBeamGeometry beamGeo_;
+    double beamZRef_ = 0;               // axial position of the plate origin (phase reference)
+    double beamPanel_ = Infinity;       // panel length limit: the beam's smallest β on the openings
     double k_, amp_;
     double du_ = 0, dv_ = 0;           // plane: direction cosines along e1, e2
     double su_ = 0, sv_ = 0, sz_ = 0;  // spherical: source at (su, sv), distance sz > 0 behind

@@ -13,7 +13,9 @@
 //     cosθ_i = d·n of the incident GR (so that an open plate passes radiance unchanged and a
 //     `virtual_plane` reports E·cosθ for a tilted plane wave, D4). As a per-steradian density,
 //     Eval = |A(s = −wo, plane wave)|²·|cosθ_i|/(λ²·|cosθ_o|) and EvalFrom uses the spherical
-//     wave of a source at distance `dist`, so the generic NEE f·|cosθ_o|·E gives that line.
+//     wave of a source at distance `dist`, so the generic NEE f·|cosθ_o|·E gives that line. A
+//     Gaussian beam (IncidentWave::beam) enters with its own field across the footprint, per unit
+//     on-axis irradiance.
 //   * Sample draws from a proxy whose Pdf is exact: an anisotropic Gaussian in plate-transverse
 //     wavevector about the straight-through direction (the GR's own angular spread, widened), a
 //     wider Gaussian for the openings' diffraction (std 2π/ℓ, ℓ = the smallest opening seen in the
@@ -288,7 +290,7 @@ class ApertureMaterial final : public Material {
         s.wo = q.si->shading.ToLocal(woWorld);
         s.pdf = ProxyPdf(px, geo, woWorld);
         if (!(s.pdf > 0) || s.wo.z == 0) return std::nullopt;
-        s.weight = EvalWorld(q, geo, woWorld, s.wo.z, Infinity) * (std::abs(s.wo.z) / s.pdf);
+        s.weight = EvalWorld(q, geo, woWorld, s.wo.z, IncidentWave{}) * (std::abs(s.wo.z) / s.pdf);
         s.lobe = 0;
         s.flags = ScatterTransmission | ScatterDiffuse | ScatterSpreadFree;
         s.eta = 1;
@@ -296,14 +298,14 @@ class ApertureMaterial final : public Material {
     }
 
     SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const override {
-        return EvalFrom(q, wo, Infinity);
+        return EvalFrom(q, wo, IncidentWave{});
     }
 
-    SampledSpectrum EvalFrom(const ScatterQuery &q, const Vec3 &wo, double dist) const override {
+    SampledSpectrum EvalFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const override {
         if (q.rayOptics || !q.gr || wo.z == 0) return SampledSpectrum(0.0);
         Geometry geo;
         if (!MakeGeometry(q, &geo)) return SampledSpectrum(0.0);
-        return EvalWorld(q, geo, q.si->shading.ToWorld(wo), wo.z, dist);
+        return EvalWorld(q, geo, q.si->shading.ToWorld(wo), wo.z, w);
     }
 
     double Pdf(const ScatterQuery &q, const Vec3 &wo) const override {
@@ -381,9 +383,9 @@ class ApertureMaterial final : public Material {
         return Bounds2{hit - h, hit + h};
     }
 
-    // Eval/EvalFrom for a world direction wo (local z = woZ) and a source at `dist`.
+    // Eval/EvalFrom for a world direction wo (local z = woZ) and the incident wave w.
     SampledSpectrum EvalWorld(const ScatterQuery &q, const Geometry &geo, const Vec3 &woWorld, double woZ,
-                              double dist) const {
+                              const IncidentWave &w) const {
         SampledSpectrum f(0.0);
         if (!(Dot(woWorld, geo.f.n) * geo.side > 0)) return f;  // transmission only
         const Vec3 s = -woWorld;                                // the incident wave's direction
@@ -391,8 +393,9 @@ class ApertureMaterial final : public Material {
         const int n = std::min(q.wl->Count(), gr.count);
         for (int i = 0; i < n; ++i) {
             if (!(gr.beta2[i] > 0 && gr.k[i] > 0)) continue;  // no footprint: nothing to diffract
-            const PlateGaussian g = MakePlateGaussian(geo.d, s, geo.f.e1, geo.f.e2, geo.f.n, gr.k[i],
-                                                      gr.beta2[i], gr.rho[i], dist, window_);
+            PlateGaussian g = MakePlateGaussian(geo.d, s, geo.f.e1, geo.f.e2, geo.f.n, gr.k[i], gr.beta2[i],
+                                                gr.rho[i], w.beam ? Infinity : w.dist, window_);
+            if (w.beam) AddIncidentBeam(&g, *w.beam, q.si->p, geo.f.e1, geo.f.e2);
             Complex a = 0;
             mask_.ForEachPiece(PieceBox(g, geo.hit), [&](const MaskPiece &piece) {
                 a += piece.t * IntegratePiece(g, piece, geo.hit);

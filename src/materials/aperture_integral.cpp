@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <optional>
 #include <vector>
 
 // libcerf 1.3 (C99 header): the Faddeeva function, used as the reference implementation.
@@ -361,22 +362,47 @@ Jet SphereCorrection(const PlateGaussian &g, double x, double y) {
     return j;
 }
 
-// The exponent for a piece whose (piece ∩ window) is centred at (cx, cy): the hit point's
-// quadratic form plus the second-order Taylor expansion of the corrections about the centre,
-// Δf ≈ Δf(c) + G·(p − c) + ½(p − c)ᵀH(p − c) rewritten in p. Falls back to the plain form if the
-// expansion would not be a decaying Gaussian (a footprint deeper than the GR's Rayleigh range).
-Quadratic Expand(const PlateGaussian &g, double cx, double cy) {
-    Quadratic q{g.axx, g.axy, g.ayy, g.bx, g.by, 0};
-    if (!g.evolve || !std::isfinite(cx) || !std::isfinite(cy)) return q;
-    Jet j = BeamCorrection(g, cx, cy);
-    if (std::isfinite(g.dist) && g.dist > 0) {
-        const Jet js = SphereCorrection(g, cx, cy);
-        j.f += js.f;
-        for (int i = 0; i < 2; ++i) {
-            j.g[i] += js.g[i];
-            for (int l = 0; l < 2; ++l) j.h[i][l] += js.h[i][l];
-        }
+// An incident Gaussian beam (AddIncidentBeam) relative to its on-axis amplitude at the hit's
+// axial position, minus the plane wave e^{ik s·Δ} of the quadratic form: with a = A·Δ (A = the
+// axis on the plate), T = |off + Δ|² − a² (the squared distance from the axis) and u = 1/(q + a),
+//     Δf = −ln(1 + a/q) + ik a + (ik/2)·T·u − ik s·Δ
+// (the beam of GaussianBeamGeometry; q(z) = q + a along the plate).
+Jet IncidentBeamCorrection(const PlateGaussian &g, double x, double y) {
+    const double A[2] = {g.ba1, g.ba2}, o[2] = {g.bo1, g.bo2}, s[2] = {g.s1, g.s2}, p[2] = {x, y};
+    const double a = A[0] * x + A[1] * y;
+    const double t = g.bOff2 + 2 * (o[0] * x + o[1] * y) + x * x + y * y - a * a;
+    const Complex u = 1.0 / (g.bq + a);
+    const Complex ik = I1 * g.k, ik2 = 0.5 * ik;
+    Jet j;
+    j.f = -std::log(1.0 + a / g.bq) + ik * (a - s[0] * x - s[1] * y) + ik2 * t * u;
+    double dt[2];
+    Complex du[2];
+    for (int i = 0; i < 2; ++i) {
+        dt[i] = 2 * (o[i] + p[i] - a * A[i]);
+        du[i] = -u * u * A[i];
+        j.g[i] = -u * A[i] + ik * (A[i] - s[i]) + ik2 * (dt[i] * u + t * du[i]);
     }
+    for (int i = 0; i < 2; ++i)
+        for (int l = 0; l < 2; ++l) {
+            const double ddt = 2 * ((i == l ? 1.0 : 0.0) - A[i] * A[l]);
+            const Complex ddu = 2.0 * u * u * u * (A[i] * A[l]);
+            j.h[i][l] = u * u * (A[i] * A[l]) + ik2 * (ddt * u + dt[i] * du[l] + dt[l] * du[i] + t * ddu);
+        }
+    return j;
+}
+
+// Sum of two corrections.
+void AddJet(Jet *j, const Jet &b) {
+    j->f += b.f;
+    for (int i = 0; i < 2; ++i) {
+        j->g[i] += b.g[i];
+        for (int l = 0; l < 2; ++l) j->h[i][l] += b.h[i][l];
+    }
+}
+
+// The quadratic form plus the correction j expanded about (cx, cy); nullopt if that is not a
+// decaying Gaussian.
+std::optional<Quadratic> ExpandWith(const PlateGaussian &g, const Jet &j, double cx, double cy) {
     const double c[2] = {cx, cy};
     Complex lin[2];  // G − H c
     for (int i = 0; i < 2; ++i) lin[i] = j.g[i] - (j.h[i][0] * c[0] + j.h[i][1] * c[1]);
@@ -389,10 +415,36 @@ Quadratic Expand(const PlateGaussian &g, double cx, double cy) {
     e.c0 = j.f - (j.g[0] * c[0] + j.g[1] * c[1]) +
            0.5 * (c[0] * (j.h[0][0] * c[0] + j.h[0][1] * c[1]) + c[1] * (j.h[1][0] * c[0] + j.h[1][1] * c[1]));
     const double rxx = e.axx.real(), rxy = e.axy.real(), ryy = e.ayy.real();
-    const bool ok = rxx > 0 && ryy > 0 && rxx * ryy > rxy * rxy && std::isfinite(std::abs(e.c0)) &&
-                    std::isfinite(std::abs(e.bx) + std::abs(e.by));
-    return ok ? e : q;
+    const bool ok = rxx > 0 && ryy > 0 && rxx * ryy > rxy * rxy && std::isfinite(e.c0.imag()) &&
+                    e.c0.real() < 700 && std::isfinite(std::abs(e.bx) + std::abs(e.by));
+    if (!ok) return std::nullopt;
+    return e;
 }
+
+// The exponent for a piece whose (piece ∩ window) is centred at (cx, cy): the hit point's
+// quadratic form plus the second-order Taylor expansion of the corrections about the centre,
+// Δf ≈ Δf(c) + G·(p − c) + ½(p − c)ᵀH(p − c) rewritten in p. Falls back to the plain form if the
+// expansion would not be a decaying Gaussian (a footprint deeper than the GR's Rayleigh range).
+// An incident Gaussian beam is expanded about the piece even when the GR's own evolution is not
+// (its amplitude varies across the footprint; dropping it would leave a plane wave).
+Quadratic Expand(const PlateGaussian &g, double cx, double cy) {
+    const Quadratic plain{g.axx, g.axy, g.ayy, g.bx, g.by, 0};
+    const bool finite = std::isfinite(cx) && std::isfinite(cy);
+    if (!finite || (!g.evolve && !g.beam)) return plain;
+    const Jet beam = g.beam ? IncidentBeamCorrection(g, cx, cy) : Jet{};
+    if (g.evolve) {
+        Jet j = BeamCorrection(g, cx, cy);
+        if (std::isfinite(g.dist) && g.dist > 0) AddJet(&j, SphereCorrection(g, cx, cy));
+        if (g.beam) AddJet(&j, beam);
+        if (auto e = ExpandWith(g, j, cx, cy)) return *e;
+    }
+    // An incident beam is never dropped: without it the integrand would be a plane wave.
+    if (g.beam) {
+        if (auto e = ExpandWith(g, beam, cx, cy)) return *e;
+    }
+    return plain;
+}
+
 
 // The integrand in the orientation used for a piece: x is the closed-form axis, y the quadrature
 // axis; hx = far × the window along x, hy = the window along y.
@@ -767,6 +819,19 @@ PlateGaussian MakePlateGaussian(const Vec3 &d, const Vec3 &s, const Vec3 &e1, co
     g.hx = varrho * std::sqrt(1 + d1 * d1 / (dn * dn));
     g.hy = varrho * std::sqrt(1 + d2 * d2 / (dn * dn));
     return g;
+}
+
+void AddIncidentBeam(PlateGaussian *g, const GaussianBeamGeometry &b, const Vec3 &hit, const Vec3 &e1,
+                     const Vec3 &e2) {
+    const double z = b.Axial(hit);
+    const Vec3 off = hit - b.waist - b.axis * z;  // ⊥ the axis
+    g->beam = true;
+    g->ba1 = Dot(b.axis, e1);
+    g->ba2 = Dot(b.axis, e2);
+    g->bo1 = Dot(off, e1);
+    g->bo2 = Dot(off, e2);
+    g->bOff2 = LengthSquared(off);
+    g->bq = b.Q(z, g->k);
 }
 
 Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec2 &origin) {

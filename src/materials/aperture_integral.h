@@ -15,6 +15,7 @@
 #pragma once
 
 #include "core/aperture.h"
+#include "core/genray.h"
 #include "core/math.h"
 
 namespace phasor {
@@ -53,6 +54,14 @@ struct PlateGaussian {
     Complex invQ;                         // 1/q of the traced GR at the hit point [1/m]
     double s1 = 0, s2 = 0;                // the incident wave's direction on the plate axes
     double dist = Infinity;               // its wavefront radius at the hit point [m]
+    /// An incident TEM₀₀ Gaussian beam (AddIncidentBeam) in place of the plane wave along s: its
+    /// field relative to its on-axis amplitude at the hit's axial position, times e^{−ik s·Δ},
+    /// enters every piece as an exact-to-second-order correction about the piece (the beam is
+    /// Gaussian across its axis; only the slow change of q along the axis is expanded).
+    bool beam = false;
+    double ba1 = 0, ba2 = 0;              // the beam's axis on the plate axes
+    double bo1 = 0, bo2 = 0, bOff2 = 0;   // the hit's offset from the axis: on e1, e2; squared [m²]
+    Complex bq;                           // q = z − i·z_R of the beam at the hit's axial position [m]
     /// The window truncates the quadrature axis of a piece at hx (or hy) and its closed-form axis
     /// at far·hx (far·hy): truncating there saves nothing, and at 2× the D13 window the GR's
     /// amplitude is < e^{−2·window²} (e^{−32} for window = 4), so a slit longer than the
@@ -71,6 +80,12 @@ struct PlateGaussian {
 /// (the box bounding the oblique cut |Δ⊥d| ≤ ϱ). Requires d_n ≠ 0. Sets `evolve` and its data.
 PlateGaussian MakePlateGaussian(const Vec3 &d, const Vec3 &s, const Vec3 &e1, const Vec3 &e2, const Vec3 &n,
                                 double k, double beta2, double rho, double dist, double window);
+
+/// Replaces g's incident plane wave (direction s of MakePlateGaussian) by the Gaussian beam `b`
+/// (core/genray.h) at wavenumber g.k; `hit` is the hit point (world), (e1, e2) the plate axes. The
+/// integral is then per unit on-axis amplitude of the beam at the hit's axial position.
+void AddIncidentBeam(PlateGaussian *g, const GaussianBeamGeometry &b, const Vec3 &hit, const Vec3 &e1,
+                     const Vec3 &e2);
 
 /// ∫∫ over (piece ∩ window) of exp(−(axx x² + 2axy xy + ayy y²) + i(bx x + by y)) dx dy, where
 /// the piece is given in plate coordinates and `origin` is the hit point's plate position (so

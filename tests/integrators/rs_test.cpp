@@ -764,7 +764,7 @@ TEST(RsScene, UnsupportedScenesAreClearErrors) {
     auto with = [&](std::pair<std::string, std::string> e) { return Edits{grey[0], grey[1], std::move(e)}; };
     ExpectRenderError(with({"@DETECTOR@", "camera"}), {"virtual_plane", "'camera'"});
     ExpectRenderError(with({"@LIGHTS@", "Light \"directional\" \"sun\" { direction = [0 0 -1] }"}),
-                      {"light 'sun'", "monochromatic", "plane waves or isotropic point lights"});
+                      {"light 'sun'", "monochromatic", "isotropic point lights or Gaussian beams"});
     ExpectRenderError(with({"@LIGHTS@", "Light \"plane_wave\" \"white\" { direction = [0 0 -1] }"}),
                       {"light 'white'", "monochromatic"});
     ExpectRenderError(with({"@LIGHTS@",

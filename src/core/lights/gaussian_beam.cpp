@@ -10,7 +10,9 @@
 // Classical rays see it as a delta-direction source whose irradiance follows the Gaussian profile
 // and whose local direction follows the wavefront (tilt ρr/(kβ²), the beam's mean k given r).
 // Generalized rays measure it in closed form: the phase-space overlap of two Gaussians
-// (theory §2.4 item 1). Coherence: Ω = 0.
+// (theory §2.4 item 1). Coherence: Ω = 0. Footprint-aware kernels (apertures) integrate the beam's
+// own field over the GR's footprint: light samples carry the beam's geometry and its on-axis
+// irradiance (LightSample::beam, IncidentWave). `rs` gets the exact paraxial field (CoherentField).
 #include "core/light.h"
 #include "core/lights/closed_form.h"
 #include "core/registry.h"
@@ -49,6 +51,7 @@ class GaussianBeamLight final : public Light {
                                                    d.GetNumber("power"), spectrum);
     }
 
+    GaussianBeamGeometry Geometry() const { return GaussianBeamGeometry{pos_, dir_, beta2_}; }
     /// The beam as a physical GR at its waist for wavenumber k.
     GenRay Beam(double k) const { return GenRay{pos_, dir_, k, beta2_, 0}; }
     SampledSpectrum Emission(const SampledWavelengths &wl) const {
@@ -59,7 +62,8 @@ class GaussianBeamLight final : public Light {
                                         const SampledWavelengths &wl) const override {
         SampledSpectrum e = Emission(wl);
         if (e.IsZero()) return std::nullopt;
-        Vec3 local;
+        SampledSpectrum axis = e;
+        Vec3 local = dir_;
         for (int i = 0; i < wl.Count(); ++i) {
             if (e[i] == 0) continue;
             GenRay b = Beam(2 * Pi / wl.lambda[i]);
@@ -67,10 +71,14 @@ class GaussianBeamLight final : public Light {
             b.Propagate(z);
             const Vec3 r = ctx.p - b.o;  // ⊥ dir
             const double r2 = LengthSquared(r);
-            e[i] *= std::exp(-r2 / b.beta2) / (Pi * b.beta2);
+            axis[i] *= 1 / (Pi * b.beta2);
+            e[i] = axis[i] * std::exp(-r2 / b.beta2);
             if (i == 0) local = Normalize(dir_ + r * (b.rho / (b.k * b.beta2)));
         }
-        return LightSample{e, -local, Infinity, 1.0, true};
+        LightSample ls{e, -local, Infinity, 1.0, true};
+        ls.beam = Geometry();
+        ls.beamAxisIrradiance = axis;
+        return ls;
     }
     double PdfLi(const LightSampleContext &, const Vec3 &, const Vec3 &, const Vec3 &) const override {
         return 0;
@@ -113,6 +121,19 @@ class GaussianBeamLight final : public Light {
         return inc;
     }
     LightCoherence Coherence(const Vec3 &) const override { return LightCoherence{-dir_, 0}; }
+    /// The `rs` field: only a line spectrum is monochromatic (the line carries all the power).
+    std::optional<CoherentWave> CoherentField() const override {
+        const auto line = spectrum_->LineWavelength();
+        if (!line) return std::nullopt;
+        CoherentWave w;
+        w.kind = CoherentWave::Kind::GaussianBeam;
+        w.dir = dir_;
+        w.pos = pos_;
+        w.strength = scale_ * spectrum_->Eval(*line);  // = power
+        w.lambda = *line;
+        w.beta2 = beta2_;
+        return w;
+    }
 
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
     double PowerScale() const override { return scale_; }

@@ -135,6 +135,20 @@ double Normal2Full(double x, double y, double cxx, double cxy, double cyy) {
 }
 }  // namespace
 
+double GaussianBeamGeometry::Beta2At(double z, double k) const {
+    const double zr = k * beta2;
+    return beta2 * (1 + (z / zr) * (z / zr));
+}
+
+Complex GaussianBeamGeometry::Field(const Vec3 &p, double k, double zRef) const {
+    const Vec3 dp = p - waist;
+    const double z = Dot(dp, axis);
+    const double r2 = std::max(0.0, LengthSquared(dp) - z * z);
+    const Complex q = Q(z, k), q0 = Q(0, k);
+    const Complex ik(0, k);
+    return (q0 / q) * std::exp(ik * (z - zRef) + ik * r2 / (2.0 * q)) / std::sqrt(Pi * beta2);
+}
+
 double MeasureGaussianBeam(const GenRay &g, const GenRay &beam, double power) {
     // Theory §2.4 item 1 with the source WDF P·g_{β_s,ρ_s}: per axis N₂(ū_g − ū_s; 0, Σ_g + Σ_s).
     if (Dot(beam.d, g.d) <= 0) return 0;
