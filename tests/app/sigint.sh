@@ -23,7 +23,7 @@ out=$outdir/sigint.exr
 rm -f "$out" "${out%.exr}.png"
 "$phasor" render "$scene" -o "$out" --spp 100000 --quiet --threads 1 &
 pid=$!
-sleep 3   # past start-up (OIIO plug-in loading, scene build), into the render
+sleep 5   # past start-up (OIIO plug-in loading, scene build), well into the render
 kill -INT $pid
 set +e; wait $pid; code=$?; set -e
 [[ $code -eq 130 ]] || fail "1: exit status $code, expected 130"
@@ -62,20 +62,20 @@ check_partial() {
 # 2. -------------------------------------------------------------------------------------------
 out=$outdir/sigint_slow.exr
 rm -f "$out" "${out%.exr}.png"
-run_stopped INT 4 130 "$outdir/sigint_slow.log" render "$slow" -o "$out" --threads 1
+run_stopped INT 5 130 "$outdir/sigint_slow.log" render "$slow" -o "$out" --threads 1
 grep -q "stopping" "$outdir/sigint_slow.log" || { cat "$outdir/sigint_slow.log"; fail "INT: no 'stopping' message"; }
 check_partial "$out"
 
 # 3. -------------------------------------------------------------------------------------------
 out=$outdir/sigterm.exr
 rm -f "$out" "${out%.exr}.png"
-run_stopped TERM 4 143 "$outdir/sigterm.log" render "$slow" -o "$out" --threads 1 --quiet
+run_stopped TERM 5 143 "$outdir/sigterm.log" render "$slow" -o "$out" --threads 1 --quiet
 check_partial "$out"
 
 # 4. -------------------------------------------------------------------------------------------
 out=$outdir/sigint_rs.exr
 rm -f "$out" "${out%.exr}.png"
-run_stopped INT 3 130 "$outdir/sigint_rs.log" render "$doubleslit" --integrator rs -D length=1000um \
+run_stopped INT 5 130 "$outdir/sigint_rs.log" render "$doubleslit" --integrator rs -D length=1000um \
     -D lambda=0.1um -o "$out" --threads 1
 grep -q "interrupted: rs stopped after [0-9]* of [0-9]* steps.*no image written" "$outdir/sigint_rs.log" ||
     { cat "$outdir/sigint_rs.log"; fail "rs: no 'interrupted' message"; }
