@@ -23,12 +23,28 @@ using namespace phasor;
 
 namespace {
 
+// Cancellation (README "Using phasor"): the first SIGINT (Ctrl-C) or SIGTERM (`timeout`, batch
+// schedulers) asks the render to stop; it finishes the pixels in progress and the partial image is
+// written. A second signal ends the program at once (the default action).
 std::atomic<bool> gCancel{false};
+volatile std::sig_atomic_t gSignal = 0;  // the first signal received, 0 if none
+volatile std::sig_atomic_t gAnnounce = 0;  // print "stopping…" when the first signal arrives
 
-extern "C" void OnSigint(int) {
+extern "C" void OnStopSignal(int sig) {
+    if (gSignal == 0) gSignal = sig;
     gCancel.store(true);
-    std::signal(SIGINT, SIG_DFL);  // a second Ctrl-C ends the program at once
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+    if (gAnnounce) {  // write(2) is async-signal-safe; iostreams are not
+        static const char msg[] = "\nstopping: finishing the pixels in progress (Ctrl-C again to quit at once)\n";
+        ssize_t ignored = ::write(2, msg, sizeof msg - 1);
+        (void)ignored;
+    }
 }
+
+// Exit status of a render stopped by `sig`: 128 + the signal number, as a shell reports a
+// process killed by it (130 for SIGINT, 143 for SIGTERM).
+int StoppedStatus(int sig) { return 128 + sig; }
 
 const char *kUsage =
     "usage: phasor <command> [options]\n"
@@ -123,6 +139,8 @@ int Render(const CliOptions &o) {
     }
 
     const Detector &det = scene->GetDetector();
+    const Integrator &integrator = scene->GetIntegrator();
+    const bool deterministic = integrator.Deterministic();
     Film film(det.Width(), det.Height(), det.Response());
     bool bar = !o.quiet && isatty(2);
     auto start = std::chrono::steady_clock::now();
@@ -131,17 +149,25 @@ int Render(const CliOptions &o) {
             double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             double frac = double(done) / total;
             int width = 30, filled = int(frac * width);
-            double rate = double(done) * det.Width() * det.Height() / std::max(t, 1e-9);
-            std::fprintf(stderr, "\r[%s%s] %3d%% %d/%d spp  %s elapsed  ETA %s  %.2f Msamples/s   ",
+            // rs counts its own steps (batches of field nodes) and has no sample rate.
+            char rate[48] = "";
+            if (!deterministic)
+                std::snprintf(rate, sizeof rate, "  %.2f Msamples/s",
+                              double(done) * det.Width() * det.Height() / std::max(t, 1e-9) * 1e-6);
+            std::fprintf(stderr, "\r[%s%s] %3d%% %d/%d %s  %s elapsed  ETA %s%s   ",
                          std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(),
-                         int(frac * 100), done, total, FormatDuration(t).c_str(),
-                         FormatDuration(frac > 0 ? t / frac - t : 0).c_str(), rate * 1e-6);
+                         int(frac * 100), done, total, deterministic ? "steps" : "spp", FormatDuration(t).c_str(),
+                         FormatDuration(frac > 0 ? t / frac - t : 0).c_str(), rate);
             std::fflush(stderr);
         };
-    std::signal(SIGINT, OnSigint);
+    // The stop handlers stay installed until the outputs are written, so that a signal during
+    // the writes cannot leave a temporary file behind.
+    gAnnounce = !o.quiet;
+    std::signal(SIGINT, OnStopSignal);
+    std::signal(SIGTERM, OnStopSignal);
     RenderStats st;
     try {
-        st = scene->GetIntegrator().Render(*scene, film, opt);
+        st = integrator.Render(*scene, film, opt);
     } catch (const Error &e) {
         if (bar) std::cerr << "\n";
         if (e.Loc().Known()) {  // an error about a scene object: file:line:col with its source line
@@ -153,16 +179,25 @@ int Render(const CliOptions &o) {
         }
         return 1;
     }
-    std::signal(SIGINT, SIG_DFL);
     if (bar) std::fprintf(stderr, "\n");
+    if (!st.hasImage) {  // cancelled before anything honest could be written (rs)
+        std::cerr << "interrupted: " << integrator.name << " " << st.work << "; no image written\n";
+        return StoppedStatus(gSignal ? int(gSignal) : SIGINT);
+    }
 
     Image img = film.Resolve();
     img.metadata["phasor:scene"] = o.scene;
-    img.metadata["phasor:integrator"] = scene->GetIntegrator().ToString();
-    img.metadata["phasor:spp_requested"] = std::to_string(opt.spp);
-    img.metadata["phasor:spp_reached"] = std::to_string(st.sppReached);
-    img.metadata["phasor:seed"] = std::to_string(opt.seed);
-    img.metadata["phasor:sampler"] = opt.sampler;
+    img.metadata["phasor:integrator"] = integrator.ToString();
+    if (deterministic) {
+        img.metadata.erase("phasor:samples_per_pixel");  // rs takes no samples
+    } else {
+        img.metadata["phasor:spp_requested"] = std::to_string(opt.spp);
+        img.metadata["phasor:spp_reached"] = std::to_string(st.sppReached);
+        img.metadata["phasor:spp_max"] = std::to_string(st.sppMax);
+        img.metadata["phasor:seed"] = std::to_string(opt.seed);
+        img.metadata["phasor:sampler"] = opt.sampler;
+    }
+    for (const auto &[key, value] : st.metadata) img.metadata[key] = value;
     img.metadata["phasor:render_seconds"] = std::to_string(st.seconds);
     img.metadata["phasor:cancelled"] = st.cancelled ? "true" : "false";
     if (const SensorPlaneGeometry *sp = det.SensorPlane()) {  // pixel centres, for `phasor profile`
@@ -172,19 +207,30 @@ int Render(const CliOptions &o) {
         std::snprintf(buf, sizeof buf, "%.17g", sp->pitchX);
         img.metadata["phasor:pitch_m"] = buf;
     }
+    // The EXR and the PNG are written all or nothing (core/output_file.h): if either fails,
+    // neither appears (and earlier files of those names are left as they were).
     try {
-        WriteExr(exr.string(), img);
+        OutputFiles files;
+        WriteExr(files, exr.string(), img);
         if (det.Response().GetKind() == SensorResponse::Kind::Radiometric)
-            WriteFalseColorPng(png.string(), img, "intensity");
+            WriteFalseColorPng(files, png.string(), img, "intensity");
         else
-            WritePng(png.string(), img);
+            WritePng(files, png.string(), img);
+        files.Commit();
     } catch (const Error &e) {
         std::cerr << "error: " << e.Message() << "\n";
         return 1;
     }
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
     if (!o.quiet) {
-        std::cerr << (st.cancelled ? "interrupted: " : "") << "rendered " << st.sppReached << " spp in "
-                  << FormatDuration(st.seconds) << " with " << scene->GetIntegrator().name << "\n";
+        std::cerr << (st.cancelled ? "interrupted: " : "");
+        if (deterministic)
+            std::cerr << integrator.name << " " << st.work << " in " << FormatDuration(st.seconds) << "\n";
+        else
+            std::cerr << "rendered " << st.sppReached << " spp"
+                      << (st.sppMax > st.sppReached ? " (" + std::to_string(st.sppMax) + " in some pixels)" : "")
+                      << " in " << FormatDuration(st.seconds) << " with " << integrator.name << "\n";
         if (st.footprintAfterSpreadFree > 0)
             std::cerr << "warning: " << st.footprintAfterSpreadFree
                       << " path vertices met an aperture after another aperture; it acted geometrically "
@@ -195,10 +241,13 @@ int Render(const CliOptions &o) {
                          "waves, point, spot, directional, laser beams) are not reached through such a "
                          "surface, so their light behind it is missing (theory §9 item 5)\n";
         if (st.invalidSamples > 0)
-            std::cerr << "warning: " << st.invalidSamples << " samples were NaN/Inf/negative and were discarded\n";
+            std::cerr << "warning: " << st.invalidSamples
+                      << " samples were NaN, negative or beyond the float range of the image (|v| > 3.4e38) "
+                         "and were discarded (counted in phasor:invalid_samples)\n";
         std::cerr << "wrote " << exr.string() << " and " << png.string() << "\n";
     }
-    return st.cancelled ? 130 : 0;
+    if (gSignal) return StoppedStatus(int(gSignal));
+    return 0;
 }
 
 int Check(const CliOptions &o) {
@@ -279,32 +328,75 @@ int Describe(const CliOptions &o) {
     return 0;
 }
 
+// Whatever a command prints on stdout (CSV, `format`, `describe`, `list`) is collected and written
+// at the end with checked write(2) calls: a full disk or a closed pipe is an error with its
+// reason and exit status 1, never a silent truncation.
+class StdoutCapture {
+  public:
+    StdoutCapture() : old_(std::cout.rdbuf(text_.rdbuf())) {}
+    ~StdoutCapture() { std::cout.rdbuf(old_); }
+    /// Writes the collected text to file descriptor 1; returns `status`, or 1 after an error.
+    int Flush(int status) {
+        std::cout.rdbuf(old_);
+        const std::string text = text_.str();
+        text_.str({});
+        const char *p = text.data();
+        std::size_t left = text.size();
+        while (left > 0) {
+            const ssize_t n = ::write(1, p, left);
+            if (n < 0 && errno == EINTR) continue;
+            if (n <= 0) {
+                std::cerr << "error: cannot write to standard output: "
+                          << (n < 0 ? std::strerror(errno) : "write failed") << "\n";
+                return 1;
+            }
+            p += n;
+            left -= std::size_t(n);
+        }
+        return status;
+    }
+
+  private:
+    std::ostringstream text_;
+    std::streambuf *old_;
+};
+
+int RunCommand(const CliOptions &o) {
+    switch (o.command) {
+        case Command::Help: std::cout << kUsage; return 0;
+        case Command::Version: std::cout << "phasor " << PHASOR_VERSION << "\n"; return 0;
+        case Command::Render: return Render(o);
+        case Command::Check: return Check(o);
+        case Command::Format: return Format(o);
+        case Command::List: return List(o);
+        case Command::Describe: return Describe(o);
+        case Command::Profile: return RunProfile(o);
+    }
+    return 1;
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
+    // A file-size limit (RLIMIT_FSIZE, `ulimit -f`) then makes write(2) fail with EFBIG, reported
+    // as "cannot write 'FILE': File too large", instead of killing the program with SIGXFSZ.
+    std::signal(SIGXFSZ, SIG_IGN);
     CliOptions o;
     std::string err;
     if (!ParseCommandLine(argc, argv, o, err)) {
         std::cerr << "error: " << err << "\n" << kUsage;
         return 1;
     }
+    StdoutCapture out;
     try {
-        switch (o.command) {
-            case Command::Help: std::cout << kUsage; return 0;
-            case Command::Version: std::cout << "phasor " << PHASOR_VERSION << "\n"; return 0;
-            case Command::Render: return Render(o);
-            case Command::Check: return Check(o);
-            case Command::Format: return Format(o);
-            case Command::List: return List(o);
-            case Command::Describe: return Describe(o);
-            case Command::Profile: return RunProfile(o);
-        }
+        return out.Flush(RunCommand(o));
     } catch (const Error &e) {
+        out.Flush(1);
         std::cerr << (e.Loc().Known() ? e.Loc().ToString() + ": " : "") << "error: " << e.Message() << "\n";
         return 1;
     } catch (const std::exception &e) {
+        out.Flush(2);
         std::cerr << "internal error: " << e.what() << "\n";
         return 2;
     }
-    return 1;
 }

@@ -1,19 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — `phasor profile` (profile.h). Reads every input first and checks everything (channel,
-// row, widths, pixel positions) before writing anything; the CSV goes to a temporary file that is
-// renamed into place only after the plot has been written, so an error leaves no output behind.
+// row, widths, pixel positions) before writing anything; the CSV and the plot are written all or
+// nothing (core/output_file.h), so an error leaves no output behind.
 
 #include "app/profile.h"
 
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <set>
@@ -87,25 +82,6 @@ void MakeParentDirectory(const std::string &path) {
     if (ec)
         throw Error("cannot write '" + path + "': cannot create directory '" + p.parent_path().string() +
                     "': " + ec.message());
-}
-
-// Writes `text` to a temporary file beside `path` and returns its name; throws Error on failure
-// (removing the temporary file).
-fs::path WriteTemporary(const std::string &path, const std::string &text) {
-    fs::path target(path);
-    if (target.filename().empty()) throw Error("cannot write '" + path + "': the path names a directory");
-    fs::path tmp =
-        target.parent_path() / ("." + target.filename().string() + ".tmp-" + std::to_string(getpid()));
-    std::ofstream f(tmp, std::ios::binary);
-    if (!f) throw Error("cannot write '" + path + "': " + std::strerror(errno));
-    f << text;
-    f.close();
-    if (!f) {
-        std::error_code ec;
-        fs::remove(tmp, ec);
-        throw Error("cannot write '" + path + "': write failed");
-    }
-    return tmp;
 }
 
 // x axis unit for a plot of positions in metres: a factor and its name.
@@ -315,33 +291,20 @@ int RunProfile(const CliOptions &o) {
         plot.yLabel = p.channel;
     }
 
-    // Write: the CSV to a temporary file, then the plot (atomic), then the CSV into place.
-    fs::path csvTmp;
-    auto dropCsvTmp = [&] {
-        std::error_code ec;
-        if (!csvTmp.empty()) fs::remove(csvTmp, ec);
-    };
+    // Write the CSV and the plot all or nothing (core/output_file.h).
     try {
+        OutputFiles files;
         if (!csvToStdout && !p.csv.empty()) {
             MakeParentDirectory(p.csv);
-            csvTmp = WriteTemporary(p.csv, csv.str());
+            files.Stage(p.csv, csv.str());
         }
         if (!p.plot.empty()) {
             MakeParentDirectory(p.plot);
-            PlotResult r = WritePlotPng(p.plot, series, plot);
+            PlotResult r = WritePlotPng(files, p.plot, series, plot);
             if (!r.textDrawn) std::cerr << "warning: " << r.textProblem << "; the plot has no text\n";
         }
-        if (!csvTmp.empty()) {
-            std::error_code ec;
-            fs::rename(csvTmp, p.csv, ec);
-            if (ec) {
-                std::error_code ignored;
-                if (!p.plot.empty()) fs::remove(p.plot, ignored);
-                throw Error("cannot write '" + p.csv + "': " + ec.message());
-            }
-        }
+        files.Commit();
     } catch (const Error &e) {
-        dropCsvTmp();
         std::cerr << "error: " << e.Message() << "\n";
         return 1;
     }

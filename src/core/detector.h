@@ -44,7 +44,9 @@ struct PixelSampleIndex {
 
 /// A 2-D sample for a pixel's directions, stratified across the pixel's samples (theory §0 D4b):
 /// a Cranley–Patterson-rotated n×n lattice when the sample count is a square n² (n ≥ 2; the shift
-/// is fixed per pixel and seed), otherwise the sampler's next (0,2)-stratified pair.
+/// is fixed per pixel and seed; the cells are visited in a per-pixel pseudo-random order, so any
+/// prefix of the samples — a render stopped early — is spread over the whole lattice), otherwise
+/// the sampler's next (0,2)-stratified pair.
 Vec2 StratifiedPixelSample(int x, int y, const PixelSampleIndex &si, Sampler &sampler);
 
 /// The `response` parameter every detector has ("cie_xyz" or "radiometric"), and its value.

@@ -38,15 +38,22 @@ class Film {
     /// Adds a sample already reduced to (channels, intensity), e.g. from an integrator that
     /// computes its own spectral integral.
     void AddReduced(int x, int y, const Vec3 &channels, double intensity);
-    /// Records a sample that was discarded because of numerical trouble (NaN/Inf/negative).
+    /// Records a sample that was discarded because of numerical trouble (NaN/Inf/negative, or a
+    /// value the float image cannot hold). AddSample/AddReduced call it for such samples.
     void AddInvalidSample(int x, int y);
 
     /// Number of samples added to a pixel (including invalid ones, which count as zero).
     long long SampleCount(int x, int y) const;
+    /// Samples discarded as invalid, plus every sample of a pixel whose resolved mean or variance
+    /// is beyond the float range (> 3.4e38; such a pixel is written as 0, never as Inf).
     long long InvalidSampleCount() const;
 
     /// Final image: R, G, B (linear Rec.709 for CIE sensors; equal to intensity for radiometric
     /// ones), intensity, variance (the sample variance of the *mean* of `intensity`: s²/n).
+    /// Every value is finite: pixels that would overflow float are 0 (see InvalidSampleCount).
+    /// When pixels hold different numbers of samples (a render stopped during a pass) a sixth
+    /// channel, `samples`, holds each pixel's count (a pixel with 0 has no estimate: all 0).
+    /// Metadata: phasor:samples_per_pixel (the fewest any pixel has), invalid_samples, sensor.
     Image Resolve() const;
 
   private:
@@ -57,6 +64,14 @@ class Film {
         long long n = 0;
         long long invalid = 0;
     };
+    /// A pixel's channels as written, in double, and whether all of them fit in a float.
+    struct Resolved {
+        Vec3 rgb;
+        double intensity = 0, varianceOfMean = 0;
+        bool representable = true;
+    };
+    Resolved ResolvePixel(const Pixel &p) const;
+
     int width_, height_;
     SensorResponse response_;
     std::vector<Pixel> pixels_;

@@ -5,6 +5,7 @@
 #include <atomic>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <string>
 
 #include "core/film.h"
@@ -19,15 +20,28 @@ struct RenderOptions {
     uint64_t seed = 0;
     int threads = 0;  // 0 = all cores
     std::string sampler = "sobol";
-    /// Set to true (e.g. from a SIGINT handler) to stop after the current sample pass.
+    /// Set to true (e.g. from a SIGINT/SIGTERM handler) to stop soon: sampling integrators finish
+    /// the pixels in progress (each pixel keeps a whole number of samples; RenderStats::sppReached
+    /// is the count every pixel has), `rs` stops after the current batch of field nodes.
     const std::atomic<bool> *cancel = nullptr;
-    /// Called after each completed pass with (passes done, total passes); may be empty.
+    /// Called from the calling thread with (units done, total units): sampling integrators count
+    /// samples per pixel after each pass, deterministic ones (Integrator::Deterministic) their
+    /// own steps (rs: batches of field nodes). May be empty.
     std::function<void(int, int)> progress;
 };
 
 struct RenderStats {
-    int sppReached = 0;  // samples per pixel completed in every pixel
+    int sppReached = 0;  // samples per pixel completed in every pixel (sampling integrators)
+    int sppMax = 0;      // the most samples any pixel has (> sppReached after a cancellation)
     bool cancelled = false;
+    /// False when the render was cancelled before it had anything honest to write (rs: its
+    /// pixels need the whole field); the film is then empty and nothing may be written.
+    bool hasImage = true;
+    /// What a deterministic integrator did, in its own terms, for the user (rs: "solved 48
+    /// pixels from 5210 field nodes"); empty for sampling integrators, which report spp.
+    std::string work;
+    /// Extra EXR metadata from the integrator ("phasor:…" keys), e.g. rs's node counts.
+    std::map<std::string, std::string> metadata;
     double seconds = 0;
     long long invalidSamples = 0;  // NaN/Inf/negative estimates discarded (never written)
     long long rays = 0;            // rays traced (intersection + shadow)
@@ -46,6 +60,9 @@ class Integrator {
     /// Renders `scene` into `film` (whose size matches the scene's detector).
     virtual RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const = 0;
     virtual std::string ToString() const = 0;
+    /// True for integrators that take no random samples (rs): no spp, seed or sampler applies;
+    /// they report RenderStats::work and progress in their own steps.
+    virtual bool Deterministic() const { return false; }
     std::string name;
 };
 

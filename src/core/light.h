@@ -62,6 +62,14 @@ struct CoherentWave {
 /// infinity sends power into the scene (for relative power estimates).
 double SceneCrossSection(const Bounds3 &sceneBounds);
 
+/// Upper bound of every light's strength parameter, in SI units (area `radiance` W/m²/sr, point
+/// and spot `intensity` W/sr, plane-wave, distant and directional `irradiance` W/m², Gaussian-beam
+/// `power` W): 1e30 — above the brightest real sources (the Sun's 3.8e26 W; petawatt lasers,
+/// ~1e27 W/m² focused) and far enough below double's 1.8e308 that no product the renderer forms
+/// (geometry, 1/pdf, 1/reference_irradiance with reference_irradiance ≥ 1e-30 W/m²) overflows.
+/// Results beyond the float image's range (3.4e38) are still caught, and counted, by the film.
+inline constexpr double MaxLightStrength = 1e30;
+
 class Light {
   public:
     virtual ~Light() = default;

@@ -1,7 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — the shared render loop of integrators that estimate each pixel independently
-// (`ray`, `grt`): TBB over 16×16 tiles, sample passes in growing batches (so Ctrl-C stops after
-// a complete pass and the partial image has a uniform spp), deterministic per (pixel, sample).
+// (`ray`, `grt`): TBB over 16×16 tiles, sample passes in growing batches (1, 2, 4, … 16 spp),
+// deterministic per (pixel, sample). Cancellation is checked before each pixel's batch, so a stop
+// request is honoured within about one pixel's batch; a partial image is valid pixel by pixel
+// (each pixel's mean and variance are those of its own sample count; the pixels finished in the
+// interrupted pass have one batch more than the rest).
 #pragma once
 
 #include "core/detector.h"

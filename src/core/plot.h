@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — a small line-plot rasteriser (image module, src/core/image/plot.cpp): data series as
 // anti-aliased solid/dashed/dotted lines on white, axes with ticks and numeric tick labels, grid,
-// legend, title and axis labels, written as an 8-bit sRGB PNG (atomically, like image_io.h).
+// legend, title and axis labels, written as an 8-bit sRGB PNG (all or nothing, like image_io.h).
 // Text is drawn through OpenImageIO with a TrueType font (DejaVu Sans, Debian package
 // fonts-dejavu-core); without the font the plot is still written, without any text.
 #pragma once
@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/output_file.h"
 
 namespace phasor {
 
@@ -62,10 +63,14 @@ struct PlotResult {
 /// unusable input: no series, x/y of different lengths, no finite point, a bad size or x range.
 PlotLayout ComputePlotLayout(const std::vector<PlotSeries> &series, const PlotOptions &opt = {});
 
-/// Renders the plot and writes it as a PNG to `path` (temporary file + rename: on any failure
-/// nothing is left behind). Throws phasor::Error naming the file and the reason. A missing font
-/// is not an error: the result says so and the caller decides whether to warn.
+/// Renders the plot and writes it as a PNG to `path` through OutputFiles (core/output_file.h:
+/// checked writes to a temporary file + rename; on any failure nothing is left behind). Throws
+/// phasor::Error naming the file and the reason. A missing font is not an error: the result says
+/// so and the caller decides whether to warn. The form taking `OutputFiles &` only stages the
+/// file (it appears at files.Commit()).
 PlotResult WritePlotPng(const std::string &path, const std::vector<PlotSeries> &series,
+                        const PlotOptions &opt = {});
+PlotResult WritePlotPng(OutputFiles &files, const std::string &path, const std::vector<PlotSeries> &series,
                         const PlotOptions &opt = {});
 
 }  // namespace phasor

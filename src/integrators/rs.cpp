@@ -740,27 +740,29 @@ SensorGrid MakeGrid(const SensorPlaneGeometry &g, const Propagator &prop) {
 }
 
 int ProgressUnits(const SensorGrid &grid) {
-    if (grid.ys.size() > 1) return int(grid.ys.size());
-    return std::max(1, int((grid.xs.size() + 63) / 64));
+    return int(std::clamp<std::size_t>(grid.Nodes() / 64, 1, 1000));
 }
 
 std::vector<double> IntegrateSensor(const SensorPlaneGeometry &g, const Propagator &prop,
                                     const SensorGrid &grid, Quantity q,
-                                    const std::function<bool(int)> &rowDone) {
+                                    const std::function<bool(int)> &batchDone,
+                                    const std::atomic<bool> *cancel) {
     const std::size_t nxg = grid.xs.size(), nyg = grid.ys.size(), total = nxg * nyg;
     std::vector<double> field(total, 0.0);
     const int units = ProgressUnits(grid);
+    auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
     for (int u = 0; u < units; ++u) {
         const std::size_t begin = total * u / units, end = total * (u + 1) / units;
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(begin, end, 1), [&](const tbb::blocked_range<std::size_t> &r) {
                 for (std::size_t idx = r.begin(); idx < r.end(); ++idx) {
+                    if (cancelled()) return;
                     const double x = grid.xs[idx % nxg], y = grid.ys[idx / nxg];
                     const Vec3 p = g.origin + g.frame.s * x + g.frame.t * y;
                     field[idx] = q == Quantity::Flux ? prop.Flux(p, g.frame.n) : prop.Intensity(p);
                 }
             });
-        if (rowDone && !rowDone(u + 1)) return {};
+        if (cancelled() || (batchDone && !batchDone(u + 1))) return {};
     }
     // Separable pixel sums: G(b, i) = Σ_a w_x(x_a − x_i)·F(a, b)·h_x, then Σ_b w_y·G·h_y, over the
     // nodes within each pixel's window (the node lists are sorted).
@@ -1041,21 +1043,33 @@ class RsIntegrator final : public Integrator {
         // ---- Field and pixel integrals, one light at a time (intensities add) ------------------
         RenderStats stats;
         const int nx = sensor->nx, ny = sensor->ny;
+        std::size_t fieldPoints = 0;
+        std::string modes;
+        for (const Job &job : jobs) {
+            fieldPoints += job.grid.Nodes();
+            const std::string m = job.prop->TwoD() ? "2d" : "3d";
+            if (modes.find(m) == std::string::npos) modes += (modes.empty() ? "" : ",") + m;
+        }
         std::vector<Vec3> channels(std::size_t(nx) * ny);
         std::vector<double> intensity(std::size_t(nx) * ny, 0.0);
         int unitsDone = 0;
         const double eRef = sensor->referenceIrradiance > 0 ? sensor->referenceIrradiance : 1.0;
         for (const Job &job : jobs) {
             const int base = unitsDone;
-            auto onRows = [&](int done) {
+            auto onBatch = [&](int done) {
                 unitsDone = base + done;
                 if (opt.progress) opt.progress(unitsDone, totalUnits);
-                return !(opt.cancel && opt.cancel->load());
+                return true;
             };
             std::vector<double> flux =
-                rs::IntegrateSensor(*sensor, *job.prop, job.grid, rs::Quantity::Flux, onRows);
+                rs::IntegrateSensor(*sensor, *job.prop, job.grid, rs::Quantity::Flux, onBatch, opt.cancel);
             if (flux.empty()) {
+                // Every pixel needs the field over its whole window, so a partial field gives no
+                // honest pixel: nothing is written (docs/rs.md "Cancellation").
                 stats.cancelled = true;
+                stats.hasImage = false;
+                stats.work = "stopped after " + std::to_string(unitsDone) + " of " + std::to_string(totalUnits) +
+                             " steps of its field integral";
                 stats.seconds =
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
                 return stats;
@@ -1068,7 +1082,9 @@ class RsIntegrator final : public Integrator {
                 intensity[p] += wi * v;
             }
         }
-        // Round-off can leave tiny negative sums in dark pixels; the film rejects negatives.
+        // Round-off can leave tiny negative sums in dark pixels: those are clamped to 0. A pixel
+        // more negative than round-off, or one the film cannot hold (NaN, beyond float), is an
+        // invalid sample (counted, written as 0).
         double peak = 0;
         for (double v : intensity) peak = std::max(peak, v);
         for (int j = 0; j < ny; ++j)
@@ -1076,14 +1092,26 @@ class RsIntegrator final : public Integrator {
                 const std::size_t p = std::size_t(j) * nx + i;
                 Vec3 c = channels[p];
                 double v = intensity[p];
-                if (v < -1e-9 * peak) ++stats.invalidSamples;
+                if (v < -1e-9 * peak) {
+                    film.AddInvalidSample(i, j);
+                    continue;
+                }
                 c = Vec3(std::max(c.x, 0.0), std::max(c.y, 0.0), std::max(c.z, 0.0));
                 film.AddReduced(i, j, c, std::max(v, 0.0));
             }
-        stats.sppReached = 1;
+        // rs evaluates the field deterministically on a grid and integrates it over each pixel: it
+        // takes no samples, so it reports its own work, never an spp.
+        stats.work = "solved " + std::to_string(std::size_t(nx) * ny) + " pixels (" + std::to_string(nx) + "x" +
+                     std::to_string(ny) + ", " + modes + ") from " + std::to_string(fieldPoints) +
+                     " field points";
+        stats.metadata["phasor:rs_field_points"] = std::to_string(fieldPoints);
+        stats.metadata["phasor:rs_mode"] = modes;
+        stats.invalidSamples = film.InvalidSampleCount();
         stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         return stats;
     }
+
+    bool Deterministic() const override { return true; }
 
     std::string ToString() const override {
         const char *m = mode_ == Mode::TwoD ? "2d" : (mode_ == Mode::ThreeD ? "3d" : "auto");

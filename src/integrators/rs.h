@@ -5,6 +5,7 @@
 // documented in rs.cpp and docs/rs.md.
 #pragma once
 
+#include <atomic>
 #include <functional>
 #include <memory>
 #include <vector>
@@ -127,13 +128,17 @@ struct SensorGrid {
 SensorGrid MakeGrid(const SensorPlaneGeometry &sensor, const Propagator &prop);
 
 /// Pixel values, row-major (j·nx + i), of the quantity integrated against each pixel's
-/// sensitivity [W/m²] (not divided by the reference irradiance). `rowDone(rows)` is called from
-/// the calling thread after every batch of grid rows with the number done so far; returning
-/// false cancels (the result is then empty). Parallel over grid nodes (TBB), deterministic.
+/// sensitivity [W/m²] (not divided by the reference irradiance). The grid nodes are evaluated in
+/// ProgressUnits(grid) equal batches; `batchDone(batches)` is called from the calling thread after
+/// every batch with the number done so far; returning false cancels. `cancel`, when set, is also
+/// checked before every node, so a stop request ends the current batch early. A cancelled call
+/// returns an empty vector. Parallel over grid nodes (TBB), deterministic.
 std::vector<double> IntegrateSensor(const SensorPlaneGeometry &sensor, const Propagator &prop,
                                     const SensorGrid &grid, Quantity q,
-                                    const std::function<bool(int)> &rowDone = {});
-/// Number of progress units (batches of rows) IntegrateSensor reports for `grid`.
+                                    const std::function<bool(int)> &batchDone = {},
+                                    const std::atomic<bool> *cancel = nullptr);
+/// Number of progress units (batches of at least 64 grid nodes, at most 1000 batches) that
+/// IntegrateSensor reports for `grid`.
 int ProgressUnits(const SensorGrid &grid);
 
 /// The factor by which a slit's finite length [v0, v1] (plate y axis) multiplies the field of the

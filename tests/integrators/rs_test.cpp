@@ -5,6 +5,7 @@
 // the errors for every unsupported scene.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -681,8 +682,13 @@ TEST(RsScene, DoubleSlitRendersTheCoreResult) {
         lastTotal = total;
     };
     const RenderStats stats = scene->GetIntegrator().Render(*scene, film, opt);
-    EXPECT_EQ(stats.sppReached, 1);
+    // rs takes no samples: it says what it solved (issue 10 §2), with its node count as metadata.
+    EXPECT_TRUE(scene->GetIntegrator().Deterministic());
+    EXPECT_EQ(stats.work.rfind("solved 48 pixels (48x1, 2d) from ", 0), 0u) << stats.work;
+    EXPECT_EQ(stats.metadata.at("phasor:rs_mode"), "2d");
+    EXPECT_GT(std::stoll(stats.metadata.at("phasor:rs_field_points")), 48);
     EXPECT_FALSE(stats.cancelled);
+    EXPECT_TRUE(stats.hasImage);
     EXPECT_GT(calls, 0);
     EXPECT_EQ(lastDone, lastTotal);
     const Image img = film.Resolve();
@@ -703,6 +709,23 @@ TEST(RsScene, DoubleSlitRendersTheCoreResult) {
 // A plate turned by 90° about z (slits along world x) seen by a sensor column along y: the
 // auto mode collapses the sensor's x axis (parallel to the slits) and the column reads the row
 // of the unrotated scene.
+
+// A stop request (Ctrl-C, SIGTERM) ends rs at once and without an image: a partial field gives
+// no pixel that is right (docs/rs.md).
+TEST(RsScene, CancelledRenderHasNoImage) {
+    auto scene = BuildDoubleSlit({});
+    ASSERT_TRUE(scene);
+    const Detector &det = scene->GetDetector();
+    Film film(det.Width(), det.Height(), det.Response());
+    std::atomic<bool> cancel{true};
+    RenderOptions opt;
+    opt.cancel = &cancel;
+    const RenderStats stats = scene->GetIntegrator().Render(*scene, film, opt);
+    EXPECT_TRUE(stats.cancelled);
+    EXPECT_FALSE(stats.hasImage);
+    EXPECT_EQ(stats.work.rfind("stopped after 0 of ", 0), 0u) << stats.work;
+    EXPECT_EQ(film.SampleCount(0, 0), 0);
+}
 TEST(RsScene, RotatedPlateAndSensorColumn) {
     auto base = BuildDoubleSlit({});
     auto turned = BuildDoubleSlit({{"@PLATE@", "rotate(90 deg, [0 0 1])"}, {"@EXTENT@", "[25 1200] um"}});

@@ -99,7 +99,11 @@ class VirtualPlane final : public Detector {
                        "source's irradiance for flux / incident irradiance)",
                        Dim::Irradiance())
                  .Default(Value::Number(1, Dim::Irradiance()))
-                 .Min(0, true),
+                 // [1e-30, 1e30] W/m², like the lights' strengths (MaxLightStrength, light.h):
+                 // 1e-30 W/m² is less than one visible photon per m² per millennium, and pixels
+                 // are E/E_ref, so a smaller E_ref would only overflow.
+                 .Min(1e-30)
+                 .Max(1e30),
              ResponseParam("radiometric")}};
         return s;
     }

@@ -44,8 +44,18 @@ void Film::AddSample(int x, int y, const SampledSpectrum &L, const SampledWavele
     AddReduced(x, y, channels / count, intensity / count);
 }
 
+namespace {
+
+// The largest value the float EXR can hold (3.4e38): beyond it a value would be written as Inf.
+constexpr double FloatMax = std::numeric_limits<float>::max();
+
+bool Representable(double v) { return std::abs(v) <= FloatMax; }  // false also for NaN
+
+}  // namespace
+
 void Film::AddReduced(int x, int y, const Vec3 &channels, double intensity) {
-    auto bad = [](double v) { return !std::isfinite(v) || v < 0; };
+    // NaN, Inf, negative, or too large for the float image: an invalid sample.
+    auto bad = [](double v) { return !(v >= 0) || !Representable(v); };
     if (bad(channels.x) || bad(channels.y) || bad(channels.z) || bad(intensity)) {
         AddInvalidSample(x, y);
         return;
@@ -78,32 +88,52 @@ long long Film::SampleCount(int x, int y) const {
     return pixels_[std::size_t(y) * width_ + x].n;
 }
 
+Film::Resolved Film::ResolvePixel(const Pixel &p) const {
+    Resolved r;
+    r.rgb = response_.GetKind() == SensorResponse::Kind::CieXyz ? XyzToLinearSrgb(p.mean)
+                                                                 : Vec3(p.meanI, p.meanI, p.meanI);
+    r.intensity = p.meanI;
+    // Variance of the mean: unbiased sample variance s² = M2/(n−1), divided by n.
+    r.varianceOfMean = p.n >= 2 ? std::max(p.m2I / double(p.n - 1) / double(p.n), 0.0) : 0.0;
+    r.representable = Representable(r.rgb.x) && Representable(r.rgb.y) && Representable(r.rgb.z) &&
+                      Representable(r.intensity) && Representable(r.varianceOfMean);
+    return r;
+}
+
 long long Film::InvalidSampleCount() const {
     long long total = 0;
-    for (const Pixel &p : pixels_) total += p.invalid;
+    for (const Pixel &p : pixels_) total += ResolvePixel(p).representable ? p.invalid : p.n;
     return total;
 }
 
 Image Film::Resolve() const {
+    long long minSamples = pixels_[0].n, maxSamples = pixels_[0].n;
+    for (const Pixel &p : pixels_) {
+        minSamples = std::min(minSamples, p.n);
+        maxSamples = std::max(maxSamples, p.n);
+    }
     Image img;
     img.width = width_;
     img.height = height_;
     img.channels = {"R", "G", "B", "intensity", "variance"};
+    // Pixels with different sample counts (a render stopped during a pass): each pixel's count
+    // goes into a sixth channel, so that every value can be weighed by its own n.
+    const bool counts = minSamples != maxSamples;
+    if (counts) img.channels.push_back("samples");
     img.data.assign(std::size_t(width_) * height_ * img.channels.size(), 0.0f);
-    const bool cie = response_.GetKind() == SensorResponse::Kind::CieXyz;
-    long long minSamples = std::numeric_limits<long long>::max();
     for (int y = 0; y < height_; ++y) {
         for (int x = 0; x < width_; ++x) {
             const Pixel &p = pixels_[std::size_t(y) * width_ + x];
-            minSamples = std::min(minSamples, p.n);
-            Vec3 rgb = cie ? XyzToLinearSrgb(p.mean) : Vec3(p.meanI, p.meanI, p.meanI);
-            // Variance of the mean: unbiased sample variance s² = M2/(n−1), divided by n.
-            double varMean = p.n >= 2 ? p.m2I / double(p.n - 1) / double(p.n) : 0.0;
-            img.At(x, y, 0) = float(rgb.x);
-            img.At(x, y, 1) = float(rgb.y);
-            img.At(x, y, 2) = float(rgb.z);
-            img.At(x, y, 3) = float(p.meanI);
-            img.At(x, y, 4) = float(std::max(varMean, 0.0));
+            if (counts) img.At(x, y, 5) = float(p.n);
+            // A pixel whose mean or variance the float image cannot hold stays 0 (never Inf); its
+            // samples are counted as invalid (InvalidSampleCount).
+            const Resolved r = ResolvePixel(p);
+            if (!r.representable) continue;
+            img.At(x, y, 0) = float(r.rgb.x);
+            img.At(x, y, 1) = float(r.rgb.y);
+            img.At(x, y, 2) = float(r.rgb.z);
+            img.At(x, y, 3) = float(r.intensity);
+            img.At(x, y, 4) = float(r.varianceOfMean);
         }
     }
     img.metadata["phasor:samples_per_pixel"] = std::to_string(minSamples);

@@ -1,19 +1,20 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — image files through OpenImageIO (image_io.h): float EXR with named channels and
 // string metadata, 8-bit PNG through the OCIO display transform (color.cpp), false-colour dB
-// PNGs. Every write goes to a temporary file in the target directory and is renamed into place.
+// PNGs. Images are encoded in memory and written through OutputFiles (core/output_file.h):
+// checked writes to a temporary file in the target directory, renamed into place.
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <string>
-#include <system_error>
 #include <vector>
 
 #include <unistd.h>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "core/diagnostics.h"
@@ -74,57 +75,30 @@ void ViridisColor(double t, uint8_t rgb[3]) {
 
 namespace detail {
 
-void WriteAtomically(const std::string &path, const char *format, const OIIO::ImageSpec &spec,
-                     OIIO::TypeDesc type, const void *pixels) {
-    const fs::path target(path);
-    fs::path dir = target.parent_path();
-    if (target.filename().empty()) WriteError(path, "the path names a directory, not a file");
-    std::error_code ec;
-    if (!dir.empty() && !fs::is_directory(dir, ec))
-        WriteError(path, "directory '" + dir.string() + "' does not exist");
-
-    // A name unique within this process and across processes: pid + counter.
-    static std::atomic<unsigned long> counter{0};
-    std::string tmpName(".");
-    tmpName += target.filename().string();
-    tmpName += ".tmp-";
-    tmpName += std::to_string(getpid());
-    tmpName += '-';
-    tmpName += std::to_string(counter++);
-    const fs::path tmp = dir / tmpName;
-    auto fail = [&](const std::string &reason) {
-        std::error_code ignored;
-        fs::remove(tmp, ignored);
-        WriteError(path, reason);
-    };
-
+void StageImage(OutputFiles &files, const std::string &path, const char *format, const OIIO::ImageSpec &spec,
+                OIIO::TypeDesc type, const void *pixels) {
+    // Encode in memory (OIIO's writers do not all report a failed write(2), e.g. libpng's PNG
+    // writer on a full disk); OutputFiles then checks every write, fsync and close.
     std::unique_ptr<OIIO::ImageOutput> out = OIIO::ImageOutput::create(format);
     if (!out) WriteError(path, "no OpenImageIO writer for " + std::string(format) + ": " +
                                    Trimmed(OIIO::geterror()));
-    if (!out->open(tmp.string(), spec)) {
-        std::string reason = Trimmed(out->geterror());
-        out.reset();
-        fail(reason);
-    }
+    std::vector<unsigned char> bytes;
+    OIIO::Filesystem::IOVecOutput memory(bytes);
+    const std::string name = fs::path(path).filename().string();  // the extension picks nothing: `format` did
+    if (!out->set_ioproxy(&memory) || !out->open(name, spec)) WriteError(path, Trimmed(out->geterror()));
     if (!out->write_image(type, pixels)) {
-        std::string reason = Trimmed(out->geterror());
+        const std::string reason = Trimmed(out->geterror());
         out->close();
-        out.reset();
-        fail(reason);
+        WriteError(path, reason);
     }
-    if (!out->close()) {
-        std::string reason = Trimmed(out->geterror());
-        out.reset();
-        fail(reason);
-    }
+    if (!out->close()) WriteError(path, Trimmed(out->geterror()));
     out.reset();
-    fs::rename(tmp, target, ec);
-    if (ec) fail(ec.message());
+    files.Stage(path, std::string_view(reinterpret_cast<const char *>(bytes.data()), bytes.size()));
 }
 
 }  // namespace detail
 
-void WriteExr(const std::string &path, const Image &img) {
+void WriteExr(OutputFiles &files, const std::string &path, const Image &img) {
     CheckShape(path, img);
     OIIO::ImageSpec spec(img.width, img.height, int(img.channels.size()), OIIO::TypeDesc::FLOAT);
     spec.channelnames = img.channels;
@@ -132,12 +106,72 @@ void WriteExr(const std::string &path, const Image &img) {
     spec.z_channel = img.ChannelIndex("Z");
     for (const auto &[key, value] : img.metadata) spec.attribute(key, value);
     spec.attribute("compression", "zip");  // lossless
-    detail::WriteAtomically(path, "exr", spec, OIIO::TypeDesc::FLOAT, img.data.data());
+    detail::StageImage(files, path, "exr", spec, OIIO::TypeDesc::FLOAT, img.data.data());
 }
 
+void WriteExr(const std::string &path, const Image &img) {
+    OutputFiles files;
+    WriteExr(files, path, img);
+    files.Commit();
+}
+
+namespace {
+
+// libpng prints its errors and warnings straight to stderr ("libpng error: IDAT: …"), and OIIO
+// then reports the same error again. While OIIO reads, stderr (file descriptor 2) is redirected
+// to a temporary file: on failure its text is dropped (OIIO's error carries it), on success it
+// is passed on unchanged, so every message appears once. Reads happen while nothing else prints.
+class StderrCapture {
+  public:
+    StderrCapture() {
+        std::fflush(stderr);
+        file_ = std::tmpfile();
+        if (file_) saved_ = ::dup(2);
+        if (saved_ >= 0 && ::dup2(::fileno(file_), 2) < 0) {
+            ::close(saved_);
+            saved_ = -1;
+        }
+    }
+    ~StderrCapture() { Finish(true); }
+    /// Restores stderr; writes what was captured to it when `passOn`.
+    void Finish(bool passOn) {
+        if (saved_ >= 0) {
+            std::fflush(stderr);
+            ::dup2(saved_, 2);
+            ::close(saved_);
+            saved_ = -1;
+            if (passOn) {
+                std::rewind(file_);
+                char buf[4096];
+                for (std::size_t n; (n = std::fread(buf, 1, sizeof buf, file_)) > 0;)
+                    std::fwrite(buf, 1, n, stderr);
+            }
+        }
+        if (file_) std::fclose(file_);
+        file_ = nullptr;
+    }
+
+  private:
+    std::FILE *file_ = nullptr;
+    int saved_ = -1;
+};
+
+// OIIO's error text for a failed read, first line only: the rest repeats libpng's message.
+std::string ReadErrorReason(std::string text) {
+    text = Trimmed(std::move(text));
+    return text.substr(0, text.find('\n'));
+}
+
+}  // namespace
+
 Image ReadImage(const std::string &path) {
+    StderrCapture libpngMessages;
+    auto fail = [&](const std::string &oiioError) {
+        libpngMessages.Finish(false);
+        throw Error(FileLoc{path}, "cannot read '" + path + "': " + ReadErrorReason(oiioError));
+    };
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
-    if (!in) throw Error(FileLoc{path}, "cannot read '" + path + "': " + Trimmed(OIIO::geterror()));
+    if (!in) fail(OIIO::geterror());
     const OIIO::ImageSpec &spec = in->spec();
     Image img;
     img.width = spec.width;
@@ -146,15 +180,14 @@ Image ReadImage(const std::string &path) {
     for (int c = int(img.channels.size()); c < spec.nchannels; ++c)
         img.channels.push_back("channel" + std::to_string(c));
     img.data.resize(std::size_t(spec.width) * spec.height * spec.nchannels);
-    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data()))
-        throw Error(FileLoc{path}, "cannot read '" + path + "': " + Trimmed(in->geterror()));
+    if (!in->read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, img.data.data())) fail(in->geterror());
     for (const OIIO::ParamValue &p : spec.extra_attribs)
         img.metadata[p.name().string()] = p.get_string(1 << 20);
     in->close();
     return img;
 }
 
-void WritePng(const std::string &path, const Image &img, const DisplayOptions &opt) {
+void WritePng(OutputFiles &files, const std::string &path, const Image &img, const DisplayOptions &opt) {
     CheckShape(path, img);
     int r = img.ChannelIndex("R"), g = img.ChannelIndex("G"), b = img.ChannelIndex("B");
     if (r < 0 || g < 0 || b < 0) {
@@ -183,11 +216,17 @@ void WritePng(const std::string &path, const Image &img, const DisplayOptions &o
     for (std::size_t i = 0; i < rgb.size(); ++i) bytes[i] = Quantize8(rgb[i]);
     OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
-    detail::WriteAtomically(path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    detail::StageImage(files, path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
 }
 
-void WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
-                        double rangeDb) {
+void WritePng(const std::string &path, const Image &img, const DisplayOptions &opt) {
+    OutputFiles files;
+    WritePng(files, path, img, opt);
+    files.Commit();
+}
+
+void WriteFalseColorPng(OutputFiles &files, const std::string &path, const Image &img,
+                        const std::string &channel, double rangeDb) {
     CheckShape(path, img);
     const int c = img.ChannelIndex(channel);
     if (c < 0) WriteError(path, "the image has no channel '" + channel + "'");
@@ -215,7 +254,14 @@ void WriteFalseColorPng(const std::string &path, const Image &img, const std::st
     OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
     spec.attribute("Description", channel + " in dB, " + std::to_string(rangeDb) + " dB range");
-    detail::WriteAtomically(path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    detail::StageImage(files, path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+}
+
+void WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
+                        double rangeDb) {
+    OutputFiles files;
+    WriteFalseColorPng(files, path, img, channel, rangeDb);
+    files.Commit();
 }
 
 }  // namespace phasor

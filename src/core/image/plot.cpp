@@ -302,7 +302,7 @@ PlotLayout ComputePlotLayout(const std::vector<PlotSeries> &series, const PlotOp
     return L;
 }
 
-PlotResult WritePlotPng(const std::string &path, const std::vector<PlotSeries> &series,
+PlotResult WritePlotPng(OutputFiles &files, const std::string &path, const std::vector<PlotSeries> &series,
                         const PlotOptions &opt) {
     namespace IBA = OIIO::ImageBufAlgo;
     PlotLayout L;
@@ -464,7 +464,15 @@ PlotResult WritePlotPng(const std::string &path, const std::vector<PlotSeries> &
     OIIO::ImageSpec spec(opt.width, opt.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
     if (!opt.title.empty()) spec.attribute("ImageDescription", opt.title);
-    detail::WriteAtomically(path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    detail::StageImage(files, path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    return result;
+}
+
+PlotResult WritePlotPng(const std::string &path, const std::vector<PlotSeries> &series,
+                        const PlotOptions &opt) {
+    OutputFiles files;
+    PlotResult result = WritePlotPng(files, path, series, opt);
+    files.Commit();
     return result;
 }
 

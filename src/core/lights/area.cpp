@@ -18,7 +18,8 @@ class AreaLight final : public Light {
             {P::Ref("shape", "shape", "the emitting shape").Required(),
              P::Number("radiance", "emitted radiance scale", Dim::Radiance())
                  .Default(Value::Number(1, Dim::Radiance()))
-                 .Min(0),
+                 .Min(0)
+                 .Max(MaxLightStrength),
              P::Spectrum("spectrum", "spectral shape").Default(Value::Number(1)),
              P::Bool("two_sided", "emit from both sides").Default(Value::Bool(false))}};
         return s;

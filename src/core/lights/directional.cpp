@@ -20,7 +20,8 @@ class DirectionalLight final : public Light {
             {P::Vector("direction", "direction in which the light travels").Default(Value::Vector({0, 0, -1})),
              P::Number("irradiance", "irradiance normal to the direction", Dim::Irradiance())
                  .Default(Value::Number(1, Dim::Irradiance()))
-                 .Min(0),
+                 .Min(0)
+                 .Max(MaxLightStrength),
              P::Spectrum("spectrum", "spectral shape").Default(Value::Number(1))}};
         return s;
     }

@@ -46,7 +46,8 @@ class DistantLight final : public Light {
                  .Default(Value::Vector({0, 0, -1})),
              P::Number("irradiance", "total irradiance on a plane normal to the direction", Dim::Irradiance())
                  .Default(Value::Number(1, Dim::Irradiance()))
-                 .Min(0),
+                 .Min(0)
+                 .Max(MaxLightStrength),
              P::String("profile", "angular profile: uniform disc or Gaussian")
                  .Default(Value::String("disc"))
                  .Choices({"disc", "gaussian"}),

@@ -39,7 +39,8 @@ class GaussianBeamLight final : public Light {
                  .Min(0, true),
              P::Number("power", "total power", Dim::Power())
                  .Default(Value::Number(1e-3, Dim::Power()))
-                 .Min(0),
+                 .Min(0)
+                 .Max(MaxLightStrength),
              P::Spectrum("spectrum", "spectral shape (normalised to unit integral), e.g. line(632.8 nm)")
                  .Default(Value::Call("line", {Value::Number(632.8e-9, Dim::Length())}, {""}))}};
         return s;

@@ -26,7 +26,8 @@ class PlaneWaveLight final : public Light {
             {P::Vector("direction", "direction in which the wave travels").Default(Value::Vector({0, 0, -1})),
              P::Number("irradiance", "total irradiance on a plane normal to the direction", Dim::Irradiance())
                  .Default(Value::Number(1, Dim::Irradiance()))
-                 .Min(0),
+                 .Min(0)
+                 .Max(MaxLightStrength),
              P::Spectrum("spectrum", "spectral shape (normalised to unit integral)")
                  .Default(Value::Number(1))}};
         return s;

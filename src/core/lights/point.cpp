@@ -17,7 +17,8 @@ class PointLight final : public PointLikeLight {
                               {P::Vector("position", "position", Dim::Length()).Default(Value::Vector({0, 0, 0}, Dim::Length())),
                                P::Number("intensity", "radiant intensity scale", Dim::Intensity())
                                    .Default(Value::Number(1, Dim::Intensity()))
-                                   .Min(0),
+                                   .Min(0)
+                                   .Max(MaxLightStrength),
                                P::Spectrum("spectrum", "spectral shape").Default(Value::Number(1))}};
         return s;
     }

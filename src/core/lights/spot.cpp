@@ -23,7 +23,8 @@ class SpotLight final : public PointLikeLight {
              P::Angle("cone_delta", "width of the smooth edge").Default(Value::Number(Radians(5), Dim::Angle())).Min(0),
              P::Number("intensity", "radiant intensity on the axis", Dim::Intensity())
                  .Default(Value::Number(1, Dim::Intensity()))
-                 .Min(0),
+                 .Min(0)
+                 .Max(MaxLightStrength),
              P::Spectrum("spectrum", "spectral shape").Default(Value::Number(1))}};
         return s;
     }

@@ -16,13 +16,54 @@ SensorResponse ResponseFromParams(const ParamDict &d) {
                                                                    : SensorResponse::Kind::CieXyz);
 }
 
+namespace {
+
+// A pseudo-random permutation of [0, l) chosen by p: element i of it (Kensler 2013, "Correlated
+// Multi-Jittered Sampling", Pixar Technical Memo 13-01, §3: a hash that is a bijection on the
+// smallest power-of-two domain, cycle-walked into [0, l)).
+uint32_t PermutationElement(uint32_t i, uint32_t l, uint32_t p) {
+    uint32_t w = l - 1;
+    w |= w >> 1;
+    w |= w >> 2;
+    w |= w >> 4;
+    w |= w >> 8;
+    w |= w >> 16;
+    do {
+        i ^= p;
+        i *= 0xe170893d;
+        i ^= p >> 16;
+        i ^= (i & w) >> 4;
+        i ^= p >> 8;
+        i *= 0x0929eb3f;
+        i ^= p >> 23;
+        i ^= (i & w) >> 1;
+        i *= 1 | p >> 27;
+        i *= 0x6935fa69;
+        i ^= (i & w) >> 11;
+        i *= 0x74dcb303;
+        i ^= (i & w) >> 2;
+        i *= 0x9e501cc3;
+        i ^= (i & w) >> 2;
+        i *= 0xc860a3df;
+        i &= w;
+        i ^= i >> 5;
+    } while (i >= l);
+    return (i + p) % l;
+}
+
+}  // namespace
+
 Vec2 StratifiedPixelSample(int x, int y, const PixelSampleIndex &si, Sampler &sampler) {
     const int n = int(std::lround(std::sqrt(double(si.count))));
     if (n < 2 || n * n != si.count || si.index < 0 || si.index >= si.count) return sampler.Get2D();
     // One shift per (seed, pixel): the same rotated lattice for all of the pixel's samples.
     const uint64_t h = Hash(si.seed, uint64_t(uint32_t(x)), uint64_t(uint32_t(y)), 0x6c61747469636521ULL);
     const double sx = double(h >> 11) * 0x1p-53, sy = double(MixBits(h) >> 11) * 0x1p-53;
-    const int i = si.index / n, j = si.index % n;
+    // The cells are visited in a per-pixel pseudo-random order, so that the first k < n² samples
+    // of a render stopped early are spread over the whole lattice (each one uniformly over the
+    // pixel's directions: the partial mean stays unbiased), not confined to its first rows.
+    const int cell = int(PermutationElement(uint32_t(si.index), uint32_t(si.count), uint32_t(MixBits(h ^ 0x9e3779b97f4a7c15ULL))));
+    const int i = cell / n, j = cell % n;
     return {std::min((i + sx) / n, 0x1.fffffffffffffp-1), std::min((j + sy) / n, 0x1.fffffffffffffp-1)};
 }
 

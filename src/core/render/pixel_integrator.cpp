@@ -22,13 +22,10 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
     RenderStats stats;
     const int w = film.Width(), h = film.Height();
     constexpr int Tile = 16;
+    auto cancelled = [&] { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); };
     int done = 0;
     int batch = 1;
-    while (done < opt.spp) {
-        if (opt.cancel && opt.cancel->load()) {
-            stats.cancelled = true;
-            break;
-        }
+    while (done < opt.spp && !cancelled()) {
         int end = std::min(opt.spp, done + batch);
         tbb::combinable<PathStats> local;
         tbb::parallel_for(
@@ -37,7 +34,11 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                 std::unique_ptr<Sampler> sampler = prototype->Clone();
                 PathStats &ps = local.local();
                 for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-                    for (int x = r.cols().begin(); x < r.cols().end(); ++x)
+                    for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
+                        // Cancellation is checked per pixel, so a stop request is honoured within
+                        // one pixel's batch of samples. A pixel gets all of the batch or none of
+                        // it, so every pixel's mean and variance stay those of its own n samples.
+                        if (cancelled()) return;
                         for (int s = done; s < end; ++s) {
                             sampler->StartPixelSample(x, y, s);
                             ps.sample = PixelSampleIndex{s, opt.spp, opt.seed};
@@ -46,6 +47,7 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                             SampledSpectrum L = EstimatePixel(scene, x, y, wl, *sampler, ps);
                             film.AddSample(x, y, L, wl);
                         }
+                    }
             },
             tbb::simple_partitioner());
         local.combine_each([&](const PathStats &p) {
@@ -53,11 +55,21 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
             stats.footprintAfterSpreadFree += p.footprintAfterSpreadFree;
             stats.specularAfterSpreadFree += p.specularAfterSpreadFree;
         });
+        if (cancelled()) break;  // the pass may be incomplete: `done` stays the count every pixel has
         done = end;
         batch = std::min(batch * 2, 16);
         if (opt.progress) opt.progress(done, opt.spp);
     }
-    stats.sppReached = done;
+    stats.cancelled = done < opt.spp;
+    // Pixels finished during an interrupted pass hold more samples than the others.
+    long long fewest = film.SampleCount(0, 0), most = fewest;
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            fewest = std::min(fewest, film.SampleCount(x, y));
+            most = std::max(most, film.SampleCount(x, y));
+        }
+    stats.sppReached = int(fewest);
+    stats.sppMax = int(most);
     stats.invalidSamples = film.InvalidSampleCount();
     stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     return stats;

@@ -108,6 +108,51 @@ TEST(Film, InvalidSamplesAreCountedAsZeroAndNeverPropagate) {
     EXPECT_EQ(img.metadata.at("phasor:samples_per_pixel"), "2");  // min over pixels
 }
 
+// Values the float EXR cannot hold (> 3.4e38) are invalid samples like NaN (issue 10 §2: a 1e300 W
+// beam used to give Inf pixels with invalid_samples 0); a pixel whose every sample fits but whose
+// variance of the mean does not is written as 0 and all its samples are counted.
+TEST(Film, ValuesBeyondFloatAreInvalidAndNeverWritten) {
+    Film film(3, 1, SensorResponse(SensorResponse::Kind::Radiometric));
+    film.AddReduced(0, 0, Vec3(1, 1, 1), 1e39);         // intensity beyond float
+    film.AddReduced(0, 0, Vec3(1e300, 1, 1), 1);        // a channel beyond float
+    film.AddSample(0, 0, SampledSpectrum(1e300), DeltaLine(500e-9, 1));
+    film.AddReduced(0, 0, Vec3(2, 2, 2), 2);  // fits
+    EXPECT_EQ(film.SampleCount(0, 0), 4);
+    film.AddReduced(1, 0, Vec3(0, 0, 0), 0);  // spread 1e30: variance of the mean ≈ 2.5e59
+    film.AddReduced(1, 0, Vec3(1e30, 1e30, 1e30), 1e30);
+    film.AddReduced(2, 0, Vec3(1, 1, 1), 1);
+    film.AddReduced(2, 0, Vec3(1, 1, 1), 1);
+    EXPECT_EQ(film.InvalidSampleCount(), 3 + 2);
+    Image img = film.Resolve();
+    for (float v : img.data) EXPECT_TRUE(std::isfinite(v));
+    EXPECT_EQ(img.At(0, 0, I), 0.5f);  // {0, 0, 0, 2}
+    EXPECT_EQ(img.At(0, 0, V), 0.25f);  // s² = 1, n = 4
+    for (int c : {R, G, B, I, V}) EXPECT_EQ(img.At(1, 0, c), 0.0f) << c;
+    EXPECT_EQ(img.At(2, 0, I), 1.0f);
+    EXPECT_EQ(img.metadata.at("phasor:invalid_samples"), "5");
+}
+
+// A render stopped during a pass leaves pixels with different sample counts: each pixel's count is
+// in a `samples` channel (absent when all pixels agree), and its mean and variance are its own.
+TEST(Film, UnequalSampleCountsAreRecordedPerPixel) {
+    Film film(2, 1, SensorResponse(SensorResponse::Kind::Radiometric));
+    EXPECT_EQ(film.Resolve().ChannelIndex("samples"), -1);  // all 0
+    for (int k = 0; k < 3; ++k) film.AddReduced(0, 0, Vec3(1, 1, 1), 1 + k);
+    film.AddReduced(1, 0, Vec3(1, 1, 1), 5);
+    Image img = film.Resolve();
+    const int n = img.ChannelIndex("samples");
+    ASSERT_EQ(n, 5);
+    EXPECT_EQ(img.At(0, 0, n), 3.0f);
+    EXPECT_EQ(img.At(1, 0, n), 1.0f);
+    EXPECT_EQ(img.At(0, 0, I), 2.0f);
+    EXPECT_FLOAT_EQ(img.At(0, 0, V), 1.0f / 3);  // s² = 1, n = 3
+    EXPECT_EQ(img.At(1, 0, I), 5.0f);
+    EXPECT_EQ(img.metadata.at("phasor:samples_per_pixel"), "1");
+    film.AddReduced(1, 0, Vec3(1, 1, 1), 5);
+    film.AddReduced(1, 0, Vec3(1, 1, 1), 5);
+    EXPECT_EQ(film.Resolve().ChannelIndex("samples"), -1);
+}
+
 TEST(Film, OnlyCarriedWavelengthsContribute) {
     Film film(3, 1, SensorResponse(SensorResponse::Kind::Radiometric));
     // Delta: entry 0 only, divided by the line's selection probability.

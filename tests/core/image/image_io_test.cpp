@@ -7,6 +7,8 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -148,6 +150,31 @@ TEST_F(ImageIoTest, ReadingAMissingFileThrowsNamingIt) {
     } catch (const Error &e) {
         EXPECT_NE(e.Message().find(path), std::string::npos) << e.Message();
     }
+}
+
+// A truncated PNG: one error, the exception's, on one line — libpng's own "libpng error: …" on
+// stderr used to repeat it (issue 10 §4).
+TEST_F(ImageIoTest, ATruncatedPngIsOneErrorAndNothingOnStderr) {
+    Image img{64, 64, {"R", "G", "B"}, std::vector<float>(64 * 64 * 3), {}};
+    test::TestRng rng(3);
+    for (float &v : img.data) v = float(rng.Uniform());
+    WritePng(Path("full.png"), img);
+    const std::string bytes = [&] {
+        std::ifstream f(Path("full.png"), std::ios::binary);
+        return std::string(std::istreambuf_iterator<char>(f), {});
+    }();
+    std::ofstream(Path("cut.png"), std::ios::binary) << bytes.substr(0, bytes.size() / 2);
+    testing::internal::CaptureStderr();
+    std::string message;
+    try {
+        ReadImage(Path("cut.png"));
+    } catch (const Error &e) {
+        message = e.Message();
+    }
+    const std::string printed = testing::internal::GetCapturedStderr();
+    EXPECT_EQ(printed, "");
+    EXPECT_EQ(message.rfind("cannot read '" + Path("cut.png") + "': ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
 }
 
 // IEC 61966-2-1 sRGB encoding.

@@ -46,6 +46,27 @@ TEST(DetectorGR, LatticeStratifiesAPixelsSamples) {
     EXPECT_NE(std::fmod(other.x, 0.25), std::fmod(first.x, 0.25));
 }
 
+// A render stopped early has the first k < n² samples of a pixel: they must be spread over the
+// whole lattice (else its partial mean covers only some directions and is biased; issue 10 §5).
+// Over many pixels, the mean of the first quarter of each pixel's 64 samples is ≈ ½ per axis (the
+// lattice's first two rows alone would give 0.125 along x).
+TEST(DetectorGR, AnyPrefixOfTheLatticeCoversThePixel) {
+    auto sampler = MakeSobolSampler(3);
+    double sum[2] = {0, 0};
+    int count = 0;
+    for (int px = 0; px < 64; ++px)
+        for (int i = 0; i < 16; ++i) {
+            sampler->StartPixelSample(px, 1, i);
+            const Vec2 u = StratifiedPixelSample(px, 1, PixelSampleIndex{i, 64, 9}, *sampler);
+            sum[0] += u.x;
+            sum[1] += u.y;
+            ++count;
+        }
+    // Standard error of a mean of 1024 uniforms without replacement within pixels: < 1/√(12·1024).
+    EXPECT_NEAR(sum[0] / count, 0.5, 4 * 0.009);
+    EXPECT_NEAR(sum[1] / count, 0.5, 4 * 0.009);
+}
+
 // D2: a pinhole GR has ρ = 0 and β = 1/(√2 k σ_θ), σ_θ = pixel angle/√12.
 TEST(DetectorGR, PerspectiveFootprint) {
     SceneBuilder b;
