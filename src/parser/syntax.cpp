@@ -51,7 +51,6 @@ class SyntaxParser {
         try {
             ParseHeader(out, emit);
             while (Peek().kind != Tok::End) {
-                if (diag_.TooManyErrors()) break;
                 Compact();
                 std::size_t start = i_;
                 Stmt st;
