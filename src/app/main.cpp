@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <sstream>
 
 #include "app/cli.h"
@@ -63,9 +64,16 @@ std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
     ParseOptions parse;
     parse.defines = o.defines;
     parse.partial = true;
-    auto desc = ParseSceneFile(o.scene, parse, diag);
     std::unique_ptr<Scene> scene;
-    if (desc) scene = Scene::Build(*desc, diag, o.integrator);
+    try {
+        auto desc = ParseSceneFile(o.scene, parse, diag);
+        if (desc) scene = Scene::Build(*desc, diag, o.integrator);
+    } catch (const std::bad_alloc &) {  // (what was allocated is released by now)
+        scene.reset();
+        diag.Error(FileLoc{o.scene, 0, 0, 1},
+                   "out of memory while loading the scene (a scene takes about 60 bytes of memory per byte "
+                   "of text, more for long inline lists: put large meshes in mesh files; docs/wscene.md §7)");
+    }
     diag.Print(std::cerr, Colour());
     if (diag.HasErrors()) {
         std::cerr << diag.ErrorCount() << " error" << (diag.ErrorCount() == 1 ? "" : "s") << " in '" << o.scene

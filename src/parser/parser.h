@@ -32,7 +32,7 @@ struct ParseOptions {
     // Limits against runaway input (docs/wscene.md §7).
     int maxIncludeDepth = 32;
     std::size_t maxIncludes = 10000;           // Include expansions in one scene
-    std::size_t maxSceneBytes = 256u << 20;    // text of the scene: every file, every expansion
+    std::size_t maxSceneBytes = 32u << 20;     // text of the scene: every file, every expansion
     /// Return what was read cleanly even after errors (SceneDesc::incomplete is then set), so the
     /// caller can build it and report the scene's remaining errors in the same run.
     bool partial = false;

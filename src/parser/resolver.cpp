@@ -29,7 +29,9 @@ std::string SizeText(std::size_t bytes) {
 }
 
 FileText FileText::TooLarge(std::size_t limit) {
-    return {std::nullopt, "it is larger than the limit of " + SizeText(limit) + " for a scene", true};
+    return {std::nullopt,
+            "it is larger than the limit of " + SizeText(limit) + " for a scene (put large meshes in mesh files)",
+            true};
 }
 
 FileText ReadSceneText(const std::string &path, std::size_t limit) {

@@ -75,11 +75,20 @@ expect_error "pipe\.wscene: error: cannot read scene file '.*pipe\.wscene': it i
 expect_error "^/dev/zero: error: cannot read scene file '/dev/zero': it is a device" /dev/zero
 
 # A file beyond the size limit (sparse: no disk is used), on its own and included.
-truncate -s 257M "$tmp/huge.wscene"
-expect_error "huge\.wscene: error: cannot read scene file .*larger than the limit of 256 MiB" "$tmp/huge.wscene"
+truncate -s 33M "$tmp/huge.wscene"
+expect_error "huge\.wscene: error: cannot read scene file .*larger than the limit of 32 MiB" "$tmp/huge.wscene"
 printf 'wscene 1\nInclude "huge.wscene"\n' >"$tmp/includes_huge.wscene"
-expect_error "includes_huge\.wscene:2:9: error: cannot read included file 'huge\.wscene'.*limit of 256 MiB" \
+expect_error "includes_huge\.wscene:2:9: error: cannot read included file 'huge\.wscene'.*limit of 32 MiB" \
   "$tmp/includes_huge.wscene"
+
+# Running out of memory while loading (a long inline list, ~1.5 GB, under a 1 GB limit) is an error.
+{ printf 'wscene 1\nShape "trianglemesh" { positions = ['; yes '1' | head -n 2500000 | tr '\n' ' '; printf '] m }\n'; } \
+  >"$tmp/long_list.wscene"
+n=$((n + 1))
+err=$( ( ulimit -v 1000000; timeout 10 "$phasor" check "$tmp/long_list.wscene" 2>&1 >/dev/null ) ); code=$?
+if [[ $code -ne 1 ]] || ! grep -q "long_list\.wscene: error: out of memory while loading the scene" <<<"$err"; then
+  echo "long_list.wscene: exit status $code (expected 1 and an out-of-memory error)"; echo "$err" | head -3; fail=1
+fi
 
 # 10,000 errors (resolve and build errors, in one run): 20 are shown, the count is the true one.
 {
