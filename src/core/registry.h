@@ -100,8 +100,8 @@ struct SceneDesc {
     /// building it can report the remaining errors of the scene in the same run.
     bool incomplete = false;
     /// Names already reported (a block that failed to read, an undefined or disabled reference):
-    /// a reference to one fails without a further error. With `namesLost` (a file was abandoned
-    /// at a lexical error), so does a reference to any unknown name.
+    /// a reference to one fails without a further error. With `namesLost` (text was skipped after a
+    /// lexical error, or an Include after a limit), so does a reference to any unknown name.
     std::unordered_set<std::string> unavailable;
     bool namesLost = false;
 };

@@ -85,7 +85,7 @@ struct FileAst {
     std::vector<Stmt> stmts;
     std::vector<std::string> trailingComments;  // after the last statement
     bool trailingBlankBefore = false;
-    bool lexError = false;     // the file was abandoned at a lexical error
+    bool lexError = false;     // at least one lexical error (text after it was skipped)
     bool syntaxError = false;  // at least one syntax error (recovered from)
 };
 

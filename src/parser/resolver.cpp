@@ -555,7 +555,7 @@ class Resolver {
     std::unordered_map<std::string, NameInfo> names_;
     bool renderSeen_ = false;
     FileLoc renderLoc_;
-    bool lostNames_ = false;       // names may be missing: a file was abandoned or skipped
+    bool lostNames_ = false;       // names may be missing: text or an Include was skipped
     std::size_t includes_ = 0;     // Include expansions so far
     std::size_t textBytes_ = 0;    // text read so far (every file, every expansion)
     bool limitReached_ = false;    // maxIncludes or maxSceneBytes: later Includes are skipped
