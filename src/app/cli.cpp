@@ -1,6 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "app/cli.h"
 
+#include "core/diagnostics.h"
+
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
@@ -30,18 +33,20 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
     }
     std::size_t i = 0;
     const std::string cmd = args[i++];
-    if (cmd == "--help" || cmd == "-h" || cmd == "help") o.command = Command::Help;
-    else if (cmd == "--version") o.command = Command::Version;
-    else if (cmd == "render") o.command = Command::Render;
-    else if (cmd == "check") o.command = Command::Check;
-    else if (cmd == "format") o.command = Command::Format;
-    else if (cmd == "list") o.command = Command::List;
-    else if (cmd == "describe") o.command = Command::Describe;
-    else if (cmd == "profile") o.command = Command::Profile;
-    else {
-        err = "unknown command '" + cmd + "'";
+    static const std::vector<std::pair<std::string, Command>> commands = {
+        {"render", Command::Render}, {"check", Command::Check},       {"format", Command::Format},
+        {"list", Command::List},     {"describe", Command::Describe}, {"profile", Command::Profile},
+        {"help", Command::Help},     {"--help", Command::Help},       {"-h", Command::Help},
+        {"--version", Command::Version}};
+    auto known = std::find_if(commands.begin(), commands.end(), [&](const auto &c) { return c.first == cmd; });
+    if (known == commands.end()) {
+        std::vector<std::string> names;
+        for (const auto &c : commands) names.push_back(c.first);
+        const std::string sug = Suggest(cmd, names);
+        err = "unknown command '" + cmd + "'" + (sug.empty() ? "" : "; did you mean '" + sug + "'?");
         return false;
     }
+    o.command = known->second;
     std::vector<std::string> positional;
     auto value = [&](const std::string &flag, std::string &out) {
         if (i >= args.size()) {
@@ -103,12 +108,18 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
             else p.diffScale = d;
         } else if (a == "--quiet" || a == "-q") o.quiet = true;
         else if (a == "--strict") o.strict = true;
+        else if (a == "--permissive") o.permissive = true;
         else if (a == "--markdown") o.markdown = true;
         else if (a == "--help" || a == "-h") { o.command = Command::Help; return true; }
         else if (!a.empty() && a[0] == '-') {
             err = "unknown option '" + a + "'";
             return false;
         } else positional.push_back(a);
+    }
+    if (o.strict && o.permissive) {
+        err = "'--strict' (every warning is an error) and '--permissive' (unknown names are only warnings) "
+              "contradict each other";
+        return false;
     }
     switch (o.command) {
         case Command::Render:

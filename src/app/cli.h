@@ -15,7 +15,9 @@ struct CliOptions {
     std::string scene, output, integrator, sampler, family, name;
     int spp = -1, threads = 0;
     long long seed = -1;
-    bool quiet = false, strict = false, markdown = false;
+    bool quiet = false, markdown = false;
+    bool strict = false;      // --strict: every warning is an error
+    bool permissive = false;  // --permissive: unknown parameters and unused -D are warnings
     std::vector<std::pair<std::string, std::string>> defines;  // -D name=value, in order
 
     // `profile`: one image row of each input as CSV and/or a line plot.

@@ -10,6 +10,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <sstream>
 
 #include "app/cli.h"
@@ -51,10 +52,13 @@ const char *kUsage =
     "\n"
     "commands:\n"
     "  render SCENE [-o FILE] [--spp N] [--threads N] [--seed S] [--integrator NAME]\n"
-    "               [--sampler sobol|independent] [-D name=value ...] [--strict] [--quiet]\n"
+    "               [--sampler sobol|independent] [-D name=value ...] [--strict | --permissive]\n"
+    "               [--quiet]\n"
     "                      render SCENE to FILE (.exr; a .png is written beside it)\n"
-    "  check SCENE [-D name=value ...] [--strict]\n"
+    "  check SCENE [-D name=value ...] [--strict | --permissive]\n"
     "                      load and validate only; exit status 0 if the scene is valid\n"
+    "                      (unknown parameters and -D names that match no Define are errors;\n"
+    "                      --permissive makes them warnings, --strict makes every warning an error)\n"
     "  format SCENE        print SCENE in canonical form\n"
     "  list [FAMILY]       list plug-ins (families: spectrum texture material shape light\n"
     "                      detector integrator)\n"
@@ -69,11 +73,23 @@ const char *kUsage =
 
 bool Colour() { return isatty(2) && !std::getenv("NO_COLOR"); }
 
-// Parses and builds; prints diagnostics. Returns nullptr on error.
+// Parses and builds; prints diagnostics. Returns nullptr on error. What was read cleanly is
+// built even after errors, so one run reports the scene's parse, resolve and build errors.
 std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
-    auto desc = ParseSceneFile(o.scene, o.defines, diag);
+    diag.SetPermissive(o.permissive);
+    ParseOptions parse;
+    parse.defines = o.defines;
+    parse.partial = true;
     std::unique_ptr<Scene> scene;
-    if (desc && !diag.HasErrors()) scene = Scene::Build(*desc, diag, o.integrator);
+    try {
+        auto desc = ParseSceneFile(o.scene, parse, diag);
+        if (desc) scene = Scene::Build(*desc, diag, o.integrator);
+    } catch (const std::bad_alloc &) {  // (what was allocated is released by now)
+        scene.reset();
+        diag.Error(FileLoc{o.scene, 0, 0, 1},
+                   "out of memory while loading the scene (a scene takes about 60 bytes of memory per byte "
+                   "of text, more for long inline lists: put large meshes in mesh files; docs/wscene.md §7)");
+    }
     diag.Print(std::cerr, Colour());
     if (diag.HasErrors()) {
         std::cerr << diag.ErrorCount() << " error" << (diag.ErrorCount() == 1 ? "" : "s") << " in '" << o.scene

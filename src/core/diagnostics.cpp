@@ -18,13 +18,15 @@ std::string FileLoc::ToString() const {
 
 void Diagnostics::Report(Diagnostic d) {
     if (d.severity == Severity::Warning && strict_) d.severity = Severity::Error;
-    for (const Diagnostic &o : all_)
-        if (o.severity == d.severity && o.loc == d.loc && o.message == d.message) return;
-    if (d.severity == Severity::Error) {
-        ++errorCount_;
-        if (errorCount_ > maxErrors_) return;
-    } else if (d.severity == Severity::Warning) {
-        ++warningCount_;
+    // Duplicates are recognised by a hash, also beyond the shown ones, so the counts are true.
+    std::string key = std::to_string(int(d.severity)) + '\n' + d.loc.ToString() + '\n' + d.message;
+    if (!seen_.insert(std::hash<std::string>{}(key)).second) return;
+    std::size_t *count = &errorCount_, *shown = &errorsShown_;
+    if (d.severity == Severity::Warning) count = &warningCount_, shown = &warningsShown_;
+    if (d.severity != Severity::Note) {
+        ++*count;
+        if (*shown >= maxShown_) return;
+        ++*shown;
     }
     all_.push_back(std::move(d));
 }
@@ -35,6 +37,10 @@ void Diagnostics::Error(const FileLoc &loc, std::string msg, std::vector<Diagnos
 
 void Diagnostics::Warning(const FileLoc &loc, std::string msg, std::vector<Diagnostic> notes) {
     Report(Diagnostic{Severity::Warning, loc, std::move(msg), std::move(notes)});
+}
+
+void Diagnostics::UnknownName(const FileLoc &loc, std::string msg, std::vector<Diagnostic> notes) {
+    Report(Diagnostic{permissive_ ? Severity::Warning : Severity::Error, loc, std::move(msg), std::move(notes)});
 }
 
 void Diagnostics::AddSource(const std::string &file, std::string text) {
@@ -88,8 +94,11 @@ std::string Diagnostics::Format(const Diagnostic &d, bool color) const {
 
 void Diagnostics::Print(std::ostream &os, bool color) const {
     for (const Diagnostic &d : all_) os << Format(d, color);
-    if (errorCount_ > maxErrors_)
-        os << "too many errors (" << errorCount_ << "); only the first " << maxErrors_ << " are shown\n";
+    auto more = [&](std::size_t n, const char *what) {
+        if (n > 0) os << n << " more " << what << (n == 1 ? "" : "s") << " not shown\n";
+    };
+    more(errorCount_ - errorsShown_, "error");
+    more(warningCount_ - warningsShown_, "warning");
 }
 
 std::size_t EditDistance(const std::string &a, const std::string &b) {

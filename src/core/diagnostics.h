@@ -8,6 +8,7 @@
 #include <ostream>
 #include <stdexcept>
 #include <string>
+#include <unordered_set>
 #include <vector>
 
 namespace phasor {
@@ -43,28 +44,50 @@ class Error : public std::runtime_error {
     const std::string &Message() const { return message_; }
     std::vector<Diagnostic> notes;
 
+    /// An error that follows from one already reported (e.g. a reference to a block that failed):
+    /// it stops the dependent work, but Diagnostics::Report(const Error &) ignores it, so that one
+    /// mistake is reported and counted once.
+    static Error Consequence(FileLoc loc) {
+        Error e(std::move(loc), "(follows from an error already reported)");
+        e.consequence_ = true;
+        return e;
+    }
+    bool IsConsequence() const { return consequence_; }
+
   private:
     FileLoc loc_;
     std::string message_;
+    bool consequence_ = false;
 };
 
-/// Collects diagnostics. Errors beyond `maxErrors` are counted but not stored. Identical
-/// (location, message) pairs are reported once. Warnings become errors when `strict`.
+/// Collects diagnostics. Errors (and warnings) beyond `maxShown` of each are counted but not
+/// stored; Print says how many were left out. Identical (severity, location, message) triples
+/// are reported once. Warnings become errors when `strict` (`--strict`). A name that matches
+/// nothing (UnknownName) is an error, or a warning when permissive (`--permissive`).
 class Diagnostics {
   public:
-    explicit Diagnostics(bool strict = false, std::size_t maxErrors = 20)
-        : strict_(strict), maxErrors_(maxErrors) {}
+    explicit Diagnostics(bool strict = false, std::size_t maxShown = 20)
+        : strict_(strict), maxShown_(maxShown) {}
 
     void Report(Diagnostic d);
     void Error(const FileLoc &loc, std::string msg, std::vector<Diagnostic> notes = {});
     void Warning(const FileLoc &loc, std::string msg, std::vector<Diagnostic> notes = {});
-    void Report(const phasor::Error &e) { Error(e.Loc(), e.Message(), e.notes); }
+    /// An unknown parameter, or a `-D` that overrides no Define: the value the user meant is
+    /// silently not used, so this is an error unless the sink is permissive.
+    void UnknownName(const FileLoc &loc, std::string msg, std::vector<Diagnostic> notes = {});
+    /// Reports a thrown error (nothing for Error::Consequence).
+    void Report(const phasor::Error &e) {
+        if (!e.IsConsequence()) Error(e.Loc(), e.Message(), e.notes);
+    }
 
     bool HasErrors() const { return errorCount_ > 0; }
     std::size_t ErrorCount() const { return errorCount_; }
     std::size_t WarningCount() const { return warningCount_; }
-    bool TooManyErrors() const { return errorCount_ >= maxErrors_; }
+    /// True once further errors are only counted (callers may then skip costly suggestions).
+    bool TooManyErrors() const { return errorCount_ >= maxShown_; }
     bool Strict() const { return strict_; }
+    void SetPermissive(bool permissive) { permissive_ = permissive; }
+    bool Permissive() const { return permissive_; }
     const std::vector<Diagnostic> &All() const { return all_; }
 
     /// Registers a source text so diagnostics can quote the offending line with a caret.
@@ -76,9 +99,12 @@ class Diagnostics {
 
   private:
     bool strict_;
-    std::size_t maxErrors_;
+    bool permissive_ = false;
+    std::size_t maxShown_;
     std::size_t errorCount_ = 0, warningCount_ = 0;
+    std::size_t errorsShown_ = 0, warningsShown_ = 0;
     std::vector<Diagnostic> all_;
+    std::unordered_set<std::size_t> seen_;  // hashes of every (severity, location, message) reported
     std::vector<std::pair<std::string, std::shared_ptr<const std::string>>> sources_;
 };
 

@@ -2,6 +2,7 @@
 #include "core/params.h"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <stdexcept>
 
@@ -345,14 +346,17 @@ bool CheckNumber(const Value &v, const ParamSpec &s, const Param &p, Diagnostics
 }
 
 bool CheckInteger(const Value &v, const ParamSpec &s, const Param &p, Diagnostics &diag) {
-    if (v.kind != Value::Kind::Number || !v.dim.IsNone() || v.number != std::floor(v.number) ||
-        std::abs(v.number) > 2e9) {
+    if (v.kind != Value::Kind::Number || !v.dim.IsNone() || v.number != std::floor(v.number)) {
         diag.Error(WhereOf(v, p), "'" + s.name + "' expects a whole number; got " + v.DescribeKind() +
                                       (v.kind == Value::Kind::Number ? " " + v.ToString() : ""));
         return false;
     }
+    // Whole numbers are read as int: the schema's range, clipped to int's, is what works.
     ParamSpec copy = s;
     copy.dim = Dim::None();
+    constexpr double IntMin = std::numeric_limits<int>::min(), IntMax = std::numeric_limits<int>::max();
+    if (!copy.minValue || *copy.minValue < IntMin) copy.minValue = IntMin, copy.minExclusive = false;
+    if (!copy.maxValue || *copy.maxValue > IntMax) copy.maxValue = IntMax;
     return CheckNumber(v, copy, p, diag);
 }
 
@@ -459,8 +463,8 @@ bool ParamDict::Validate(const Schema &schema, Diagnostics &diag) const {
             std::string sug = Suggest(p.name, schema.Names());
             FileLoc loc = p.loc;
             loc.length = (int)p.name.size();
-            diag.Warning(loc, "unknown parameter '" + p.name + "' for " + what +
-                                  (sug.empty() ? "" : "; did you mean '" + sug + "'?"));
+            diag.UnknownName(loc, "unknown parameter '" + p.name + "' for " + what +
+                                      (sug.empty() ? "" : "; did you mean '" + sug + "'?"));
             p.used = true;  // reported once, here
             continue;
         }

@@ -13,6 +13,7 @@
 #include <functional>
 #include <map>
 #include <unordered_map>
+#include <unordered_set>
 #include <memory>
 #include <string>
 #include <vector>
@@ -84,12 +85,25 @@ struct SceneEntity {
     ParamDict params;
     FileLoc loc;          // location of the keyword
     FileLoc nameLoc;      // location of the name (for redefinition errors)
+
+    /// How messages name the entity: its name, or `type@file:line` (file without directories)
+    /// if it has none.
+    std::string DisplayName() const;
 };
 
 /// A whole scene description, in source order.
 struct SceneDesc {
     std::vector<SceneEntity> entities;
     std::string sourceFile;  // the top-level file ("" for C++-built scenes)
+
+    /// Errors were reported while reading: `entities` holds only what was read cleanly, so that
+    /// building it can report the remaining errors of the scene in the same run.
+    bool incomplete = false;
+    /// Names already reported (a block that failed to read, an undefined or disabled reference):
+    /// a reference to one fails without a further error. With `namesLost` (text was skipped after a
+    /// lexical error, or an Include after a limit), so does a reference to any unknown name.
+    std::unordered_set<std::string> unavailable;
+    bool namesLost = false;
 };
 
 /// Resolves references while plug-ins are created; owns every created object until the Scene

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -84,7 +85,7 @@ struct FileAst {
     std::vector<Stmt> stmts;
     std::vector<std::string> trailingComments;  // after the last statement
     bool trailingBlankBefore = false;
-    bool lexError = false;     // the file was abandoned at a lexical error
+    bool lexError = false;     // at least one lexical error (text after it was skipped)
     bool syntaxError = false;  // at least one syntax error (recovered from)
 };
 
@@ -102,5 +103,17 @@ bool ParseExprAst(const std::string &text, const std::string &fileName, int line
 
 /// Canonical text of an expression (single line).
 std::string PrintExpr(const Expr &e);
+
+/// The text of a scene file, or why there is none.
+struct FileText {
+    std::optional<std::string> text;
+    std::string problem;    // without text: "no such file", "it is a directory", …
+    bool tooLarge = false;  // the problem is the size limit
+    static FileText TooLarge(std::size_t limit);  // "it is larger than the limit of … for a scene"
+};
+
+/// Reads a regular file of at most `limit` bytes. Other files (directories, devices such as
+/// /dev/zero, pipes) are refused before they are opened: reading them may never end.
+FileText ReadSceneText(const std::string &path, std::size_t limit);
 
 }  // namespace phasor::wscene

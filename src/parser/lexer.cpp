@@ -64,7 +64,8 @@ int MicroSign(std::string_view s, std::size_t i) {
 
 class Lexer {
   public:
-    Lexer(std::string_view text, int line, int col) : s_(text), line_(line), col_(col) {}
+    Lexer(std::string_view text, int line, int col, bool resync)
+        : s_(text), line_(line), col_(col), resync_(resync) {}
 
     // Appends the next token (a number with an attached unit gives two) to `tokens`; returns false
     // once End or Error was appended.
@@ -123,9 +124,31 @@ class Lexer {
 
   private:
     bool Finish(std::deque<Token> &tokens, Token t) {
+        const bool error = t.kind == Tok::Error;
         tokens.push_back(std::move(t));
+        if (error && resync_) {
+            Resync();
+            return true;
+        }
         done_ = true;
         return false;
+    }
+
+    // After a lexical error: goes on at the next line that starts with a statement keyword.
+    void Resync() {
+        error_ = false;
+        prev_ = Tok::End;
+        space_ = true;
+        while (pos_ < s_.size()) {
+            while (pos_ < s_.size() && s_[pos_] != '\n') Advance();
+            Advance();  // the line break
+            std::size_t i = pos_;
+            while (i < s_.size() && (s_[i] == ' ' || s_[i] == '\t')) ++i;
+            std::size_t j = i;
+            while (j < s_.size() && IsIdentChar(s_[j])) ++j;
+            std::string_view word = s_.substr(i, j - i);
+            if (word != "wscene" && IsStatementKeyword(word)) return;
+        }
     }
 
     static bool IsSpaceOrComment(char c) {
@@ -543,6 +566,7 @@ class Lexer {
     std::string_view s_;
     std::size_t pos_ = 0;
     int line_, col_;
+    bool resync_;  // go on after a lexical error (TokenSource)
     bool error_ = false, done_ = false, first_ = true, space_ = true;
     Tok prev_ = Tok::End;
     std::size_t prevEnd_ = 0;
@@ -615,8 +639,8 @@ struct TokenSource::Impl {
     Lexer lexer;
 };
 
-TokenSource::TokenSource(std::string_view text, int firstLine, int firstCol)
-    : impl_(std::make_unique<Impl>(Impl{Lexer(text, firstLine, firstCol)})) {}
+TokenSource::TokenSource(std::string_view text, int firstLine, int firstCol, bool resync)
+    : impl_(std::make_unique<Impl>(Impl{Lexer(text, firstLine, firstCol, resync)})) {}
 TokenSource::~TokenSource() = default;
 
 bool TokenSource::More(std::deque<Token> &tokens, std::deque<Comment> &comments) {

@@ -69,10 +69,12 @@ struct TokenStream {
     std::vector<Comment> comments;
 };
 
-/// An incremental lexer over one text (which must outlive it).
+/// An incremental lexer over one text (which must outlive it). With `resync`, an Error token is
+/// followed by the tokens from the next line that starts with a statement keyword (so a file's
+/// later statements are still read); without, it is the last token.
 class TokenSource {
   public:
-    explicit TokenSource(std::string_view text, int firstLine = 1, int firstCol = 1);
+    explicit TokenSource(std::string_view text, int firstLine = 1, int firstCol = 1, bool resync = false);
     ~TokenSource();
     /// Appends the next token(s) to `tokens` and any comments before them to `comments`. Returns
     /// false once the final token (End or Error) has been appended.

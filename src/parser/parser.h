@@ -26,14 +26,21 @@ using DefineList = std::vector<std::pair<std::string, std::string>>;
 
 struct ParseOptions {
     DefineList defines;
-    /// Reads an included file; returns nullopt if it cannot be read. Default: the file system.
-    /// (Tests and the fuzzer supply in-memory files.)
+    /// Reads an included file; returns nullopt if it cannot be read. Default: the file system
+    /// (regular files only). (Tests and the fuzzer supply in-memory files.)
     std::function<std::optional<std::string>(const std::string &path)> readFile;
+    // Limits against runaway input (docs/wscene.md §7).
     int maxIncludeDepth = 32;
+    std::size_t maxIncludes = 10000;           // Include expansions in one scene
+    std::size_t maxSceneBytes = 32u << 20;     // text of the scene: every file, every expansion
+    /// Return what was read cleanly even after errors (SceneDesc::incomplete is then set), so the
+    /// caller can build it and report the scene's remaining errors in the same run.
+    bool partial = false;
 };
 
 /// Parses and resolves a scene file. Returns nullopt if any error was reported to `diag` (the
-/// diagnostics say why); warnings alone do not fail (unless `diag` is strict).
+/// diagnostics say why) unless `options.partial`, and if the file cannot be read; warnings alone
+/// do not fail (unless `diag` is strict).
 std::optional<SceneDesc> ParseSceneFile(const std::string &path, const DefineList &defines,
                                         Diagnostics &diag);
 std::optional<SceneDesc> ParseSceneFile(const std::string &path, const ParseOptions &options,

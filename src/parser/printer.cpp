@@ -227,14 +227,12 @@ std::optional<std::string> FormatSceneString(const std::string &text, const std:
 }
 
 std::optional<std::string> FormatSceneFile(const std::string &path, Diagnostics &diag) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) {
-        diag.Error(FileLoc{path, 0, 0, 1}, "cannot read scene file '" + path + "'");
+    wscene::FileText file = wscene::ReadSceneText(path, ParseOptions{}.maxSceneBytes);
+    if (!file.text) {
+        diag.Error(FileLoc{path, 0, 0, 1}, "cannot read scene file '" + path + "': " + file.problem);
         return std::nullopt;
     }
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    return FormatSceneString(ss.str(), path, diag);
+    return FormatSceneString(*file.text, path, diag);
 }
 
 }  // namespace phasor

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -19,25 +20,61 @@
 
 namespace phasor {
 
+namespace wscene {
+
+// "256 MiB", or "2000 bytes" if not a whole number of MiB.
+std::string SizeText(std::size_t bytes) {
+    const std::size_t mib = std::size_t(1) << 20;
+    return bytes % mib == 0 ? std::to_string(bytes / mib) + " MiB" : std::to_string(bytes) + " bytes";
+}
+
+FileText FileText::TooLarge(std::size_t limit) {
+    return {std::nullopt,
+            "it is larger than the limit of " + SizeText(limit) + " for a scene (put large meshes in mesh files)",
+            true};
+}
+
+FileText ReadSceneText(const std::string &path, std::size_t limit) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    fs::file_status st = fs::status(path, ec);
+    switch (st.type()) {
+        case fs::file_type::regular: break;
+        case fs::file_type::not_found: return {std::nullopt, "no such file"};
+        case fs::file_type::directory: return {std::nullopt, "it is a directory"};
+        case fs::file_type::character:
+        case fs::file_type::block: return {std::nullopt, "it is a device, not a regular file"};
+        case fs::file_type::fifo: return {std::nullopt, "it is a pipe (FIFO), not a regular file"};
+        case fs::file_type::socket: return {std::nullopt, "it is a socket, not a regular file"};
+        default: return {std::nullopt, ec ? ec.message() : "it is not a regular file"};
+    }
+    const std::uintmax_t size = fs::file_size(path, ec);
+    if (!ec && size > limit) return FileText::TooLarge(limit);
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return {std::nullopt, std::strerror(errno)};
+    std::string text;
+    if (!ec) text.reserve(std::size_t(size));
+    char buf[1 << 16];
+    // The size may have changed since it was asked: the limit holds for what is read.
+    while (in.read(buf, sizeof buf) || in.gcount() > 0) {
+        text.append(buf, std::size_t(in.gcount()));
+        if (text.size() > limit) return FileText::TooLarge(limit);
+    }
+    if (in.bad()) return {std::nullopt, "read error"};
+    return {std::move(text), ""};
+}
+
+}  // namespace wscene
+
 namespace {
 
 using wscene::Expr;
+using wscene::FileText;
 using wscene::FileAst;
 using wscene::Pos;
 using wscene::Stmt;
 
 const char *kCommandLine = "<command line>";
-
-std::optional<std::string> ReadWholeFile(const std::string &path) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) return std::nullopt;
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return std::nullopt;
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) return std::nullopt;
-    return ss.str();
-}
 
 struct DefineInfo {
     std::optional<Value> value;  // nullopt: its definition failed (already reported)
@@ -68,31 +105,55 @@ class Resolver {
     std::optional<SceneDesc> Run(const std::string *text, const std::string &fileName) {
         std::size_t errorsBefore = diag_.ErrorCount();
         PrepareOverrides();
-        std::optional<std::string> content;
+        FileText content;
         if (text)
-            content = *text;
+            content = text->size() <= opt_.maxSceneBytes ? FileText{*text, ""} : FileText::TooLarge(opt_.maxSceneBytes);
         else
             content = Read(fileName);
-        if (!content) {
-            diag_.Error(FileLoc{fileName, 0, 0, 1}, "cannot read scene file '" + fileName + "'");
+        if (!content.text) {
+            diag_.Error(FileLoc{fileName, 0, 0, 1}, "cannot read scene file '" + fileName + "': " + Why(content));
             return std::nullopt;
         }
+        textBytes_ = content.text->size();
         desc_.sourceFile = fileName;
         // Every block has a '{': a cheap upper bound that avoids regrowing a large entity list.
         desc_.entities.reserve(
-            std::min<std::size_t>(std::count(content->begin(), content->end(), '{'), 1u << 22));
+            std::min<std::size_t>(std::count(content.text->begin(), content.text->end(), '{'), 1u << 22));
         stack_.push_back(Key(fileName));
-        ProcessFile(*content, fileName);
+        ProcessFile(*content.text, fileName);
         stack_.pop_back();
         Finish();
-        if (diag_.ErrorCount() != errorsBefore) return std::nullopt;
+        if (diag_.ErrorCount() != errorsBefore) {
+            if (!opt_.partial) return std::nullopt;
+            desc_.incomplete = true;
+        }
+        desc_.namesLost = lostNames_;
+        for (const auto &[name, info] : names_)
+            if (info.broken) desc_.unavailable.insert(name);
         return std::move(desc_);
     }
 
   private:
     // ---- files and includes ----------------------------------------------------------------
-    std::optional<std::string> Read(const std::string &path) {
-        return opt_.readFile ? opt_.readFile(path) : ReadWholeFile(path);
+    // Reads a file of at most what is left of the scene's text budget.
+    FileText Read(const std::string &path) {
+        const std::size_t left = opt_.maxSceneBytes - std::min(opt_.maxSceneBytes, textBytes_);
+        if (!opt_.readFile) return wscene::ReadSceneText(path, left);
+        std::optional<std::string> text = opt_.readFile(path);
+        if (!text) return {std::nullopt, "no such file"};
+        if (text->size() > left) return FileText::TooLarge(left);
+        return {std::move(text), ""};
+    }
+    std::string Why(const FileText &f) const {
+        if (!f.tooLarge || textBytes_ == 0) return f.problem;
+        return "the scene's text (every file, every Include expansion) would exceed the limit of " +
+               wscene::SizeText(opt_.maxSceneBytes);
+    }
+    // "a.wscene → b.wscene → …" for the files being read.
+    std::string Chain() const {
+        std::string chain;
+        for (const std::string &f : stack_) chain += (chain.empty() ? "" : " → ") + f;
+        return chain;
     }
     static std::string Key(const std::string &path) {
         return std::filesystem::path(path).lexically_normal().generic_string();
@@ -121,7 +182,6 @@ class Resolver {
         FileAst ast;
         // Statements are resolved as they are parsed (no whole-file tree).
         wscene::ParseFileAst(text, file, diag_, ast, ChainOf(file), [&](Stmt &st) {
-            if (diag_.TooManyErrors()) return;
             switch (st.kind) {
                 case Stmt::Kind::Header:
                     CheckHeader(st, file);
@@ -169,11 +229,23 @@ class Resolver {
                 "includes nested too deeply (more than " + std::to_string(opt_.maxIncludeDepth) + " levels)");
             return;
         }
-        std::optional<std::string> content = Read(target);
-        if (!content) {
-            Err(at, "cannot read included file '" + st.text + "' (looked for " + target + ")");
+        // After a limit was reached, the remaining Includes are skipped (reported once).
+        if (limitReached_) return;
+        if (++includes_ > opt_.maxIncludes) {
+            Err(at, "too many Include expansions (more than " + std::to_string(opt_.maxIncludes) +
+                        " in one scene; files that include others several times multiply): " + Chain() +
+                        " → " + key);
+            limitReached_ = lostNames_ = true;
             return;
         }
+        FileText content = Read(target);
+        if (!content.text) {
+            Err(at, "cannot read included file '" + st.text + "' (looked for " + target + "): " + Why(content) +
+                        (content.tooLarge ? " (" + Chain() + " → " + key + ")" : ""));
+            if (content.tooLarge) limitReached_ = lostNames_ = true;
+            return;
+        }
+        textBytes_ += content.text->size();
         // The include chain of the new file: this Include, then this file's own chain.
         if (!chains_.count(target)) {
             std::vector<Diagnostic> chain = {Note(Loc(file, st.pos), "included from here")};
@@ -181,7 +253,7 @@ class Resolver {
             chains_[target] = std::move(chain);
         }
         stack_.push_back(key);
-        ProcessFile(*content, target);
+        ProcessFile(*content.text, target);
         stack_.pop_back();
     }
 
@@ -407,10 +479,10 @@ class Resolver {
     // ---- after everything was read ---------------------------------------------------------
     void Finish() {
         for (const Override &ov : overrides_) {
-            if (ov.used) continue;
+            if (ov.used || lostNames_) continue;  // (its Define may have been in the part not read)
             std::string sug = Suggest(ov.name, DefineNames());
-            diag_.Warning(ov.nameLoc, "'-D " + ov.name + "' does not override any Define in the scene" +
-                                          (sug.empty() ? "" : "; did you mean '" + sug + "'?"));
+            diag_.UnknownName(ov.nameLoc, "'-D " + ov.name + "' does not override any Define in the scene" +
+                                              (sug.empty() ? "" : "; did you mean '" + sug + "'?"));
         }
         for (const auto &[name, loc] : pendingVars_) {
             auto it = defines_.find(name);
@@ -444,10 +516,12 @@ class Resolver {
             auto it = names_.find(v.text);
             if (it == names_.end()) {
                 if (lostNames_) return;  // the name may have been in a part lost to a lexical error
-                std::vector<std::string> names;
-                for (const auto &n : names_) names.push_back(n.first);
-                std::sort(names.begin(), names.end());  // deterministic choice among equals
-                std::string sug = Suggest(v.text, names);
+                desc_.unavailable.insert(v.text);
+                if (sortedNames_.empty()) {
+                    for (const auto &n : names_) sortedNames_.push_back(n.first);
+                    std::sort(sortedNames_.begin(), sortedNames_.end());  // deterministic choice among equals
+                }
+                std::string sug = diag_.TooManyErrors() ? "" : Suggest(v.text, sortedNames_);
                 std::string msg = "'@" + v.text + "' is not defined";
                 if (!sug.empty()) {
                     const NameInfo &s = names_.at(sug);
@@ -458,10 +532,12 @@ class Resolver {
                 return;
             }
             const NameInfo &n = it->second;
-            if (n.disabled)
+            if (n.disabled) {
+                desc_.unavailable.insert(v.text);
                 Err(v.loc,
                     "'@" + v.text + "' refers to " + n.keyword + " \"" + n.type + "\", which is disabled",
                     {Note(n.enabledLoc, "disabled here")});
+            }
             return;
         }
         for (const Value &it : v.items) CheckRefs(it);
@@ -479,7 +555,11 @@ class Resolver {
     std::unordered_map<std::string, NameInfo> names_;
     bool renderSeen_ = false;
     FileLoc renderLoc_;
-    bool lostNames_ = false;
+    bool lostNames_ = false;       // names may be missing: text or an Include was skipped
+    std::size_t includes_ = 0;     // Include expansions so far
+    std::size_t textBytes_ = 0;    // text read so far (every file, every expansion)
+    bool limitReached_ = false;    // maxIncludes or maxSceneBytes: later Includes are skipped
+    std::vector<std::string> sortedNames_;  // names_, for suggestions (made on first need)
 };
 
 }  // namespace

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — .wscene syntax: tokens → FileAst (docs/wscene.md §3–§4). Recursive descent; a syntax
-// error skips to the next statement keyword that starts a line; a lexical error stops the file.
+// error skips to the next statement keyword that starts a line; so does a lexical error (the
+// lexer resynchronises there).
 #include <algorithm>
 #include <array>
 #include <deque>
@@ -35,9 +36,10 @@ struct LexAbort {};     // thrown after a lexical error was reported
 
 class SyntaxParser {
   public:
+    // `resync`: a lexical error drops the statement it is in, like a syntax error (a file).
     SyntaxParser(std::string_view text, int line, int col, const std::string &file, Diagnostics &diag,
-                 const std::vector<Diagnostic> &notes)
-        : text_(text), src_(text, line, col), file_(file), diag_(diag), notes_(notes) {}
+                 const std::vector<Diagnostic> &notes, bool resync)
+        : text_(text), src_(text, line, col, resync), resync_(resync), file_(file), diag_(diag), notes_(notes) {}
 
     // Parses the file; each statement goes to `onStmt` if given, else into out.stmts.
     bool ParseFile(FileAst &out, const std::function<void(Stmt &)> &onStmt) {
@@ -48,14 +50,20 @@ class SyntaxParser {
                 out.stmts.push_back(std::move(st));
         };
         std::size_t errorsBefore = diag_.ErrorCount();
+        lexError_ = &out.lexError;
         try {
-            ParseHeader(out, emit);
-            while (Peek().kind != Tok::End) {
-                if (diag_.TooManyErrors()) break;
+            try {
+                ParseHeader(out, emit);
+            } catch (const SyntaxError &) {
+                out.syntaxError = true;
+                Recover(0);
+            }
+            for (;;) {
                 Compact();
                 std::size_t start = i_;
                 Stmt st;
                 try {
+                    if (Peek().kind == Tok::End) break;
                     ParseStatement(st);
                     emit(st);
                 } catch (const SyntaxError &) {
@@ -124,7 +132,7 @@ class SyntaxParser {
                 break;
             }
         const Token &t = At(j);
-        if (t.kind == Tok::Error && j == i_) LexFail(t);
+        if (t.kind == Tok::Error && j == i_) LexFail(t, j);
         return t;
     }
     const Token &Next() {
@@ -135,9 +143,18 @@ class SyntaxParser {
     }
     bool IsIdent(const Token &t, std::string_view w) { return t.kind == Tok::Ident && t.text == w; }
 
-    [[noreturn]] void LexFail(const Token &t) {
-        diag_.Error(Loc(t.line, t.col, t.length), t.text, notes_);
+    // Reports the Error token at global index `g` (once); then the file (or, with resync_, the
+    // statement) is abandoned.
+    [[noreturn]] void LexFail(const Token &t, std::size_t g) {
+        ReportLexError(t, g);
+        if (resync_) throw SyntaxError{};
         throw LexAbort{};
+    }
+    void ReportLexError(const Token &t, std::size_t g) {
+        if (lexReported_ != ~std::size_t(0) && g <= lexReported_) return;
+        lexReported_ = g;
+        if (lexError_) *lexError_ = true;
+        diag_.Error(Loc(t.line, t.col, t.length), t.text, notes_);
     }
 
     FileLoc Loc(int line, int col, int length) const {
@@ -187,8 +204,13 @@ class SyntaxParser {
             const Token &t = At(i_);
             if (t.kind == Tok::End) return;
             if (t.kind == Tok::Error) {
-                Peek();  // reports and throws LexAbort
-                return;
+                if (!resync_) {
+                    Peek();  // reports and throws LexAbort
+                    return;
+                }
+                ReportLexError(t, i_);  // the lexer goes on at a statement keyword
+                ++i_;
+                continue;
             }
             // A statement keyword starting a line, or a name starting a line followed by a string
             // (a misspelled block keyword, reported as such).
@@ -721,6 +743,9 @@ class SyntaxParser {
 
     std::string_view text_;
     TokenSource src_;
+    bool resync_;
+    bool *lexError_ = nullptr;                  // FileAst::lexError of the file being parsed
+    std::size_t lexReported_ = ~std::size_t(0);  // the last Error token reported
     std::deque<Token> toks_;        // tokens base_ … base_ + size - 1 (global indices)
     std::deque<Comment> comments_;  // comments cbase_ …
     std::size_t base_ = 0, cbase_ = 0;
@@ -739,14 +764,14 @@ class SyntaxParser {
 
 bool ParseFileAst(const std::string &text, const std::string &fileName, Diagnostics &diag, FileAst &out,
                   const std::vector<Diagnostic> &notes, const std::function<void(Stmt &)> &onStmt) {
-    SyntaxParser p(text, 1, 1, fileName, diag, notes);
+    SyntaxParser p(text, 1, 1, fileName, diag, notes, /*resync=*/true);
     return p.ParseFile(out, onStmt);
 }
 
 bool ParseExprAst(const std::string &text, const std::string &fileName, int line, int col, Diagnostics &diag,
                   Expr &out) {
     std::vector<Diagnostic> noNotes;
-    SyntaxParser p(text, line, col, fileName, diag, noNotes);
+    SyntaxParser p(text, line, col, fileName, diag, noNotes, /*resync=*/false);
     if (text.find_first_not_of(" \t\r\n") == std::string::npos) {
         diag.Error(FileLoc{fileName, line, col, 1}, "empty value");
         return false;

@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // The diagnostics corpus: every tests/parser/diagnostics/*.wscene is a malformed scene annotated
 // with the diagnostics it must produce (format: tests/parser/diagnostics/README.md). Each file is
-// parsed in-process (and, for `# stage: build`, built with BuildContext); the reported errors and
-// warnings must be exactly the expected ones, at the expected line:col, with the expected text.
+// parsed in-process and what was read cleanly is built with BuildContext (or, for `# stage:
+// scene`, with Scene::Build), as `phasor check` does in one run; the reported errors and warnings
+// must be exactly the expected ones, at the expected line:col, with the expected text.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -11,6 +12,7 @@
 #include <sstream>
 
 #include "core/registry.h"
+#include "core/scene.h"
 #include "parser/parser.h"
 
 namespace phasor {
@@ -32,8 +34,8 @@ struct Expectation {
 struct CorpusCase {
     std::vector<Expectation> expect;
     DefineList defines;
-    bool strict = false;
-    bool build = false;
+    bool strict = false, permissive = false;
+    enum class Stage { Any, Build, Scene } stage = Stage::Any;  // Build, Scene: it parses cleanly
 };
 
 std::string Normal(const fs::path &p) { return p.lexically_normal().generic_string(); }
@@ -74,8 +76,12 @@ CorpusCase ReadCase(const fs::path &file, std::string *error) {
                 c.defines.push_back(*kv);
         } else if (line == "# strict") {
             c.strict = true;
+        } else if (line == "# permissive") {
+            c.permissive = true;
         } else if (line == "# stage: build") {
-            c.build = true;
+            c.stage = CorpusCase::Stage::Build;
+        } else if (line == "# stage: scene") {
+            c.stage = CorpusCase::Stage::Scene;
         } else if (line.find("expect") != std::string::npos || line.find("define:") != std::string::npos) {
             *error = "malformed annotation: " + line;
         }
@@ -110,13 +116,19 @@ TEST_P(DiagnosticsCorpus, ReportsExactlyTheExpectedDiagnostics) {
     ASSERT_TRUE(anyError) << "a corpus file must expect at least one error";
 
     Diagnostics diag(c.strict);
-    std::optional<SceneDesc> desc = ParseSceneFile(Normal(file), c.defines, diag);
-    if (c.build) {
-        ASSERT_TRUE(desc) << "a '# stage: build' case must parse cleanly";
+    diag.SetPermissive(c.permissive);
+    ParseOptions options;
+    options.defines = c.defines;
+    options.partial = true;
+    std::optional<SceneDesc> desc = ParseSceneFile(Normal(file), options, diag);
+    if (c.stage != CorpusCase::Stage::Any) {
+        ASSERT_TRUE(desc && !desc->incomplete) << "a '# stage:' case must parse cleanly";
+    }
+    if (c.stage == CorpusCase::Stage::Scene) {
+        EXPECT_FALSE(Scene::Build(*desc, diag));
+    } else if (desc) {
         BuildContext ctx(*desc, diag);
         ctx.BuildAll();
-    } else {
-        EXPECT_FALSE(desc) << "parsing must fail";
     }
     std::ostringstream printed;
     diag.Print(printed);

@@ -304,15 +304,56 @@ TEST(Parser, OverrideWithWrongDimensionCitesTheDefine) {
     EXPECT_FALSE(bare.desc);
 }
 
-TEST(Parser, UnusedOverrideIsAWarningOrStrictError) {
+TEST(Parser, UnusedOverrideIsAnErrorOrAPermissiveWarning) {
     const std::string src = "wscene 1\nDefine width = 1 m\nShape \"s\" {}\n";
     Parsed p = Parse(src, {{"widt", "2 m"}});
-    ASSERT_TRUE(p.desc) << p.Errors();
-    EXPECT_EQ(p.diag->WarningCount(), 1u);
+    EXPECT_FALSE(p.desc);
+    EXPECT_EQ(p.diag->ErrorCount(), 1u);
     EXPECT_NE(p.Errors().find("did you mean 'width'?"), std::string::npos) << p.Errors();
-    Parsed s = Parse(src, {{"widt", "2 m"}}, {}, /*strict=*/true);
-    EXPECT_FALSE(s.desc);
-    EXPECT_EQ(s.diag->ErrorCount(), 1u);
+    Diagnostics permissive;
+    permissive.SetPermissive(true);
+    ParseOptions o;
+    o.defines = {{"widt", "2 m"}};
+    EXPECT_TRUE(ParseSceneString(src, "main.wscene", o, permissive));
+    EXPECT_EQ(permissive.WarningCount(), 1u);
+    EXPECT_EQ(permissive.ErrorCount(), 0u);
+}
+
+// Runaway input: the number of Include expansions and the scene's total text are capped; one
+// error at the Include that crossed the limit names the chain, and the rest is skipped.
+TEST(Parser, IncludeLimits) {
+    std::map<std::string, std::string> bomb;
+    for (int i = 0; i < 20; ++i)
+        bomb["f" + std::to_string(i) + ".wscene"] = "wscene 1\nInclude \"f" + std::to_string(i + 1) +
+                                                     ".wscene\"\nInclude \"f" + std::to_string(i + 1) + ".wscene\"\n";
+    bomb["f20.wscene"] = "wscene 1\n";
+    auto parse = [&](const std::string &src, std::size_t maxIncludes, std::size_t maxBytes) {
+        Parsed r;
+        r.diag = std::make_unique<Diagnostics>();
+        ParseOptions o;
+        o.readFile = [&](const std::string &path) -> std::optional<std::string> {
+            auto it = bomb.find(path);
+            return it == bomb.end() ? std::nullopt : std::optional<std::string>(it->second);
+        };
+        o.maxIncludes = maxIncludes;
+        o.maxSceneBytes = maxBytes;
+        r.desc = ParseSceneString(src, "main.wscene", o, *r.diag);
+        return r;
+    };
+    const std::string top = "wscene 1\nInclude \"f0.wscene\"\n";
+    Parsed n = parse(top, 1000, 1u << 30);
+    EXPECT_FALSE(n.desc);
+    ASSERT_EQ(n.diag->ErrorCount(), 1u) << n.Errors();
+    EXPECT_NE(n.Errors().find("too many Include expansions (more than 1000"), std::string::npos) << n.Errors();
+    EXPECT_NE(n.Errors().find("main.wscene → f0.wscene → f1.wscene → f2.wscene"), std::string::npos) << n.Errors();
+
+    Parsed t = parse(top, 1u << 30, 2000);
+    ASSERT_EQ(t.diag->ErrorCount(), 1u) << t.Errors();
+    EXPECT_NE(t.Errors().find("would exceed the limit of 2000 bytes"), std::string::npos) << t.Errors();
+    Parsed big = parse(std::string(3000, '#'), 1u << 30, 2000);
+    EXPECT_NE(big.Errors().find("main.wscene: cannot read scene file 'main.wscene': it is larger than the limit"),
+              std::string::npos)
+        << big.Errors();
 }
 
 TEST(Parser, SplitDefineArgument) {

@@ -117,9 +117,17 @@ struct FamilyOps {
     const char *keyword;
     const char *family;
     const Schema *(*schema)(const std::string &);
-    std::shared_ptr<void> (*create)(const std::string &, const ParamDict &, BuildContext &);
+    // Creates plug-in `type` and gives the object (if its interface has a `name`) `displayName`.
+    std::shared_ptr<void> (*create)(const std::string &type, const ParamDict &, BuildContext &,
+                                    const std::string &displayName);
     std::vector<std::string> (*names)();
 };
+
+// `type@file:line`, the name of something unnamed in messages.
+std::string AnonymousName(const std::string &type, const FileLoc &loc) {
+    if (!loc.Known()) return type;
+    return type + "@" + std::filesystem::path(loc.file).filename().string() + ":" + std::to_string(loc.line);
+}
 
 template <typename T>
 FamilyOps Ops(const char *keyword) {
@@ -129,8 +137,12 @@ FamilyOps Ops(const char *keyword) {
             auto *e = Registry<T>::Find(n);
             return e ? &e->schema() : nullptr;
         },
-        [](const std::string &n, const ParamDict &d, BuildContext &c) -> std::shared_ptr<void> {
-            return std::shared_ptr<T>(Registry<T>::Find(n)->create(d, c));
+        [](const std::string &n, const ParamDict &d, BuildContext &c,
+           const std::string &displayName) -> std::shared_ptr<void> {
+            std::shared_ptr<T> obj(Registry<T>::Find(n)->create(d, c));
+            if constexpr (requires { obj->name = displayName; })
+                if (obj) obj->name = displayName;
+            return obj;
         },
         [] { return Registry<T>::Names(); }};
 }
@@ -158,6 +170,8 @@ std::vector<FamilyInfo> AllFamilies() {
             Info<Shape>("Shape"),       Info<Light>("Light"),       Info<Detector>("Detector"),
             Info<Integrator>("Integrator")};
 }
+
+std::string SceneEntity::DisplayName() const { return name.empty() ? AnonymousName(type, loc) : name; }
 
 const Schema *FindSchema(const std::string &family, const std::string &name) {
     const FamilyOps *ops = FindOps(family);
@@ -368,8 +382,8 @@ std::shared_ptr<void> BuildContext::CreateFromCall(const Value &call, const std:
     }
     std::size_t errors = diag_.ErrorCount();
     if (!dict->Validate(*schema, diag_) || diag_.ErrorCount() > errors)
-        throw Error(call.loc, "invalid arguments to '" + call.text + "'");
-    std::shared_ptr<void> obj = ops->create(call.text, *dict, *this);
+        throw Error::Consequence(call.loc);  // the arguments' errors were reported
+    std::shared_ptr<void> obj = ops->create(call.text, *dict, *this, AnonymousName(call.text, call.loc));
     dict->ReportUnused(diag_, family + " '" + call.text + "'");
     callDicts_.push_back(std::move(dict));
     return obj;
@@ -378,6 +392,8 @@ std::shared_ptr<void> BuildContext::CreateFromCall(const Value &call, const std:
 std::shared_ptr<void> BuildContext::Resolve(const Value &ref, const std::string &family) {
     if (ref.kind != Value::Kind::Ref) throw Error(ref.loc, "expected a reference (@name); got " + ref.DescribeKind());
     auto it = byName_.find(ref.text);
+    if (it == byName_.end() && (desc_.namesLost || desc_.unavailable.count(ref.text)))
+        throw Error::Consequence(ref.loc);
     if (it == byName_.end()) {
         std::vector<std::string> names;
         for (const auto &[n, i] : byName_) names.push_back(n);
@@ -391,7 +407,7 @@ std::shared_ptr<void> BuildContext::Resolve(const Value &ref, const std::string 
         throw Error(ref.loc, "'@" + ref.text + "' is " + (ops ? std::string("a ") + ops->family : e.keyword) +
                                  ", but a " + family + " is expected");
     std::shared_ptr<void> obj = BuildEntity(it->second);
-    if (!obj) throw Error(ref.loc, "'@" + ref.text + "' could not be created (see the error above)");
+    if (!obj) throw Error::Consequence(ref.loc);  // its error was reported
     return obj;
 }
 
@@ -402,8 +418,8 @@ std::shared_ptr<void> BuildContext::BuildEntity(std::size_t index) {
     state_[index] = 1;
     std::shared_ptr<void> obj;
     const FamilyOps *ops = FindOps(e.keyword);
-    std::string what = std::string(ops ? ops->family : e.keyword) + " \"" + e.type + "\"" +
-                       (e.name.empty() ? "" : " '" + e.name + "'");
+    std::string what = std::string(ops ? ops->family : e.keyword) + " '" + e.DisplayName() + "'" +
+                       (e.name.empty() ? "" : " (" + e.type + ")");
     try {
         if (!ops) throw Error(e.loc, "unknown statement '" + e.keyword + "'");
         const Schema *schema = ops->schema(e.type);
@@ -414,7 +430,7 @@ std::shared_ptr<void> BuildContext::BuildEntity(std::size_t index) {
                                  (s.empty() ? "" : "; did you mean \"" + s + "\"?"));
         }
         if (e.params.Validate(*schema, diag_)) {
-            obj = ops->create(e.type, e.params, *this);
+            obj = ops->create(e.type, e.params, *this, e.DisplayName());
             e.params.ReportUnused(diag_, what);
         }
     } catch (const Error &err) {
@@ -431,8 +447,7 @@ std::shared_ptr<void> BuildContext::BuildEntity(std::size_t index) {
 void BuildContext::BuildAll() {
     for (std::size_t i = 0; i < desc_.entities.size(); ++i) {
         if (desc_.entities[i].keyword == "Render") continue;
-        if (diag_.TooManyErrors()) return;
-        BuildEntity(i);
+        BuildEntity(i);  // (past the error limit too: the count of errors stays true)
     }
 }
 

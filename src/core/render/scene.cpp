@@ -20,9 +20,11 @@ const Schema &RenderSchema() {
     return s;
 }
 
+// The object Render names by `param`, else the only one of its family. Counting the family's
+// objects means something only in a scene read without errors (`whole`).
 template <typename T>
 std::shared_ptr<T> PickOne(BuildContext &ctx, const ParamDict *render, const std::string &param,
-                           const std::string &what, Diagnostics &diag, const FileLoc &sceneLoc) {
+                           const std::string &what, Diagnostics &diag, const FileLoc &sceneLoc, bool whole) {
     if (render && render->Has(param)) {
         try {
             return ctx.GetRef<T>(*render, param);
@@ -31,6 +33,7 @@ std::shared_ptr<T> PickOne(BuildContext &ctx, const ParamDict *render, const std
             return nullptr;
         }
     }
+    if (!whole) return nullptr;
     auto all = ctx.All<T>();
     if (all.size() == 1) return all[0];
     if (all.size() > 1) {
@@ -58,16 +61,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     FileLoc sceneLoc{desc.sourceFile, 0, 0, 1};
     scene->ctx_ = std::make_unique<BuildContext>(desc, diag);
     BuildContext &ctx = *scene->ctx_;
-    ctx.BuildAll();
-    // Objects know their scene name (or, if unnamed, their plug-in type) for messages and output.
-    auto nameAll = [&](auto objects) {
-        for (auto &o : objects)
-            if (const SceneEntity *e = ctx.EntityOf(o.get())) o->name = e->name.empty() ? e->type : e->name;
-    };
-    nameAll(ctx.All<Shape>());
-    nameAll(ctx.All<Light>());
-    nameAll(ctx.All<Detector>());
-    nameAll(ctx.All<Integrator>());
+    ctx.BuildAll();  // (objects are named by their entity's DisplayName)
 
     // Render block.
     const SceneEntity *renderEntity = ctx.RenderEntity();
@@ -75,7 +69,8 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     int renderCount = 0;
     for (const SceneEntity &e : desc.entities)
         if (e.keyword == "Render" && ++renderCount == 2) diag.Error(e.loc, "only one Render block is allowed");
-    if (render && render->Validate(RenderSchema(), diag)) {
+    const bool renderValid = render && render->Validate(RenderSchema(), diag);
+    if (renderValid) {
         scene->settings_.spp = render->GetInt("spp");
         scene->settings_.seed = (uint64_t)render->GetNumber("seed");
         scene->settings_.sampler = render->GetString("sampler");
@@ -83,7 +78,8 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
         scene->settings_.loc = render->EntityLoc();
     }
 
-    scene->detector_ = PickOne<Detector>(ctx, render, "detector", "detector", diag, sceneLoc);
+    const bool whole = !desc.incomplete;
+    scene->detector_ = PickOne<Detector>(ctx, render, "detector", "detector", diag, sceneLoc, whole);
     if (!scene->detector_ && ctx.All<Detector>().empty() && !diag.HasErrors())
         diag.Error(render ? render->EntityLoc() : sceneLoc, "the scene has no detector (add e.g. Detector \"perspective\")");
 
@@ -116,7 +112,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
         }
     } else {
         if ((render && render->Has("integrator")) || ctx.All<Integrator>().size() > 1)
-            scene->integrator_ = PickOne<Integrator>(ctx, render, "integrator", "integrator", diag, sceneLoc);
+            scene->integrator_ = PickOne<Integrator>(ctx, render, "integrator", "integrator", diag, sceneLoc, whole);
         else if (ctx.All<Integrator>().size() == 1)
             scene->integrator_ = ctx.All<Integrator>()[0];
         else if (auto *entry = Registry<Integrator>::Find("ray")) {
@@ -126,8 +122,8 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
             scene->integrator_->name = "ray";
         }
     }
-    if (render) render->ReportUnused(diag, "Render");
-    if (diag.HasErrors() || !scene->detector_ || !scene->integrator_) return nullptr;
+    if (renderValid) render->ReportUnused(diag, "Render");  // (after an error, nothing was read)
+    if (!whole || diag.HasErrors() || !scene->detector_ || !scene->integrator_) return nullptr;
 
     // Geometry and lights.
     scene->shapes_ = ctx.All<Shape>();

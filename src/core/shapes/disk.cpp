@@ -11,6 +11,9 @@ class DiskShape final : public AnalyticDisk {
   public:
     using AnalyticDisk::AnalyticDisk;
 
+    // Starts with the scene type, as the mesh shapes' do (messages take the first word).
+    std::string ToString() const override { return "disk " + AnalyticDisk::ToString(); }
+
     static const Schema &GetSchema() {
         static const Schema s{"shape",
                               "disk",

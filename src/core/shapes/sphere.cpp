@@ -12,6 +12,9 @@ class SphereShape final : public AnalyticSphere {
   public:
     explicit SphereShape(const AnalyticSphere &s) : AnalyticSphere(s) {}
 
+    // Starts with the scene type, as the mesh shapes' do (messages take the first word).
+    std::string ToString() const override { return "sphere " + AnalyticSphere::ToString(); }
+
     static const Schema &GetSchema() {
         static const Schema s{"shape",
                               "sphere",

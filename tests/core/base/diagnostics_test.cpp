@@ -50,9 +50,34 @@ TEST(Diagnostics, StrictTurnsWarningsIntoErrorsAndDuplicatesAreReportedOnce) {
 TEST(Diagnostics, StopsStoringAfterTheLimitButKeepsCounting) {
     Diagnostics d(false, 3);
     for (int i = 0; i < 5; ++i) d.Error(FileLoc{"a", i + 1, 1, 1}, "e");
+    d.Error(FileLoc{"a", 5, 1, 1}, "e");  // a duplicate beyond the limit is not counted
+    for (int i = 0; i < 4; ++i) d.Warning(FileLoc{"a", i + 1, 1, 1}, "w");
     EXPECT_EQ(d.ErrorCount(), 5u);
-    EXPECT_EQ(d.All().size(), 3u);
+    EXPECT_EQ(d.WarningCount(), 4u);
+    EXPECT_EQ(d.All().size(), 6u);
     EXPECT_TRUE(d.TooManyErrors());
+    std::ostringstream os;
+    d.Print(os);
+    EXPECT_NE(os.str().find("\n2 more errors not shown\n1 more warning not shown\n"), std::string::npos) << os.str();
+}
+
+TEST(Diagnostics, UnknownNamesAreErrorsUnlessPermissive) {
+    Diagnostics d;
+    d.UnknownName(FileLoc{"a", 1, 1, 1}, "unknown parameter 'x'");
+    EXPECT_EQ(d.ErrorCount(), 1u);
+    Diagnostics permissive;
+    permissive.SetPermissive(true);
+    permissive.UnknownName(FileLoc{"a", 1, 1, 1}, "unknown parameter 'x'");
+    EXPECT_EQ(permissive.ErrorCount(), 0u);
+    EXPECT_EQ(permissive.WarningCount(), 1u);
+}
+
+TEST(Diagnostics, ConsequencesOfReportedErrorsAreNotReported) {
+    Diagnostics d;
+    d.Report(Error::Consequence(FileLoc{"a", 1, 1, 1}));
+    EXPECT_EQ(d.ErrorCount(), 0u);
+    d.Report(Error(FileLoc{"a", 1, 1, 1}, "bad"));
+    EXPECT_EQ(d.ErrorCount(), 1u);
 }
 
 }  // namespace

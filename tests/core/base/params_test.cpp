@@ -53,9 +53,22 @@ TEST(ParamDict, ValidatesKindDimensionRangeAndRequired) {
     }
 }
 
-TEST(ParamDict, UnknownParameterWarnsWithSuggestionAndUnusedIsReported) {
+TEST(ParamDict, UnknownParameterIsAnErrorWithSuggestion) {
     Schema s = TestSchema();
     Diagnostics d;
+    ParamDict p;
+    p.Add("radius", Value::Number(1, Dim::Length()));
+    p.Add("radus", Value::Number(1, Dim::Length()));
+    EXPECT_FALSE(p.Validate(s, d));
+    ASSERT_EQ(d.ErrorCount(), 1u);
+    EXPECT_NE(d.All()[0].message.find("unknown parameter 'radus'"), std::string::npos);
+    EXPECT_NE(d.All()[0].message.find("did you mean 'radius'?"), std::string::npos);
+}
+
+TEST(ParamDict, PermissiveUnknownParameterWarnsAndUnusedIsReported) {
+    Schema s = TestSchema();
+    Diagnostics d;
+    d.SetPermissive(true);
     ParamDict p;
     p.Add("radius", Value::Number(1, Dim::Length()));
     p.Add("radus", Value::Number(1, Dim::Length()));
