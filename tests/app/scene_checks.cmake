@@ -43,8 +43,5 @@ set_tests_properties(cli.one_row_png_is_a_plot PROPERTIES LABELS unit)
 # A render far beyond the usual is announced before it starts: a 1 pm wavelength makes the
 # double slit's 4096 spp take many minutes; the warning must appear within seconds (the test then
 # stops the render).
-add_test(NAME cli.work_estimate_warns_promptly
-  COMMAND sh -c "timeout 20 $<TARGET_FILE:phasor_app> render '${_ds}' -D lambda=1pm -o '${_out}/pm.exr' \
-2>'${_out}/pm.log'; grep -q 'warning: this render would take about .*far beyond the usual: lower the spp' '${_out}/pm.log' \
-|| { cat '${_out}/pm.log'; exit 1; }")
-set_tests_properties(cli.work_estimate_warns_promptly PROPERTIES LABELS unit)
+phasor_cli_test(work_estimate_warns_promptly ${CMAKE_CURRENT_SOURCE_DIR}/work_estimate.sh $<TARGET_FILE:phasor_app>
+  ${_ds} ${_out})
