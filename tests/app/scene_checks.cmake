@@ -44,4 +44,6 @@ set_tests_properties(cli.one_row_png_is_a_plot PROPERTIES LABELS unit)
 # double slit's 4096 spp take many minutes; the warning must appear within seconds (the test then
 # stops the render).
 phasor_cli_test(work_estimate_warns_promptly ${CMAKE_CURRENT_SOURCE_DIR}/work_estimate.sh $<TARGET_FILE:phasor_app>
-  ${_ds} ${_out})
+  ${_ds} ${_out} grt_1pm "lower the spp" -D lambda=1pm)
+phasor_cli_test(work_estimate_rs ${CMAKE_CURRENT_SOURCE_DIR}/work_estimate.sh $<TARGET_FILE:phasor_app>
+  ${_ds} ${_out} rs_20pm "a longer wavelength" --integrator rs -D lambda=20pm)

@@ -1,14 +1,16 @@
 #!/usr/bin/env bash
-# work_estimate.sh PHASOR SCENE OUTDIR — a render far beyond the usual (the double slit at a 1 pm
-# wavelength: many minutes) must announce itself within 20 s; the render is then stopped.
+# work_estimate.sh PHASOR SCENE OUTDIR NAME FIX [RENDER ARGS...] — a render far beyond the usual
+# (the double slit at a picometre wavelength: minutes with grt, days with rs) must announce itself
+# within 20 s with a warning containing FIX; the render is then stopped.
 set -u
-phasor=$1 scene=$2 out=$3
-log="$out/work_estimate.log"
+phasor=$1 scene=$2 out=$3 name=$4 fix=$5
+shift 5
+log="$out/$name.log"
 rm -f "$log"
-"$phasor" render "$scene" -D lambda=1pm -o "$out/work_estimate.exr" 2>"$log" &
+"$phasor" render "$scene" "$@" -o "$out/$name.exr" 2>"$log" &
 pid=$!
 for _ in $(seq 200); do
-  if grep -q 'warning: this render would take about .*far beyond the usual: lower the spp' "$log"; then
+  if grep -q "warning: this render would take about .*far beyond the usual: .*$fix" "$log"; then
     kill "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
     exit 0
   fi
