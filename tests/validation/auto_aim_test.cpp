@@ -47,5 +47,23 @@ TEST_F(AutoAim, DoubleSlitWithoutAimMatchesTheExplicitAim) {
     EXPECT_GT(eCone, 0.1);
 }
 
+// A light on the sensor's side of the plate (a point source behind the sensor): the plate is not
+// aimed at automatically, and the scene says why and how to aim explicitly.
+TEST_F(AutoAim, LightOnTheSensorSideWarnsInstead) {
+    Diagnostics diag;
+    auto desc = ParseSceneFile(SceneWith("", "no_aim.wscene"), {{"source", "point"}, {"distance", "-50mm"}}, diag);
+    ASSERT_TRUE(desc);
+    auto scene = Scene::Build(*desc, diag);
+    std::ostringstream os;
+    diag.Print(os);
+    ASSERT_TRUE(scene) << os.str();
+    EXPECT_EQ(diag.WarningCount(), 1u) << os.str();
+    EXPECT_NE(os.str().find("sensor 'sensor' has no 'aim' and samples its whole acceptance cone (light 'pinhole' is "
+                            "not beyond 'plate')"),
+              std::string::npos)
+        << os.str();
+    EXPECT_NE(os.str().find("add aim = @plate"), std::string::npos) << os.str();
+}
+
 }  // namespace
 }  // namespace phasor::test
