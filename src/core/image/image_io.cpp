@@ -225,7 +225,7 @@ void WriteFalseColorPng(const std::string &path, const Image &img, const std::st
     const double step = rangeDb >= 20 ? 10 : 5;
     for (double db = 0; db <= rangeDb * (1 + 1e-9); db += step) {
         char label[32];
-        std::snprintf(label, sizeof label, "%g dB", -db);
+        std::snprintf(label, sizeof label, "%g dB", db > 0 ? -db : 0.0);  // "0 dB", not "-0 dB"
         ticks.push_back(ColourBarTick{1 - db / rangeDb, label});
     }
     char title[96];
