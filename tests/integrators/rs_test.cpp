@@ -646,7 +646,9 @@ std::unique_ptr<Scene> BuildDoubleSlit(const Edits &edits, std::string *log = nu
     std::ostringstream os;
     diag.Print(os);
     if (log) *log = os.str();
-    if (expectBuilt) EXPECT_TRUE(scene) << os.str();
+    if (expectBuilt) {
+        EXPECT_TRUE(scene) << os.str();
+    }
     return scene;
 }
 
