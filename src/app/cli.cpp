@@ -137,7 +137,12 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
             break;
         case Command::Describe:
             if (o.markdown) break;
-            if (positional.size() != 2) { err = "'describe' expects FAMILY NAME"; return false; }
+            // `describe NAME` finds a name unique across families; `describe FAMILY NAME` any.
+            if (positional.size() == 1) {
+                o.name = positional[0];
+                break;
+            }
+            if (positional.size() != 2) { err = "'describe' expects [FAMILY] NAME"; return false; }
             o.family = positional[0];
             o.name = positional[1];
             break;

@@ -2,6 +2,7 @@
 // phasor — the command-line program: render, check, format, list, describe, profile.
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <cerrno>
@@ -62,7 +63,7 @@ const char *kUsage =
     "  format SCENE        print SCENE in canonical form\n"
     "  list [FAMILY]       list plug-ins (families: spectrum texture material shape light\n"
     "                      detector integrator)\n"
-    "  describe FAMILY NAME   print a plug-in's parameters\n"
+    "  describe [FAMILY] NAME print a plug-in's parameters (FAMILY only if NAME is in several)\n"
     "  describe --markdown    print every plug-in's parameters as Markdown (docs/plugins.md)\n"
     "  profile IMAGE.exr [IMAGE.exr ...] [--row N] [--channel NAME] [--csv FILE|-] [--plot FILE.png]\n"
     "          [--label NAME ...] [--x0 M --pitch M] [--diff-scale N] [--title TEXT]\n"
@@ -157,6 +158,19 @@ int Render(const CliOptions &o) {
     const Detector &det = scene->GetDetector();
     const Integrator &integrator = scene->GetIntegrator();
     const bool deterministic = integrator.Deterministic();
+    // Refuse a resolution the machine cannot hold before allocating anything (film.h).
+    if (const double need = Film::MemoryNeeded(det.Width(), det.Height()), avail = AvailableMemory(); need > avail) {
+        char buf[256];
+        std::snprintf(buf, sizeof buf,
+                      "detector '%s': %dx%d pixels need about %.3g GB of memory (%.0f bytes per pixel) but only "
+                      "%.3g GB are available; lower its 'resolution' (or raise its 'pitch')",
+                      det.name.c_str(), det.Width(), det.Height(), need / 1e9, need / det.Width() / det.Height(),
+                      avail / 1e9);
+        Diagnostics located;
+        located.Report(Error(scene->Where(&det), buf));
+        located.Print(std::cerr);
+        return 1;
+    }
     Film film(det.Width(), det.Height(), det.Response());
     bool bar = !o.quiet && isatty(2);
     auto start = std::chrono::steady_clock::now();
@@ -176,6 +190,7 @@ int Render(const CliOptions &o) {
                          FormatDuration(frac > 0 ? t / frac - t : 0).c_str(), rate);
             std::fflush(stderr);
         };
+    opt.warn = [&](const std::string &w) { std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n"; };
     // The stop handlers stay installed until the outputs are written, so that a signal during
     // the writes cannot leave a temporary file behind.
     gAnnounce = !o.quiet;
@@ -228,7 +243,17 @@ int Render(const CliOptions &o) {
     try {
         OutputFiles files;
         WriteExr(files, exr.string(), img);
-        if (det.Response().GetKind() == SensorResponse::Kind::Radiometric)
+        if (img.height == 1) {
+            // A one-row image as a PNG would be N×1 pixels: stage `phasor profile`'s line plot of
+            // its intensity instead (x in metres from the metadata for sensor planes).
+            CliOptions plot;
+            plot.quiet = true;
+            plot.profile.inputs = {exr.string()};
+            plot.profile.plot = png.string();
+            plot.profile.labels = {integrator.name};
+            plot.profile.title = std::filesystem::path(o.scene).filename().string() + ": intensity";
+            if (RunProfile(plot, {&img}, &files) != 0) return 1;
+        } else if (det.Response().GetKind() == SensorResponse::Kind::Radiometric)
             WriteFalseColorPng(files, png.string(), img, "intensity");
         else
             WritePng(files, png.string(), img);
@@ -256,6 +281,8 @@ int Render(const CliOptions &o) {
                       << " path vertices scattered specularly after an aperture; delta lights (plane "
                          "waves, point, spot, directional, laser beams) are not reached through such a "
                          "surface, so their light behind it is missing (theory §9 item 5)\n";
+        if (!st.cancelled && std::all_of(img.data.begin(), img.data.end(), [](float v) { return v == 0; }))
+            std::cerr << "warning: the image is black: " << scene->DarkImageCause() << "\n";
         if (st.invalidSamples > 0)
             std::cerr << "warning: " << st.invalidSamples
                       << " samples were NaN, negative or beyond the float range of the image (|v| > 3.4e38) "
@@ -325,7 +352,36 @@ int Describe(const CliOptions &o) {
             std::cout << "## " << f.keyword << "\n\n";
             for (const Schema *s : f.schemas) std::cout << s->Markdown();
         }
+        std::cout << "## Render\n\n";
+        std::cout << RenderSchema().Markdown();
         return 0;
+    }
+    if (o.family.empty() && (o.name == "Render" || o.name == "render")) {  // the Render block
+        std::cout << RenderSchema().Describe();
+        return 0;
+    }
+    if (o.family.empty()) {  // `describe NAME`: the one plug-in of that name in any family
+        std::vector<const Schema *> found;
+        std::vector<std::string> all;
+        for (const FamilyInfo &f : AllFamilies())
+            for (const Schema *x : f.schemas) {
+                if (x->name == o.name) found.push_back(x);
+                all.push_back(x->name);
+            }
+        if (found.size() == 1) {
+            std::cout << found[0]->Describe();
+            return 0;
+        }
+        if (found.empty()) {
+            const std::string sug = Suggest(o.name, all);
+            std::cerr << "error: no plug-in named '" << o.name << "'"
+                      << (sug.empty() ? "" : "; did you mean '" + sug + "'?") << " (see 'phasor list')\n";
+        } else {
+            std::cerr << "error: '" << o.name << "' names a plug-in in several families; say which:";
+            for (const Schema *x : found) std::cerr << " 'phasor describe " << x->family << " " << o.name << "'";
+            std::cerr << "\n";
+        }
+        return 1;
     }
     const std::string family = ResolveFamily(o.family);
     if (family.empty()) return 1;

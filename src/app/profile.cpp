@@ -94,7 +94,7 @@ std::pair<double, std::string> LengthUnit(double maxAbs) {
 
 }  // namespace
 
-int RunProfile(const CliOptions &o) {
+int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded, OutputFiles *into) {
     const CliOptions::ProfileOptions &p = o.profile;
     std::vector<Input> inputs;
     bool havePositions = p.hasX0;
@@ -103,7 +103,11 @@ int RunProfile(const CliOptions &o) {
         for (const std::string &path : p.inputs) {
             Input in;
             in.path = path;
-            in.img = ReadImage(path);  // throws "cannot read '<path>': …"
+            const std::size_t index = inputs.size();
+            if (index < preloaded.size() && preloaded[index])
+                in.img = *preloaded[index];
+            else
+                in.img = ReadImage(path);  // throws "cannot read '<path>': …"
             const int c = in.img.ChannelIndex(p.channel);
             if (c < 0) {
                 std::string names;
@@ -293,7 +297,8 @@ int RunProfile(const CliOptions &o) {
 
     // Write the CSV and the plot all or nothing (core/output_file.h).
     try {
-        OutputFiles files;
+        OutputFiles own;
+        OutputFiles &files = into ? *into : own;
         if (!csvToStdout && !p.csv.empty()) {
             MakeParentDirectory(p.csv);
             files.Stage(p.csv, csv.str());
@@ -303,6 +308,7 @@ int RunProfile(const CliOptions &o) {
             PlotResult r = WritePlotPng(files, p.plot, series, plot);
             if (!r.textDrawn) std::cerr << "warning: " << r.textProblem << "; the plot has no text\n";
         }
+        if (into) return 0;  // the caller commits (and reports) the files
         files.Commit();
     } catch (const Error &e) {
         std::cerr << "error: " << e.Message() << "\n";

@@ -15,6 +15,8 @@
 
 namespace phasor {
 
+class BuildContext;
+
 struct DetectorSample {
     Ray ray;             // world space, unit direction, leaving the detector into the scene
     double weight = 1;   // importance weight (pixel sensitivity / pdf)
@@ -56,6 +58,8 @@ SensorResponse ResponseFromParams(const ParamDict &d);
 /// `extra`; and the validated resolution they give.
 std::vector<ParamSpec> CameraParams(std::vector<ParamSpec> extra = {});
 std::pair<int, int> CameraResolution(const ParamDict &d);
+/// A camera's response with its `white_balance` applied (CameraParams).
+SensorResponse CameraResponse(const ParamDict &d, BuildContext &ctx);
 
 /// Geometry of a sensor plane (`virtual_plane`) for integrators that compute the field on it
 /// directly (`rs`): pixel (i, j) has its centre at origin + s·x_i + t·y_j with
@@ -73,6 +77,10 @@ struct SensorPlaneGeometry {
         return Vec2(-0.5 * width + (i + 0.5) * pitchX, 0.5 * height - (j + 0.5) * pitchY);
     }
 };
+
+/// The points whose directions bound a sensor's aimed region (D4b): the corners of an aperture
+/// plate's openings (the plate is far larger than what diffracts), else of the shape's bounds.
+std::vector<Vec3> AimCorners(const Shape &aim);
 
 class Detector {
   public:
@@ -100,6 +108,11 @@ class Detector {
     virtual SampledSpectrum IntegrateIncidence(const DetectorGrSample &s, const GrIncidence &inc) const;
     /// Sensor planes describe themselves for field-based integrators; nullptr for cameras.
     virtual const SensorPlaneGeometry *SensorPlane() const { return nullptr; }
+    /// Sensor planes (D4b): the shape whose directions are sampled (nullptr: the whole acceptance
+    /// cone); whether the scene may choose one (no `aim`, auto_aim on); and setting it.
+    virtual const Shape *AimTarget() const { return nullptr; }
+    virtual bool MayAutoAim() const { return false; }
+    virtual void AimAt(std::shared_ptr<Shape> shape) { (void)shape; }
 
     std::string name;
 

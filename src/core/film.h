@@ -48,6 +48,10 @@ class Film {
     /// is beyond the float range (> 3.4e38; such a pixel is written as 0, never as Inf).
     long long InvalidSampleCount() const;
 
+    /// Bytes a render of width × height holds at its peak (film, resolved image, the copies the
+    /// EXR and PNG writers make, an integrator's per-pixel buffers); film_memory.cpp.
+    static double MemoryNeeded(int width, int height);
+
     /// Final image: R, G, B (linear Rec.709 for CIE sensors; equal to intensity for radiometric
     /// ones), intensity, variance (the sample variance of the *mean* of `intensity`: s²/n).
     /// Every value is finite: pixels that would overflow float are 0 (see InvalidSampleCount).
@@ -76,5 +80,10 @@ class Film {
     SensorResponse response_;
     std::vector<Pixel> pixels_;
 };
+
+/// Memory this process may still allocate [bytes]: MemAvailable from /proc/meminfo (else free
+/// physical pages from sysconf), capped by the environment variable PHASOR_MEMORY_LIMIT (bytes,
+/// or with a K, M or G suffix) when it is set. film_memory.cpp.
+double AvailableMemory();
 
 }  // namespace phasor

@@ -28,7 +28,15 @@ struct RenderOptions {
     /// samples per pixel after each pass, deterministic ones (Integrator::Deterministic) their
     /// own steps (rs: batches of field nodes). May be empty.
     std::function<void(int, int)> progress;
+    /// Called from the calling thread with a warning found while rendering (e.g. a work estimate
+    /// far beyond the usual, before the first pass); may be empty.
+    std::function<void(const std::string &)> warn;
 };
+
+/// The estimated run time [s] above which integrators warn before rendering (WorkWarning).
+inline constexpr double LongRenderSeconds = 300;
+/// "about 3h12m (…what…), far beyond the usual: …fix…", or "" if `seconds` ≤ LongRenderSeconds.
+std::string WorkWarning(double seconds, const std::string &what, const std::string &fix);
 
 struct RenderStats {
     int sppReached = 0;  // samples per pixel completed in every pixel (sampling integrators)

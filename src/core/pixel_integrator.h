@@ -33,6 +33,9 @@ class PixelIntegrator : public Integrator {
     /// (radiance for cameras), not divided by the wavelength pdfs (the film does that).
     /// The sampler is positioned after the wavelength dimension. May drop companion wavelengths
     /// (wl.TerminateSecondary()) when a dispersive lobe is taken.
+    /// Times a few samples before the first pass and reports through opt.warn when the whole
+    /// render would take far longer than usual (WorkWarning).
+    void EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt, const Sampler &prototype) const;
     virtual SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl,
                                           Sampler &sampler, PathStats &stats) const = 0;
 };

@@ -6,6 +6,7 @@
 // fonts-dejavu-core); without the font the plot is still written, without any text.
 #pragma once
 
+#include <cstdint>
 #include <limits>
 #include <string>
 #include <vector>
@@ -72,5 +73,21 @@ PlotResult WritePlotPng(const std::string &path, const std::vector<PlotSeries> &
                         const PlotOptions &opt = {});
 PlotResult WritePlotPng(OutputFiles &files, const std::string &path, const std::vector<PlotSeries> &series,
                         const PlotOptions &opt = {});
+
+/// An 8-bit sRGB image (w × h, packed RGB, top row first) with a labelled vertical colour bar to
+/// its right — e.g. a false-colour dB map and its scale. `barColour(t)` is the display colour at
+/// t ∈ [0, 1] (bottom to top of the bar); each tick puts its text at its t; `barTitle` goes above
+/// the bar. An image less than 256 px tall is enlarged by a whole factor (nearest neighbour; at
+/// most 4096 px wide). Staged in `files` (core/output_file.h; it appears at files.Commit()) with
+/// `description` as the PNG's Description; throws phasor::Error. Text as in WritePlotPng (the bar
+/// is drawn without a font, the labels are not).
+struct ColourBarTick {
+    double t = 0;
+    std::string text;
+};
+PlotResult WriteImageWithColourBarPng(OutputFiles &files, const std::string &path, const std::vector<uint8_t> &rgb,
+                                      int w, int h, Vec3 (*barColour)(double t),
+                                      const std::vector<ColourBarTick> &ticks, const std::string &barTitle,
+                                      const std::string &description, const std::string &font = "DejaVuSans");
 
 }  // namespace phasor

@@ -27,6 +27,9 @@ struct RenderSettings {
     FileLoc loc;
 };
 
+/// The schema of the `Render` block (documented with the plug-ins: `phasor describe Render`).
+const Schema &RenderSchema();
+
 class Scene {
   public:
     /// Builds a scene from a description: creates every entity through the registry, checks the
@@ -47,6 +50,10 @@ class Scene {
     const Detector &GetDetector() const { return *detector_; }
     const Integrator &GetIntegrator() const { return *integrator_; }
     const WavelengthSampler &Wavelengths() const { return *wavelengths_; }
+    /// After a render whose image is black: the likely cause and its fix, from cheap checks
+    /// (lights' spectra vs the detector's response, aperture plates with no open area, a camera
+    /// inside closed geometry, lights reaching a sensor plane only from behind). scene_checks.cpp.
+    std::string DarkImageCause() const;
     const RenderSettings &Settings() const { return settings_; }
     RenderSettings &Settings() { return settings_; }
     Bounds3 Bounds() const { return accel_->Bounds(); }
@@ -64,6 +71,9 @@ class Scene {
 
   private:
     Scene() = default;
+    /// A sensor plane against the aperture plates: an error if it lies in or crosses a plate's
+    /// plane; without `aim`, aims it at the plate all light must pass (or warns). scene_checks.cpp.
+    void CheckSensorPlane(Diagnostics &diag);
     std::unique_ptr<BuildContext> ctx_;  // owns every plug-in object
     std::unique_ptr<Accel> accel_;
     std::vector<std::shared_ptr<Shape>> shapes_;

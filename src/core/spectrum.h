@@ -140,8 +140,16 @@ class SensorResponse {
     double Importance(double lambda) const;
     std::string Name() const { return kind_ == Kind::CieXyz ? "cie_xyz" : "radiometric"; }
 
+    /// White balance (CIE sensors): from now on Channels() maps the white of `illuminant` (its XYZ)
+    /// to the output white D65 at the same luminance Y, by a von Kries scaling in Bradford cone
+    /// space (LMS = M_B·XYZ; Lam 1985, as pbrt-v4's film and ICC v4 do). Intensity() stays ȳ.
+    void SetWhiteBalance(const Spectrum &illuminant);
+    bool WhiteBalanced() const { return balanced_; }
+
   private:
     Kind kind_;
+    bool balanced_ = false;
+    std::array<double, 9> adapt_{};  // row-major XYZ → XYZ adaptation (with balanced_)
 };
 
 /// Samples wavelengths ∝ (Σ emitter spectra) × sensor importance over whatever range they span

@@ -50,7 +50,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <thread>
 
 #include <tbb/blocked_range.h>
 #include <tbb/global_control.h>
@@ -1038,6 +1040,38 @@ class RsIntegrator final : public Integrator {
             }
             totalUnits += rs::ProgressUnits(job.grid);
             jobs.push_back(std::move(job));
+        }
+
+        // Work estimate before the long part: a few field evaluations timed (≤ ~0.5 s per light)
+        // times the grid's nodes, on all threads.
+        if (opt.warn) {
+            double seconds = 0, nodes = 0, perNode = 0;
+            for (const Job &job : jobs) {
+                const rs::SensorGrid &gr = job.grid;
+                const auto t0 = std::chrono::steady_clock::now();
+                double elapsed = 0, sink = 0;
+                int n = 0;
+                for (; n < 8 && (n == 0 || elapsed < 0.5); ++n) {
+                    const double x = gr.xs[(n * gr.xs.size()) / 8], y = gr.ys[(n * gr.ys.size()) / 8];
+                    sink += job.prop->Flux(sensor->origin + sensor->frame.s * x + sensor->frame.t * y, sensor->frame.n);
+                    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+                }
+                (void)sink;
+                nodes += double(gr.Nodes());
+                perNode = std::max(perNode, elapsed / n);
+                seconds += elapsed / n * double(gr.Nodes());
+            }
+            const int threads =
+                opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+            char what[160];
+            std::snprintf(what, sizeof what, "%.3g field nodes on the sensor grid at %.3g ms each on %d threads",
+                          nodes, perNode * 1e3, threads);
+            const std::string msg =
+                WorkWarning(seconds / threads, what,
+                            "the sensor grid and the quadrature over the openings follow the wavelength; a "
+                            "longer wavelength (the light's spectrum, e.g. the scene's `lambda`), a smaller sensor "
+                            "'extent', shorter openings or mode = \"2d\" for long slits reduce it");
+            if (!msg.empty()) opt.warn(msg);
         }
 
         // ---- Field and pixel integrals, one light at a time (intensities add) ------------------

@@ -127,12 +127,16 @@ TEST(Dielectric, DeltaOnlyInTheRayLimit) {
 }
 
 TEST(Dielectric, RejectsNonPositiveIndex) {
-    ParamDict d;
-    d.Set("ior", Value::Number(-1.2));
-    Diagnostics diag;
-    EXPECT_FALSE(BuildMaterial("dielectric", d, diag));
-    ASSERT_TRUE(diag.HasErrors());
-    EXPECT_NE(diag.All()[0].message.find("positive"), std::string::npos) << diag.All()[0].message;
+    // A negative number is no spectrum at all (the spectrum builder's error); zero is a spectrum
+    // but no index (the kernel's).
+    for (const auto &[ior, fragment] : {std::pair{-1.2, "cannot be negative"}, std::pair{0.0, "positive"}}) {
+        ParamDict d;
+        d.Set("ior", Value::Number(ior));
+        Diagnostics diag;
+        EXPECT_FALSE(BuildMaterial("dielectric", d, diag));
+        ASSERT_TRUE(diag.HasErrors());
+        EXPECT_NE(diag.All()[0].message.find(fragment), std::string::npos) << diag.All()[0].message;
+    }
 }
 
 }  // namespace

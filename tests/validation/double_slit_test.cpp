@@ -89,7 +89,7 @@ TEST(DoubleSlit, ObliqueIncidenceOnAnAsymmetricPair) {
         const DefineList defs = {{"tilt", std::to_string(tilt) + "deg"}, {"b2", "25um"}, {"width", "2400um"}};
         const Row grt = RenderRow(kScene, defs, "grt"), rs = RenderRow(kScene, defs, "rs");
         const double e = MaxDiffOfPeak(grt, rs);
-        Row ref{rs.x, Hankel2D({{-70e-6, -30e-6}, {37.5e-6, 62.5e-6}}, 1e-6, 1e-2, Radians(tilt), 7.98e-6, rs.x)};
+        Row ref{rs.x, Hankel2D({{-70e-6, -30e-6}, {37.5e-6, 62.5e-6}}, 1e-6, 1e-2, Radians(tilt), 7.98e-6, rs.x), {}, 0};
         // Hankel2D gives |U|² for a unit-amplitude wave; the sensor reports flux, and a plane wave of
         // unit irradiance (normal to itself) puts cosθ per unit area through the plate (D4).
         for (double &v : ref.v) v *= std::cos(Radians(tilt));

@@ -37,7 +37,7 @@ class PerspectiveCamera final : public Detector {
     }
     static std::unique_ptr<Detector> Create(const ParamDict &d, BuildContext &ctx) {
         auto [w, h] = CameraResolution(d);
-        return std::make_unique<PerspectiveCamera>(w, h, ResponseFromParams(d),
+        return std::make_unique<PerspectiveCamera>(w, h, CameraResponse(d, ctx),
                                                    ctx.GetTransform(d, "to_world"), d.GetNumber("fov"),
                                                    d.GetString("pixel") == "gaussian");
     }

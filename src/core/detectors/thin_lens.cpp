@@ -45,7 +45,7 @@ class ThinLensCamera final : public Detector {
     }
     static std::unique_ptr<Detector> Create(const ParamDict &d, BuildContext &ctx) {
         auto [w, h] = CameraResolution(d);
-        return std::make_unique<ThinLensCamera>(w, h, ResponseFromParams(d),
+        return std::make_unique<ThinLensCamera>(w, h, CameraResponse(d, ctx),
                                                 ctx.GetTransform(d, "to_world"), d.GetNumber("fov"),
                                                 d.GetNumber("aperture_radius"), d.GetNumber("focus_distance"),
                                                 d.GetString("pixel") == "gaussian");

@@ -17,7 +17,10 @@
 // half-angle `acceptance` about the normal — or, with `aim = @shape`, over the box spanned by that
 // shape's bounding box (an aperture plate: its openings' bounding box) seen from the pixel, widened
 // by 5β (as an angle) and 6σ_θ at the longest carried wavelength — stratified
-// across the pixel's samples (a rotated lattice when spp is a square). In radiance units the weight
+// across the pixel's samples (a rotated lattice when spp is a square). Without `aim` the scene
+// aims at the one aperture plate in front of the sensor when every light lies beyond it
+// (auto_aim, Scene::Build; the full cone there gives zeros and spikes, as almost every sampled
+// direction misses the openings); `auto_aim = false` keeps the full cone. In radiance units the weight
 // is the sampled region's area in direction cosines, so the pixel mean is ∫L cosθ dω = irradiance.
 // Closed-form sources (plane wave, point, distant, Gaussian beam) are integrated over the directions
 // analytically (D4a): E·cosθ_s·(1 − e^{−β²k²})·[fraction of the GR's directions inside the region],
@@ -39,6 +42,7 @@ class VirtualPlane final : public Detector {
         double referenceIrradiance = 1;  // E_ref [W/m²]: pixels report flux / E_ref (D4)
         bool gaussianPixel;
         std::shared_ptr<Shape> aim;
+        bool autoAim = true;  // Scene::Build may choose `aim` (AimTarget)
     };
     VirtualPlane(int nx, int ny, SensorResponse r, Config c) : Detector(nx, ny, r), c_(std::move(c)) {
         origin_ = c_.toWorld.Point(Vec3(0, 0, 0));
@@ -93,7 +97,11 @@ class VirtualPlane final : public Detector {
                  .Max(Pi / 2),
              P::Ref("aim", "shape",
                     "sample only directions towards this shape's bounding box, or towards the openings "
-                    "of an aperture plate (D4b)"),
+                    "of an aperture plate (D4b); default: see auto_aim"),
+             P::Bool("auto_aim",
+                     "without 'aim': aim at the one aperture plate in front of the sensor when every light "
+                     "lies beyond it (else sample the whole acceptance cone, with a warning)")
+                 .Default(Value::Bool(true)),
              P::Number("reference_irradiance",
                        "pixels report flux per unit area divided by this (E_ref, theory D4; set it to the "
                        "source's irradiance for flux / incident irradiance)",
@@ -109,11 +117,22 @@ class VirtualPlane final : public Detector {
     }
     static std::unique_ptr<Detector> Create(const ParamDict &d, BuildContext &ctx) {
         std::vector<double> ext = d.GetNumbers("extent");
-        int nx = 64, ny = 64;
+        int nx = 0, ny = 0;
         if (d.Has("resolution") && d.Has("pitch"))
             throw Error(d.Loc("pitch"), "give either 'resolution' or 'pitch', not both");
+        if (!d.Has("resolution") && !d.Has("pitch"))
+            throw Error(d.EntityLoc(), "virtual_plane needs 'resolution' (pixels along x and y) or 'pitch' "
+                                       "(resolution = round(extent/pitch)); it has neither");
         if (d.Has("pitch")) {
             const double p = d.GetNumber("pitch");
+            // A pitch equal to the extent is a one-pixel axis (a one-row sensor); a larger one is
+            // a mistake that would silently give one pixel of the wrong size.
+            for (int a = 0; a < 2; ++a)
+                if (p > ext[a] * (1 + 1e-9))
+                    throw Error(d.Loc("pitch"), "'pitch' (" + Value::Number(p, Dim::Length()).ToString() +
+                                                    ") is larger than the extent along " + (a ? "y" : "x") + " (" +
+                                                    Value::Number(ext[a], Dim::Length()).ToString() +
+                                                    "); give a pitch <= the extent, or a larger 'extent'");
             const double fx = std::round(ext[0] / p), fy = std::round(ext[1] / p);
             if (fx > 65536 || fy > 65536)
                 throw Error(d.Loc("pitch"), "'pitch' gives more than 65536 pixels along an axis");
@@ -135,6 +154,7 @@ class VirtualPlane final : public Detector {
         c.acceptance = d.GetNumber("acceptance");
         c.gaussianPixel = d.GetString("pixel") == "gaussian";
         if (d.Has("aim")) c.aim = ctx.GetRef<Shape>(d, "aim");
+        c.autoAim = d.GetBool("auto_aim");
         c.referenceIrradiance = d.GetNumber("reference_irradiance");
         return std::make_unique<VirtualPlane>(nx, ny, ResponseFromParams(d), std::move(c));
     }
@@ -181,25 +201,6 @@ class VirtualPlane final : public Detector {
         const double r2 = ux * ux + uy * uy;
         if (!(r2 < sinAcc_ * sinAcc_) || !(r2 < 1)) return std::nullopt;
         return frame_.ToWorld(Vec3(ux, uy, std::sqrt(1 - r2)));
-    }
-
-    /// The points whose directions bound the aimed region: the corners of the openings of an
-    /// aperture plate (its plate is far larger than what diffracts), else of the shape's bounds.
-    static std::vector<Vec3> AimCorners(const Shape &aim) {
-        std::vector<Vec3> out;
-        const ApertureMask *open = aim.material ? aim.material->Openings() : nullptr;
-        if (open && !open->Empty()) {
-            // Through the transform itself: a plate that is not a rigid motion is the shape's
-            // error (Material::CheckShape reports it at its definition), not the sensor's.
-            const Bounds2 b = open->Bounds();
-            for (int i = 0; i < 4; ++i)
-                out.push_back(aim.objectToWorld.Point(Vec3((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, 0)));
-            return out;
-        }
-        const Bounds3 b = aim.Bounds();
-        for (int i = 0; i < 8; ++i)
-            out.push_back(Vec3((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z));
-        return out;
     }
 
     std::optional<DetectorSample> Generate(const Vec2 &pFilm, const Vec2 &uDir) const override {
@@ -251,6 +252,12 @@ class VirtualPlane final : public Detector {
     }
 
     const SensorPlaneGeometry *SensorPlane() const override { return &geom_; }
+    const Shape *AimTarget() const override { return c_.aim.get(); }
+    bool MayAutoAim() const override { return c_.autoAim && !c_.aim; }
+    void AimAt(std::shared_ptr<Shape> shape) override {
+        c_.aim = std::move(shape);
+        aimCorners_ = c_.aim ? AimCorners(*c_.aim) : std::vector<Vec3>{};
+    }
 
     std::string ToString() const override {
         return "virtual_plane { resolution = [" + std::to_string(Width()) + " " + std::to_string(Height()) +

@@ -21,6 +21,7 @@
 #include "core/image/color.h"
 #include "core/image/oiio_write.h"
 #include "core/image_io.h"
+#include "core/plot.h"
 
 namespace phasor {
 namespace {
@@ -69,6 +70,11 @@ void ViridisColor(double t, uint8_t rgb[3]) {
     double f = t - i;
     for (int c = 0; c < 3; ++c)
         rgb[c] = uint8_t(std::lround(Lerp(f, Viridis[i][c], Viridis[i + 1][c])));
+}
+Vec3 ViridisDisplay(double t) {  // the same colour in [0, 1] (the colour bar)
+    uint8_t c[3];
+    ViridisColor(t, c);
+    return Vec3(c[0], c[1], c[2]) / 255.0;
 }
 
 }  // namespace
@@ -251,10 +257,20 @@ void WriteFalseColorPng(OutputFiles &files, const std::string &path, const Image
             t = 1;
         ViridisColor(t, &bytes[3 * i]);
     }
-    OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
-    spec.attribute("oiio:ColorSpace", "sRGB");
-    spec.attribute("Description", channel + " in dB, " + std::to_string(rangeDb) + " dB range");
-    detail::StageImage(files, path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    // The colour bar: 0 dB (the maximum) at the top down to −rangeDb, labelled every 10 dB (5 dB
+    // below a 20 dB range), its title naming the channel and the value that 0 dB stands for.
+    std::vector<ColourBarTick> ticks;
+    const double step = rangeDb >= 20 ? 10 : 5;
+    for (double db = 0; db <= rangeDb * (1 + 1e-9); db += step) {
+        char label[32];
+        std::snprintf(label, sizeof label, "%g dB", db > 0 ? -db : 0.0);  // "0 dB", not "-0 dB"
+        ticks.push_back(ColourBarTick{1 - db / rangeDb, label});
+    }
+    char title[96];
+    std::snprintf(title, sizeof title, "%s, 0 dB = %.4g", channel.c_str(), maxValue);
+    WriteImageWithColourBarPng(files, path, bytes, img.width, img.height, ViridisDisplay, ticks, title,
+                               channel + " in dB, " + std::to_string(rangeDb) + " dB range, 0 dB = " +
+                                   std::to_string(maxValue));
 }
 
 void WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,

@@ -476,4 +476,49 @@ PlotResult WritePlotPng(const std::string &path, const std::vector<PlotSeries> &
     return result;
 }
 
+PlotResult WriteImageWithColourBarPng(OutputFiles &files, const std::string &path, const std::vector<uint8_t> &rgb,
+                                      int w, int h, Vec3 (*barColour)(double t),
+                                      const std::vector<ColourBarTick> &ticks, const std::string &barTitle,
+                                      const std::string &description, const std::string &font) {
+    namespace IBA = OIIO::ImageBufAlgo;
+    if (w <= 0 || h <= 0 || rgb.size() != std::size_t(w) * h * 3)
+        throw Error(FileLoc{path}, "cannot write '" + path + "': the image is empty or its size is inconsistent");
+    // Layout: [image] 20 px [bar 24 px] ticks and labels (90 px); 32 px above for the title.
+    const int scale = std::clamp(int(std::ceil(256.0 / h)), 1, std::max(1, 4096 / w));
+    const int imgW = w * scale, imgH = h * scale;
+    const int barH = std::max(imgH, 160), top = 32, gap = 20, barW = 24, labelW = 90;
+    const int barX = imgW + gap;
+    Canvas cv(barX + barW + labelW, top + std::max(imgH, barH) + 12);
+    for (int j = 0; j < imgH; ++j)
+        for (int i = 0; i < imgW; ++i) {
+            const uint8_t *src = &rgb[(std::size_t(j / scale) * w + i / scale) * 3];
+            float *dst = &cv.rgb[(std::size_t(top + j) * cv.w + i) * 3];
+            for (int c = 0; c < 3; ++c) dst[c] = src[c] / 255.0f;
+        }
+    for (int j = 0; j < barH; ++j) {
+        const Vec3 c = SafeColour(barColour(1 - (j + 0.5) / barH));
+        for (int i = 0; i < barW; ++i) cv.Blend(barX + i, top + j, c, 1);
+    }
+    const ClipRect all{0, 0, cv.w, cv.h};
+    StrokeLine(cv, all, barX, top, barX + barW, top, kBlack, 1);
+    StrokeLine(cv, all, barX, top + barH, barX + barW, top + barH, kBlack, 1);
+    StrokeLine(cv, all, barX, top, barX, top + barH, kBlack, 1);
+    StrokeLine(cv, all, barX + barW, top, barX + barW, top + barH, kBlack, 1);
+    TextPainter text(cv, font);
+    for (const ColourBarTick &t : ticks) {
+        const double y = top + (1 - Clamp(t.t, 0, 1)) * barH;
+        StrokeLine(cv, all, barX + barW, y, barX + barW + kTickLength, y, kBlack, 1.5);
+        text.Draw(barX + barW + kTickLength + 4, int(std::lround(y)), t.text, kFontSize - 2, kBlack,
+                  IBA::TextAlignX::Left, IBA::TextAlignY::Center);
+    }
+    text.Draw(cv.w - 6, top / 2, barTitle, kFontSize - 1, kBlack, IBA::TextAlignX::Right, IBA::TextAlignY::Center);
+    std::vector<uint8_t> bytes(cv.rgb.size());
+    for (std::size_t k = 0; k < bytes.size(); ++k) bytes[k] = uint8_t(std::lround(Clamp(cv.rgb[k], 0, 1) * 255.0));
+    OIIO::ImageSpec spec(cv.w, cv.h, 3, OIIO::TypeDesc::UINT8);
+    spec.attribute("oiio:ColorSpace", "sRGB");
+    if (!description.empty()) spec.attribute("Description", description);
+    detail::StageImage(files, path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    return PlotResult{text.Ok(), text.Problem()};
+}
+
 }  // namespace phasor

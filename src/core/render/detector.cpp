@@ -3,6 +3,10 @@
 
 #include <cmath>
 
+#include "core/aperture.h"
+#include "core/material.h"
+#include "core/registry.h"
+
 namespace phasor {
 
 ParamSpec ResponseParam(const char *defaultResponse) {
@@ -98,7 +102,41 @@ std::vector<ParamSpec> CameraParams(std::vector<ParamSpec> extra) {
                     .Default(Value::String("box"))
                     .Choices({"box", "gaussian"}));
     p.push_back(ResponseParam("cie_xyz"));
+    p.push_back(P::Spectrum("white_balance",
+                            "illuminant whose white is shown as white, e.g. blackbody(4500 K) or @lamp_spectrum "
+                            "(Bradford adaptation to D65 in XYZ; cie_xyz only; default: none)"));
     return p;
+}
+
+SensorResponse CameraResponse(const ParamDict &d, BuildContext &ctx) {
+    SensorResponse r = ResponseFromParams(d);
+    if (!d.Has("white_balance")) return r;
+    if (r.GetKind() != SensorResponse::Kind::CieXyz)
+        throw Error(d.Loc("white_balance"), "'white_balance' needs response = \"cie_xyz\" (a radiometric "
+                                            "sensor has no colour to balance)");
+    try {
+        r.SetWhiteBalance(*ctx.GetSpectrum(d, "white_balance"));
+    } catch (const Error &e) {
+        throw Error(e.Loc().Known() ? e.Loc() : d.Loc("white_balance"), e.Message());
+    }
+    return r;
+}
+
+std::vector<Vec3> AimCorners(const Shape &aim) {
+    std::vector<Vec3> out;
+    const ApertureMask *open = aim.material ? aim.material->Openings() : nullptr;
+    if (open && !open->Empty()) {
+        // Through the transform itself: a plate that is not a rigid motion is the shape's error
+        // (Material::CheckShape reports it at its definition), not the sensor's.
+        const Bounds2 b = open->Bounds();
+        for (int i = 0; i < 4; ++i)
+            out.push_back(aim.objectToWorld.Point(Vec3((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, 0)));
+        return out;
+    }
+    const Bounds3 b = aim.Bounds();
+    for (int i = 0; i < 8; ++i)
+        out.push_back(Vec3((i & 1) ? b.hi.x : b.lo.x, (i & 2) ? b.hi.y : b.lo.y, (i & 4) ? b.hi.z : b.lo.z));
+    return out;
 }
 
 std::pair<int, int> CameraResolution(const ParamDict &d) {

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <thread>
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/combinable.h>
@@ -10,6 +13,37 @@
 #include <tbb/parallel_for.h>
 
 namespace phasor {
+
+void PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt,
+                                   const Sampler &prototype) const {
+    // A pilot of up to 256 samples spread over the image (at most ~0.5 s, at least one sample),
+    // extrapolated to every pixel and sample on all threads; the film is not touched.
+    const auto t0 = std::chrono::steady_clock::now();
+    std::unique_ptr<Sampler> sampler = prototype.Clone();
+    PathStats ps;
+    int n = 0;
+    double elapsed = 0;
+    for (; n < 256 && (n == 0 || elapsed < 0.5); ++n) {
+        const int x = int((n * 0.618034 - std::floor(n * 0.618034)) * w), y = (n * h) / 256;
+        // Samples spread over the pixel's set (a sample's cost depends on its direction).
+        const int index = int((uint64_t(n) * 2654435761u + 7) % uint64_t(opt.spp));
+        sampler->StartPixelSample(x, y, index);
+        ps.sample = PixelSampleIndex{index, opt.spp, opt.seed};
+        SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
+        EstimatePixel(scene, x, y, wl, *sampler, ps);
+        elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+    const double perSample = elapsed / n, samples = double(w) * h * opt.spp;
+    char what[160];
+    std::snprintf(what, sizeof what, "%d spp x %dx%d pixels at %.3g ms per sample on %d threads", opt.spp, w, h,
+                  perSample * 1e3, threads);
+    const std::string msg = WorkWarning(perSample * samples / threads, what,
+                                        "lower the spp (--spp) or the detector's resolution; a sample's cost "
+                                        "grows as the wavelength shrinks against the scene (openings many "
+                                        "wavelengths wide), so check the light's spectrum");
+    if (!msg.empty()) opt.warn(msg);
+}
 
 RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const RenderOptions &opt) const {
     auto start = std::chrono::steady_clock::now();
@@ -21,6 +55,7 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
 
     RenderStats stats;
     const int w = film.Width(), h = film.Height();
+    if (opt.warn) EstimateWork(scene, w, h, opt, *prototype);
     constexpr int Tile = 16;
     auto cancelled = [&] { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); };
     int done = 0;

@@ -222,6 +222,10 @@ std::shared_ptr<const Spectrum> BuildContext::SpectrumFromValue(const Value &v) 
         case Value::Kind::Number:
             if (!v.dim.IsNone())
                 throw Error(v.loc, "a spectrum given as a number must be a plain number; got " + v.DescribeKind());
+            // Every spectrum is an emission, a reflectance or an optical constant: never negative
+            // (a negative emitter would only be discarded sample by sample at render time).
+            if (!(v.number >= 0))
+                throw Error(v.loc, "a spectrum cannot be negative; got " + v.ToString() + " (give a value >= 0)");
             return std::make_shared<ConstantSpectrum>(v.number);
         case Value::Kind::Ref: return std::static_pointer_cast<const Spectrum>(Resolve(v, "spectrum"));
         case Value::Kind::Call: return std::static_pointer_cast<const Spectrum>(CreateFromCall(v, "spectrum"));

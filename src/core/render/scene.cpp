@@ -3,22 +3,26 @@
 
 namespace phasor {
 
-namespace {
-
-// The `Render` block is not a plug-in but is validated the same way.
+// The `Render` block is not a plug-in but is validated and documented the same way.
 const Schema &RenderSchema() {
     static const Schema s{
-        "render", "Render", "What to render: detector, integrator, samples, output.",
+        "render", "Render",
+        "What to render: detector, integrator, samples, output (optional; the command line overrides).",
         {P::Ref("detector", "detector", "the detector to render (required if the scene has several)"),
-         P::Ref("integrator", "integrator", "the integrator (default: the only one in the scene, else `ray`)"),
-         P::Integer("spp", "samples per pixel").Default(Value::Integer(16)).Min(1),
-         P::Integer("seed", "random seed").Default(Value::Integer(0)).Min(0),
-         P::String("sampler", "sample generator")
+         P::Ref("integrator", "integrator",
+                "the integrator (default: the only one in the scene, else `ray`; --integrator overrides)"),
+         P::Integer("spp", "samples per pixel (--spp overrides)").Default(Value::Integer(16)).Min(1),
+         P::Integer("seed", "random seed (--seed overrides)").Default(Value::Integer(0)).Min(0),
+         P::String("sampler", "sample generator (--sampler overrides)")
              .Default(Value::String("sobol"))
              .Choices({"sobol", "independent"}),
-         P::String("output", "output EXR path, relative to the working directory (a .png is written beside it)")}};
+         P::String("output",
+                   "output EXR path, relative to the working directory as pbrt's film filename is (a .png is "
+                   "written beside it; -o overrides); default: out/<scene file name>.exr")}};
     return s;
 }
+
+namespace {
 
 // The object Render names by `param`, else the only one of its family. Counting the family's
 // objects means something only in a scene read without errors (`whole`).
@@ -154,6 +158,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
         emitters.emplace_back(&l->EmissionSpectrum(), l->PowerScale());
     }
     if (scene->lights_.empty()) diag.Warning(sceneLoc, "the scene has no light; the image will be black");
+    scene->CheckSensorPlane(diag);
     scene->wavelengths_ = std::make_unique<WavelengthSampler>(emitters, scene->detector_->Response());
     if (diag.HasErrors()) return nullptr;
     return scene;

@@ -14,7 +14,7 @@ class ConstantSpectrumPlugin {
         static const Schema s{"spectrum",
                               "constant",
                               "The same value at every wavelength.",
-                              {P::Number("value", "the value").Required()}};
+                              {P::Number("value", "the value (spectra are never negative)").Required().Min(0)}};
         return s;
     }
     static std::unique_ptr<Spectrum> Create(const ParamDict &d, BuildContext &) {

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/spectrum.h"
+#include "core/diagnostics.h"
 #include "core/spectrum/cie_tables.h"
 
 namespace phasor {
@@ -113,7 +114,33 @@ Vec3 LinearSrgbToXyz(const Vec3 &rgb) { return Mul(RgbToXyz(), rgb); }
 
 Vec3 SensorResponse::Channels(double lambda) const {
     if (kind_ == Kind::Radiometric) return {1, 1, 1};
-    return CieXyz(lambda) / CieYIntegral();
+    const Vec3 xyz = CieXyz(lambda) / CieYIntegral();
+    if (!balanced_) return xyz;
+    const auto &m = adapt_;
+    return {m[0] * xyz.x + m[1] * xyz.y + m[2] * xyz.z, m[3] * xyz.x + m[4] * xyz.y + m[5] * xyz.z,
+            m[6] * xyz.x + m[7] * xyz.y + m[8] * xyz.z};
+}
+
+void SensorResponse::SetWhiteBalance(const Spectrum &illuminant) {
+    // The illuminant's white: its XYZ (a line contributes its strength × x̄ȳz̄ at the line).
+    Vec3 src;
+    if (auto line = illuminant.LineWavelength()) src = CieXyz(*line) * illuminant.Eval(*line);
+    else
+        for (int nm = 360; nm <= 830; ++nm) src += CieXyz(nm * 1e-9) * illuminant.Eval(nm * 1e-9);
+    if (!(src.y > 0) || !(src.x >= 0) || !(src.z >= 0))
+        throw Error("the white-balance illuminant has no luminance (it emits nothing within 360–830 nm)");
+    src = src / src.y;
+    const Vec3 dst(0.3127 / 0.3290, 1, (1 - 0.3127 - 0.3290) / 0.3290);  // D65, the sRGB white
+    // Bradford cone response matrix (Lam 1985).
+    const Mat3 b = {{{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
+    const Vec3 ls = Mul(b, src), ld = Mul(b, dst);
+    Mat3 scaled = b;
+    for (int c = 0; c < 3; ++c) scaled[0][c] *= ld.x / ls.x, scaled[1][c] *= ld.y / ls.y, scaled[2][c] *= ld.z / ls.z;
+    const Mat3 bi = Inverse(b);
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            adapt_[3 * r + c] = bi[r][0] * scaled[0][c] + bi[r][1] * scaled[1][c] + bi[r][2] * scaled[2][c];
+    balanced_ = true;
 }
 
 double SensorResponse::Intensity(double lambda) const {

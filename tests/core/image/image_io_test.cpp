@@ -235,12 +235,16 @@ TEST_F(ImageIoTest, FalseColourMapsTheDbRangeOntoViridis) {
     const std::string path = Path("false.png");
     WriteFalseColorPng(path, img, "intensity", rangeDb);
     Image back = ReadImage(path);
-    ASSERT_EQ(back.width, img.width);
+    // The map sits at the top left below a 32 px title band, enlarged to 256 px tall (a whole
+    // factor, core/plot.h WriteImageWithColourBarPng), with its colour bar to the right.
+    const int scale = 256, top = 32;
+    ASSERT_GT(back.width, img.width * scale);
     ASSERT_EQ(back.channels.size(), 3u);
     for (int x = 0; x < img.width; ++x) {
         int k = x < 10 ? x : 0;
         for (int c = 0; c < 3; ++c)
-            EXPECT_EQ(std::lround(back.At(x, 0, c) * 255.0), viridis[k][c]) << "pixel " << x;
+            EXPECT_EQ(std::lround(back.At(x * scale + scale / 2, top + scale / 2, c) * 255.0), viridis[k][c])
+                << "pixel " << x;
     }
     EXPECT_THROW(WriteFalseColorPng(Path("x.png"), img, "phase"), Error);
     EXPECT_FALSE(fs::exists(dir_ / "x.png"));
