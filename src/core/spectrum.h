@@ -140,10 +140,14 @@ class SensorResponse {
     double Importance(double lambda) const;
     std::string Name() const { return kind_ == Kind::CieXyz ? "cie_xyz" : "radiometric"; }
 
-    /// White balance (CIE sensors): from now on Channels() maps the white of `illuminant` (its XYZ)
-    /// to the output white D65 at the same luminance Y, by a von Kries scaling in Bradford cone
+    /// White balance (CIE sensors): from now on WhiteBalance() maps the white of `illuminant` (its
+    /// XYZ) to the output white D65 at the same luminance Y, by a von Kries scaling in Bradford cone
     /// space (LMS = M_B·XYZ; Lam 1985, as pbrt-v4's film and ICC v4 do). Intensity() stays ȳ.
     void SetWhiteBalance(const Spectrum &illuminant);
+    /// The adaptation of SetWhiteBalance applied to an XYZ value (identity when not balanced). The
+    /// film applies it to each pixel's mean, not to samples: the matrix has negative entries, so a
+    /// sample's adapted XYZ may be negative, which the film would reject as invalid (a bias).
+    Vec3 WhiteBalance(const Vec3 &xyz) const;
     bool WhiteBalanced() const { return balanced_; }
 
   private:

@@ -90,7 +90,7 @@ long long Film::SampleCount(int x, int y) const {
 
 Film::Resolved Film::ResolvePixel(const Pixel &p) const {
     Resolved r;
-    r.rgb = response_.GetKind() == SensorResponse::Kind::CieXyz ? XyzToLinearSrgb(p.mean)
+    r.rgb = response_.GetKind() == SensorResponse::Kind::CieXyz ? XyzToLinearSrgb(response_.WhiteBalance(p.mean))
                                                                  : Vec3(p.meanI, p.meanI, p.meanI);
     r.intensity = p.meanI;
     // Variance of the mean: unbiased sample variance s² = M2/(n−1), divided by n.

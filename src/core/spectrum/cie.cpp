@@ -114,7 +114,10 @@ Vec3 LinearSrgbToXyz(const Vec3 &rgb) { return Mul(RgbToXyz(), rgb); }
 
 Vec3 SensorResponse::Channels(double lambda) const {
     if (kind_ == Kind::Radiometric) return {1, 1, 1};
-    const Vec3 xyz = CieXyz(lambda) / CieYIntegral();
+    return CieXyz(lambda) / CieYIntegral();
+}
+
+Vec3 SensorResponse::WhiteBalance(const Vec3 &xyz) const {
     if (!balanced_) return xyz;
     const auto &m = adapt_;
     return {m[0] * xyz.x + m[1] * xyz.y + m[2] * xyz.z, m[3] * xyz.x + m[4] * xyz.y + m[5] * xyz.z,

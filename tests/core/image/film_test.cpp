@@ -84,6 +84,27 @@ TEST(Film, VarianceChannelIsTheVarianceOfTheMean) {
     EXPECT_EQ(single.Resolve().At(0, 0, V), 0.0f);  // n < 2
 }
 
+// White balance is applied to each pixel's mean, not to samples: the Bradford adaptation has
+// negative entries, so a monochromatic sample's adapted XYZ can be negative, and the film would
+// have discarded it as invalid (15 samples of the demo, a bias).
+TEST(Film, WhiteBalanceKeepsMonochromaticSamples) {
+    SensorResponse cie(SensorResponse::Kind::CieXyz);
+    cie.SetWhiteBalance(ConstantSpectrum(1.0));  // equal-energy white: a non-trivial adaptation
+    double lambda = 0;
+    for (int nm = 380; nm <= 780 && lambda == 0; ++nm) {
+        const Vec3 a = cie.WhiteBalance(cie.Channels(nm * 1e-9));
+        if (a.x < 0 || a.y < 0 || a.z < 0) lambda = nm * 1e-9;
+    }
+    ASSERT_GT(lambda, 0) << "no wavelength whose adapted XYZ is negative";
+    Film film(1, 1, cie);
+    film.AddSample(0, 0, SampledSpectrum(1.0), DeltaLine(lambda, 1.0));
+    const Image img = film.Resolve();
+    EXPECT_EQ(film.InvalidSampleCount(), 0);
+    const Vec3 rgb = XyzToLinearSrgb(cie.WhiteBalance(cie.Channels(lambda)));
+    EXPECT_NEAR(img.At(0, 0, 0), rgb.x, 1e-6 * std::abs(rgb.x) + 1e-9);
+    EXPECT_NEAR(img.At(0, 0, 2), rgb.z, 1e-6 * std::abs(rgb.z) + 1e-9);
+}
+
 TEST(Film, InvalidSamplesAreCountedAsZeroAndNeverPropagate) {
     Film film(2, 1, SensorResponse(SensorResponse::Kind::Radiometric));
     const double nan = std::numeric_limits<double>::quiet_NaN();
