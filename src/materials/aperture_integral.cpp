@@ -402,7 +402,8 @@ void AddJet(Jet *j, const Jet &b) {
 
 // The quadratic form plus the correction j expanded about (cx, cy); nullopt if that is not a
 // decaying Gaussian.
-std::optional<Quadratic> ExpandWith(const PlateGaussian &g, const Jet &j, double cx, double cy) {
+std::optional<Quadratic> ExpandWith(const PlateGaussian &g, const Jet &j, double cx, double cy, double x0,
+                                    double x1, double y0, double y1) {
     const double c[2] = {cx, cy};
     Complex lin[2];  // G − H c
     for (int i = 0; i < 2; ++i) lin[i] = j.g[i] - (j.h[i][0] * c[0] + j.h[i][1] * c[1]);
@@ -418,31 +419,67 @@ std::optional<Quadratic> ExpandWith(const PlateGaussian &g, const Jet &j, double
     const bool ok = rxx > 0 && ryy > 0 && rxx * ryy > rxy * rxy && std::isfinite(e.c0.imag()) &&
                     e.c0.real() < 700 && std::isfinite(std::abs(e.bx) + std::abs(e.by));
     if (!ok) return std::nullopt;
+    // Every factor of the integrand (unit-amplitude GR, beam relative to its axis) has |·| ≤ 1:
+    // an expansion that grows above that inside the box has left its range of validity (a
+    // decaying form's maximum over the box is at its peak, clamped, or on the boundary).
+    auto re = [&](double x, double y) {
+        return e.c0.real() - (e.axx.real() * x * x + 2 * e.axy.real() * x * y + e.ayy.real() * y * y) -
+               (e.bx.imag() * x + e.by.imag() * y);
+    };
+    const double det = rxx * ryy - rxy * rxy;
+    const double px = std::clamp((-e.bx.imag() * ryy + e.by.imag() * rxy) / (2 * det), x0, x1);
+    const double py = std::clamp((-e.by.imag() * rxx + e.bx.imag() * rxy) / (2 * det), y0, y1);
+    double peak = re(px, py);
+    for (double x : {x0, x1, px})
+        for (double y : {y0, y1, py}) peak = std::max(peak, re(x, y));
+    if (!(peak < 1)) return std::nullopt;
     return e;
 }
 
-// The exponent for a piece whose (piece ∩ window) is centred at (cx, cy): the hit point's
+// The exponent for a piece whose (piece ∩ window) is the box [x0, x1] × [y0, y1], centred at
+// (cx, cy): the hit point's
 // quadratic form plus the second-order Taylor expansion of the corrections about the centre,
 // Δf ≈ Δf(c) + G·(p − c) + ½(p − c)ᵀH(p − c) rewritten in p. Falls back to the plain form if the
 // expansion would not be a decaying Gaussian (a footprint deeper than the GR's Rayleigh range).
 // An incident Gaussian beam is expanded about the piece even when the GR's own evolution is not
 // (its amplitude varies across the footprint; dropping it would leave a plane wave).
-Quadratic Expand(const PlateGaussian &g, double cx, double cy) {
+Quadratic Expand(const PlateGaussian &g, double x0, double x1, double y0, double y1) {
+    double cx = 0.5 * (x0 + x1), cy = 0.5 * (y0 + y1);
     const Quadratic plain{g.axx, g.axy, g.ayy, g.bx, g.by, 0};
     const bool finite = std::isfinite(cx) && std::isfinite(cy);
     if (!finite || (!g.evolve && !g.beam)) return plain;
+    if (g.beam) {
+        // Expand where the integrand lives: the peak of |GR × beam|, between the hit (the GR's
+        // centre) and the beam's spot on the plate (the point nearest its axis, Δ* =
+        // −(I − AAᵀ)⁻¹·off), weighted by their decay rates, clamped to the box. About the box's
+        // centre the neglected third-order term k·|A|·δ³/|q|² grows with the spot's distance δ
+        // (a tilted beam 200 µm off the hit: tens of per cent).
+        const double a2 = g.ba1 * g.ba1 + g.ba2 * g.ba2, ao = g.ba1 * g.bo1 + g.ba2 * g.bo2;
+        const double sx = -(g.bo1 + g.ba1 * ao / std::max(1 - a2, 1e-12));
+        const double sy = -(g.bo2 + g.ba2 * ao / std::max(1 - a2, 1e-12));
+        const double wg = 0.5 * (g.axx.real() + g.ayy.real());  // ≈ 1/(2β²) of the GR on the plate
+        const double wb = 0.5 * g.k * (1.0 / (g.bq + (g.ba1 * sx + g.ba2 * sy))).imag();  // 1/(2β_b²)
+        if (wb > 0 && wg >= 0) {
+            const double t = wb / (wg + wb);
+            cx = std::clamp(t * sx, x0, x1);
+            cy = std::clamp(t * sy, y0, y1);
+        }
+    }
     const Jet beam = g.beam ? IncidentBeamCorrection(g, cx, cy) : Jet{};
     if (g.evolve) {
         Jet j = BeamCorrection(g, cx, cy);
         if (std::isfinite(g.dist) && g.dist > 0) AddJet(&j, SphereCorrection(g, cx, cy));
         if (g.beam) AddJet(&j, beam);
-        if (auto e = ExpandWith(g, j, cx, cy)) return *e;
+        if (auto e = ExpandWith(g, j, cx, cy, x0, x1, y0, y1)) return *e;
     }
-    // An incident beam is never dropped: without it the integrand would be a plane wave.
-    if (g.beam) {
-        if (auto e = ExpandWith(g, beam, cx, cy)) return *e;
-    }
-    return plain;
+    if (!g.beam) return plain;
+    // An incident beam is never dropped: without it the integrand would be a plane wave of the
+    // axis irradiance everywhere.
+    if (auto e = ExpandWith(g, beam, cx, cy, x0, x1, y0, y1)) return *e;
+    // Last resort: the plane wave scaled by the beam's amplitude at the centre (bounded by 1).
+    Quadratic scaled = plain;
+    scaled.c0 = beam.f.real();
+    return scaled;
 }
 
 
@@ -845,7 +882,7 @@ Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec
         const double v0 = std::max({piece.v0 - oy, cy - r, -g.hy}),
                      v1 = std::min({piece.v1 - oy, cy + r, g.hy});
         if (!(u1 > u0 && v1 > v0)) return 0;
-        const Quadratic q = Expand(g, 0.5 * (u0 + u1), 0.5 * (v0 + v1));
+        const Quadratic q = Expand(g, u0, u1, v0, v1);
         const Oriented ov = Orient(q, g, false), ou = Orient(q, g, true);
         if (v1 - v0 <= u1 - u0)
             return Disc(ov, cx, cy, r, piece.uMin - ox, piece.uMax - ox, piece.v0 - oy, piece.v1 - oy);
@@ -861,8 +898,8 @@ Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec
         // then measures the same truncated wave function, so Parseval and the energy bound hold
         // exactly for the truncated state.
         if (!(std::min(b0, g.hx) > std::max(a0, -g.hx) && std::min(y1, g.hy) > std::max(y0, -g.hy))) return 0;
-        const Quadratic q = Expand(g, 0.5 * (std::max(a0, -g.hx) + std::min(b0, g.hx)),
-                                   0.5 * (std::max(y0, -g.hy) + std::min(y1, g.hy)));
+        const Quadratic q = Expand(g, std::max(a0, -g.hx), std::min(b0, g.hx), std::max(y0, -g.hy),
+                                   std::min(y1, g.hy));
         const Oriented ov = Orient(q, g, false), ou = Orient(q, g, true);  // closed form in u / in v
         const double vu0 = std::max(a0, -ov.hx), vu1 = std::min(b0, ov.hx);  // ov: u limits
         const double vv0 = std::max(y0, -ov.hy), vv1 = std::min(y1, ov.hy);  // ov: v range
@@ -875,7 +912,7 @@ Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec
     if (!(yb > ya)) return 0;
     const double xa = std::max(std::min(a0 + piece.loB * ya, a0 + piece.loB * yb), -g.hx);
     const double xb = std::min(std::max(b0 + piece.hiB * ya, b0 + piece.hiB * yb), g.hx);
-    const Quadratic q = xb > xa ? Expand(g, 0.5 * (xa + xb), 0.5 * (ya + yb)) : Expand(g, 0, 0.5 * (ya + yb));
+    const Quadratic q = xb > xa ? Expand(g, xa, xb, ya, yb) : Expand(g, 0, 0, ya, yb);
     return Trapezoid(Orient(q, g, false), y0, y1, a0, piece.loB, b0, piece.hiB);
 }
 

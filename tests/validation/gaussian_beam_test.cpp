@@ -95,6 +95,10 @@ TEST(GaussianBeam, GrtMatchesRsThroughTheDoubleSlit) {
         {"slits, w0 2.8 mm (20x), waist 10 mm behind", {{"opening", "slits"}, {"w0", "2.8mm"}, {"zw", "-10mm"}}},
         {"slits, w0 60 um, on slit 2, tilted, n = 65",
          {{"opening", "slits"}, {"w0", "60um"}, {"offset", "50um"}, {"tilt", "0.2deg"}, {"n", "65"}}},
+        // A narrow beam tilted by 3° with its waist on the plate and its spot far from most GRs'
+        // hits (the expansion must follow the spot; about the opening's centre: 2.0e-3).
+        {"slits, w0 20 um, waist on the plate, 3 deg, z 5 mm",
+         {{"opening", "slits"}, {"w0", "20um"}, {"zw", "0mm"}, {"offset", "50um"}, {"tilt", "3deg"}, {"z", "5mm"}}},
     });
 }
 
