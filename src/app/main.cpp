@@ -272,15 +272,7 @@ int Render(const CliOptions &o) {
             std::cerr << "rendered " << st.sppReached << " spp"
                       << (st.sppMax > st.sppReached ? " (" + std::to_string(st.sppMax) + " in some pixels)" : "")
                       << " in " << FormatDuration(st.seconds) << " with " << integrator.name << "\n";
-        if (st.footprintAfterSpreadFree > 0)
-            std::cerr << "warning: " << st.footprintAfterSpreadFree
-                      << " path vertices met an aperture after another aperture; it acted geometrically "
-                         "(only the first footprint-aware kernel on a path diffracts)\n";
-        if (st.specularAfterSpreadFree > 0)
-            std::cerr << "warning: " << st.specularAfterSpreadFree
-                      << " path vertices scattered specularly after an aperture; delta lights (plane "
-                         "waves, point, spot, directional, laser beams) are not reached through such a "
-                         "surface, so their light behind it is missing (theory §9 item 5)\n";
+        for (const std::string &w : st.counters.Warnings()) std::cerr << "warning: " << w << "\n";
         if (!st.cancelled && std::all_of(img.data.begin(), img.data.end(), [](float v) { return v == 0; }))
             std::cerr << "warning: the image is black: " << scene->DarkImageCause() << "\n";
         if (st.invalidSamples > 0)

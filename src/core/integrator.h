@@ -2,11 +2,13 @@
 // phasor — integrators (design.md §4.3). All render into the same Film from the same Scene.
 #pragma once
 
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "core/film.h"
 #include "core/sampler.h"
@@ -33,6 +35,38 @@ struct RenderOptions {
     std::function<void(const std::string &)> warn;
 };
 
+/// Render-time events an integrator counts and the user is told about once after the render (named
+/// counters: an integrator adds one with RenderCounters::Add; the message lives in the table of
+/// render.cpp's Describe, the CLI prints every non-zero counter).
+enum class RenderEvent {
+    /// A footprint-aware kernel (aperture) met a GR that had already left one: it acted
+    /// geometrically (re-fitting the footprint after an aperture is future work; theory §9.5).
+    FootprintAfterSpreadFree,
+    /// Specular (delta) scattering of a spread-free GR in a scene with delta lights: a classical
+    /// ray cannot reach those through a specular surface, so their light behind it is missing
+    /// (theory §9 item 5).
+    SpecularAfterSpreadFree,
+    Count
+};
+struct RenderEventInfo {
+    const char *key;      // stable name, e.g. "footprint_after_spread_free" (EXR metadata phasor:count:<key>)
+    const char *message;  // what the count means, completing "N path vertices …"
+};
+const RenderEventInfo &Describe(RenderEvent e);
+
+/// One counter per RenderEvent, merged across threads.
+struct RenderCounters {
+    std::array<long long, std::size_t(RenderEvent::Count)> n{};
+    void Add(RenderEvent e, long long k = 1) { n[std::size_t(e)] += k; }
+    long long operator[](RenderEvent e) const { return n[std::size_t(e)]; }
+    RenderCounters &operator+=(const RenderCounters &o) {
+        for (std::size_t i = 0; i < n.size(); ++i) n[i] += o.n[i];
+        return *this;
+    }
+    /// "warning: N path vertices …" lines for every non-zero counter.
+    std::vector<std::string> Warnings() const;
+};
+
 /// The estimated run time [s] above which integrators warn before rendering (WorkWarning).
 inline constexpr double LongRenderSeconds = 300;
 /// "about 3h12m (…what…), far beyond the usual: …fix…", or "" if `seconds` ≤ LongRenderSeconds.
@@ -53,13 +87,7 @@ struct RenderStats {
     double seconds = 0;
     long long invalidSamples = 0;  // NaN/Inf/negative estimates discarded (never written)
     long long rays = 0;            // rays traced (intersection + shadow)
-    /// Footprint-aware kernels (apertures) reached by a GR that had already left one: they acted
-    /// geometrically (re-fitting the footprint after an aperture is future work; theory §9.5).
-    long long footprintAfterSpreadFree = 0;
-    /// Specular (delta) scattering of a spread-free GR in a scene with delta lights: a classical
-    /// ray cannot reach those through a specular surface, so their light behind it is missing
-    /// (theory §9 item 5).
-    long long specularAfterSpreadFree = 0;
+    RenderCounters counters;  // render-time events (RenderEvent)
 };
 
 class Integrator {

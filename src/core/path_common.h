@@ -53,7 +53,7 @@ inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceIntera
     // A footprint-aware kernel integrates a Gaussian beam's own field over the GR's footprint and
     // answers per unit on-axis irradiance (IncidentWave); every other kernel sees the local
     // irradiance at the hit.
-    const bool beamField = ls->beam && mat.IsFootprintAware() && q.gr && !q.rayOptics;
+    const bool beamField = ls->beam && (mat.Capabilities(q) & CapFootprintAware) && q.gr && !q.rayOptics;
     const IncidentWave wave{ls->dist, beamField ? &*ls->beam : nullptr};
     const SampledSpectrum &incident = beamField ? ls->beamAxisIrradiance : ls->L;
     const SampledSpectrum f = mat.EvalFrom(q, wo, wave) * std::abs(wo.z);

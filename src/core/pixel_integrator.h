@@ -18,10 +18,7 @@ namespace phasor {
 /// samples with it, theory §0 D4b).
 struct PathStats {
     long long rays = 0;
-    /// Vertices where a footprint-aware kernel met a spread-free GR and acted geometrically.
-    long long footprintAfterSpreadFree = 0;
-    /// Specular vertices of spread-free GRs in scenes with delta lights.
-    long long specularAfterSpreadFree = 0;
+    RenderCounters counters;  // render-time events (RenderEvent)
     PixelSampleIndex sample;
 };
 

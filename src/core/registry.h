@@ -64,6 +64,14 @@ struct Registry {
         for (const auto &e : Entries()) v.push_back(e.name);
         return v;
     }
+    /// Adds a plug-in compiled outside the tree's tables (a test kernel, an application embedding
+    /// phasor), normally through PHASOR_REGISTER_PLUGIN at static-initialisation time. Throws
+    /// phasor::Error if the family already has a plug-in of that name.
+    static void Register(const PluginEntry<T> &e) {
+        if (Find(e.name)) throw Error(std::string("duplicate ") + Family() + " plug-in '" + e.name + "'");
+        // Entries() is a function-local static that is not const (render/registry.cpp).
+        const_cast<std::vector<PluginEntry<T>> &>(Entries()).push_back(e);
+    }
 };
 
 /// Every family: name (as written in scene files: Spectrum, Texture, Material, Shape, Light,
@@ -181,6 +189,15 @@ class BuildContext {
 };
 
 }  // namespace phasor
+
+/// Registers a plug-in class at static-initialisation time under scene name `name` (inside
+/// namespace phasor), for plug-ins that are not in the generated tables (e.g. test kernels in
+/// tests/): one line at the end of the file instead of PHASOR_EXPORT_PLUGIN + the CMake line.
+#define PHASOR_REGISTER_PLUGIN(Interface, Class, name)                                           \
+    [[maybe_unused]] static const bool PhasorRegistered_##Class = [] {                           \
+        Registry<Interface>::Register({name, &Class::GetSchema, &Class::Create, &PresetsOf<Class>}); \
+        return true;                                                                             \
+    }()
 
 /// Ends a plug-in file (inside namespace phasor): defines the functions the generated table
 /// refers to.

@@ -4,26 +4,31 @@
 // Each pixel sample draws wavelengths ∝ emission × sensor response (D10; the render loop), a GR
 // from the detector (D2: mean ray + per-wavelength footprint β², ρ) and follows it like a
 // classical path: the mean ray is traced, the footprint is propagated by ABCD (theory §1.6, S6.3),
-// kernels are queried with the footprint (ScatterQuery::beta2/rho, !rayOptics) and pick one term
+// kernels are queried with the footprint (ScatterQuery::gr, Beta2(i), !rayOptics) and pick one term
 // of the Eq. 22 mixture. Light is collected in radiance units (pixel = k²·M, D4):
 //   * area lights: L_e where the mean ray hits them (theory §2.4 item 4), MIS (power heuristic)
 //     against next-event estimation after continuous lobes, in full after near-delta lobes;
-//   * next-event estimation to one uniformly chosen light per vertex, with Eval reporting only the
-//     continuous lobes (ScatterQuery::evalNearDelta = false);
+//   * next-event estimation to one uniformly chosen light per vertex through the continuous lobes
+//     (ScatterQuery::lobes = LobeContinuous: near-delta lobes have no density in Eval);
 //   * closed-form sources (Light::MeasuredInClosedForm: plane waves, point/spot lights, distant
 //     sources, Gaussian beams) are measured analytically (Eq. 24, theory §2.4) by every GR that
-//     leaves the detector or a near-delta lobe — D4a for primary GRs (a `virtual_plane` integrates
-//     them over its directions exactly), D14 for mirror/refraction lobes (glints of the sun or a
-//     laser) — with a shadow ray towards the source. Such a GR does not measure them again when
-//     it escapes (no double counting); after a continuous lobe they are reached by NEE and by
-//     escaping GRs (Le), MIS-weighted as usual.
+//     leaves the detector — D4a for primary GRs (a `virtual_plane` integrates them over its
+//     directions exactly) — and, at every vertex, through *every* near-delta lobe the kernel lists
+//     (Material::ListNearDelta; D14: glints of the sun or a laser in mirrors, refractions and all
+//     of a grating's orders in one sample), weighted by the lobe's a_j, with a shadow ray towards
+//     the source; a dispersive lobe is measured per carried wavelength along its own direction.
+//     The path then follows one sampled lobe; a GR that left through a near-delta lobe does not
+//     measure them again when it escapes (no double counting). After a continuous lobe they are
+//     reached by NEE and by escaping GRs (Le), MIS-weighted as usual.
 //   * footprint-aware kernels (apertures, theory §9) get the whole incident GR (ScatterQuery::gr)
 //     and return spread-free samples: the path continues as a classical ray; NEE asks them for the
 //     response to a spherical wave from the light sample (EvalFrom), and a sampled lobe is
 //     re-weighted by the distance its ray travels, so both strategies integrate one function.
 // `light_samples` NEE estimates per vertex (stratified). Russian roulette starts after `rr_depth`
 // bounces and never before the first measurement (NEE or closed form). At the last vertex no
-// direction is sampled if only delta lights exist. The film keeps the per-pixel variance of the mean.
+// direction is sampled if only delta lights exist (the listed lobes have measured them). A
+// dispersive lobe that is followed drops the companion wavelengths from the throughput only
+// (theory §0 D10): what they measured before stays. The film keeps the per-pixel variance of the mean.
 //
 // Simplifications (documented in docs/generalized_rays.md): the footprint is isotropic (D1); the
 // anamorphic stretch on oblique/curved interfaces is ignored (theory §1.6, as in the paper); area
@@ -116,6 +121,8 @@ class GrtIntegrator final : public PixelIntegrator {
         bool spreadFree = false;
         FootprintSample footprint;  // the last spread-free sample, until its ray hits something
         auto skipClosedForm = [](const Light *l) { return l->MeasuredInClosedForm(); };
+        const bool hasClosedForm = HasClosedFormLights(scene);
+        bool companionsDropped = false;
         for (int depth = 0;; ++depth) {
             ++stats.rays;
             auto si = scene.Intersect(g.MeanRay());
@@ -144,18 +151,18 @@ class GrtIntegrator final : public PixelIntegrator {
             q.wi = frame.ToLocal(-g.d);
             q.wl = &wl;
             q.rayOptics = spreadFree;  // a spread-free GR continues as a classical ray (theory §9.5)
-            q.beta2 = spreadFree ? 0 : g.beta2[0];
-            q.rho = spreadFree ? 0 : g.rho[0];
-            q.evalNearDelta = false;
             q.uv = si->uv;
             q.gr = spreadFree ? nullptr : &g;
             q.si = &*si;
-            if (spreadFree && mat->IsFootprintAware()) ++stats.footprintAfterSpreadFree;
+            const unsigned caps = mat->Capabilities(q);
+            if (spreadFree && mat->IsFootprintAware()) stats.counters.Add(RenderEvent::FootprintAfterSpreadFree);
 
             // Next-event estimation through the continuous lobes.
             const double uLight = sampler.Get1D();
             const Vec2 uLightPos = sampler.Get2D();
-            if (!mat->IsDeltaOnly()) {
+            if (caps & CapContinuous) {
+                ScatterQuery qc = q;
+                qc.lobes = LobeContinuous;  // near-delta lobes are measured in closed form below
                 // `light_samples` estimates per vertex, their light positions on a rotated
                 // m×m lattice when the count is a square m² (stratified), else independent.
                 const int m = int(std::lround(std::sqrt(double(lightSamples_))));
@@ -171,9 +178,21 @@ class GrtIntegrator final : public PixelIntegrator {
                         ul = sampler.Get1D();
                         u = sampler.Get2D();
                     }
-                    direct += path::SampleDirectLight(scene, *si, *mat, q, ul, u, wl, stats);
+                    direct += path::SampleDirectLight(scene, *si, *mat, qc, ul, u, wl, stats);
                 }
                 L += T * direct / double(lightSamples_);
+                measured = true;
+            }
+
+            // D14 through every listed near-delta lobe: delta and small sources (plane waves, lasers,
+            // point and spot lights, the sun) are measured in closed form along each lobe, weighted
+            // by its a_j — all of a grating's orders show their glints in one sample. The path then
+            // follows one sampled lobe, which does not measure them again (closedFormDone).
+            if ((caps & CapNearDelta) && !spreadFree && hasClosedForm) {
+                NearDeltaLobes lobes;
+                mat->ListNearDelta(q, lobes);
+                for (const NearDeltaLobe &lobe : lobes)
+                    L += T * MeasureThroughLobe(scene, g, *si, lobe, wl, stats);
                 measured = true;
             }
 
@@ -185,22 +204,24 @@ class GrtIntegrator final : public PixelIntegrator {
             // follows the medium (S6.4).
             auto bs = mat->Sample(q, sampler.Get1D(), sampler.Get2D());
             if (!bs || bs->weight.IsZero()) break;
-            if (bs->flags & ScatterDispersive) wl.TerminateSecondary();
+            // A dispersive lobe is followed at the hero wavelength only (D10). The companions are
+            // dropped from the throughput (T[0]·N, the same bookkeeping as TerminateSecondary), not
+            // from `wl`: what they collected up to here, including this vertex's closed-form
+            // measurement along their own directions, stays in the estimate.
+            if ((bs->flags & ScatterDispersive) && !companionsDropped) {
+                companionsDropped = DropCompanions(T, wl);
+            }
             T *= bs->weight;
             if ((bs->flags & ScatterSpreadFree) && q.gr) footprint.Remember(q, *si, g, *mat, *bs);
             const Vec3 wo = frame.ToWorld(bs->wo);
             g.Redirect(wo, bs->eta);
             g.o = si->SpawnOrigin(wo);
             const bool nearDelta = (bs->flags & ScatterNearDelta) != 0;
-            if (spreadFree && nearDelta && HasDeltaLights(scene)) ++stats.specularAfterSpreadFree;
+            if (spreadFree && nearDelta && HasDeltaLights(scene)) stats.counters.Add(RenderEvent::SpecularAfterSpreadFree);
             spreadFree = spreadFree || (bs->flags & ScatterSpreadFree) != 0;
             mis = path::MisState{nearDelta, bs->pdf, LightSampleContext{si->p, si->n}};
+            // After a near-delta lobe of a GR the closed-form sources were measured at this vertex.
             closedFormDone = nearDelta && !spreadFree;
-            if (nearDelta && !spreadFree) {
-                // D14: the lobe faces delta and small sources; measure them in closed form.
-                L += T * MeasureClosedForm(scene, g, &*si, wl, stats);
-                measured = true;
-            }
 
             if (depth + 1 >= rrDepth_ && measured && !path::RussianRoulette(T, sampler.Get1D())) break;
         }
@@ -229,6 +250,48 @@ class GrtIntegrator final : public PixelIntegrator {
         return false;
     }
 
+    /// True if some light is measured in closed form (Light::MeasuredInClosedForm).
+    static bool HasClosedFormLights(const Scene &scene) {
+        for (const Light *l : scene.Lights())
+            if (l->MeasuredInClosedForm()) return true;
+        return false;
+    }
+
+    /// Drops the companion wavelengths from the path's throughput (theory §0 D10): T[i > 0] = 0 and
+    /// T[0]·N, which is what SampledWavelengths::TerminateSecondary's pdf[0]/N does to everything
+    /// the film receives, applied to the rest of the path only. Returns false for a line sample
+    /// (no companions).
+    static bool DropCompanions(SampledSpectrum &T, const SampledWavelengths &wl) {
+        if (wl.Count() < 2) return false;
+        for (int i = 1; i < NumWavelengths; ++i) T[i] = 0;
+        T[0] *= wl.Count();
+        return true;
+    }
+
+    /// k²·M of the closed-form sources seen through one listed near-delta lobe, times its weight a_j
+    /// (D14). A lobe whose direction or index differs between the carried wavelengths (dispersive)
+    /// is measured per wavelength along that wavelength's own direction.
+    static SampledSpectrum MeasureThroughLobe(const Scene &scene, const SpectralGenRay &g,
+                                              const SurfaceInteraction &si, const NearDeltaLobe &lobe,
+                                              const SampledWavelengths &wl, PathStats &stats) {
+        if (lobe.weight.IsZero()) return SampledSpectrum(0.0);
+        auto along = [&](int i) {
+            SpectralGenRay out = g;
+            const Vec3 wo = si.shading.ToWorld(lobe.wo[i]);
+            out.Redirect(wo, lobe.Eta(i));
+            out.o = si.SpawnOrigin(wo);
+            return out;
+        };
+        bool uniform = true;
+        for (int i = 1; i < wl.Count(); ++i)
+            uniform = uniform && lobe.wo[i] == lobe.wo[0] && lobe.Eta(i) == lobe.Eta(0);
+        if (uniform) return lobe.weight * MeasureClosedForm(scene, along(0), &si, wl, stats);
+        SampledSpectrum v(0.0);
+        for (int i = 0; i < wl.Count(); ++i)
+            if (lobe.weight[i] > 0) v[i] = lobe.weight[i] * MeasureClosedForm(scene, along(i), &si, wl, stats)[i];
+        return v;
+    }
+
     /// A sample of a footprint-aware kernel (theory §9) waiting for the distance to what its ray
     /// hits: the kernel's response depends on the incident wave's curvature (EvalFrom), and its
     /// Sample weight assumed a plane wave.
@@ -254,7 +317,7 @@ class GrtIntegrator final : public PixelIntegrator {
         }
         /// EvalFrom(q, wo, dist) / Eval(q, wo) per wavelength (0 where Eval is 0).
         SampledSpectrum Correction(double dist) const {
-            const SampledSpectrum g = mat->EvalFrom(q, wo, IncidentWave{dist});
+            const SampledSpectrum g = mat->EvalFrom(q, wo, IncidentWave{dist});  // q.lobes = LobeAll
             SampledSpectrum r(0.0);
             for (int i = 0; i < NumWavelengths; ++i) r[i] = f[i] > 0 ? g[i] / f[i] : 0;
             return r;

@@ -58,7 +58,7 @@ class RayIntegrator final : public PixelIntegrator {
             // Next-event estimation (the samples are drawn even when unused, to keep dimensions aligned).
             double uLight = sampler.Get1D();
             Vec2 uLightPos = sampler.Get2D();
-            if (!mat->IsDeltaOnly())
+            if (!mat->IsDeltaOnly(q))
                 L += beta * path::SampleDirectLight(scene, *si, *mat, q, uLight, uLightPos, wl, stats);
 
             // Continue the path by sampling the kernel.

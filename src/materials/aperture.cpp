@@ -258,8 +258,51 @@ class ApertureMaterial final : public Material {
         return p;
     }
 
-    std::optional<ScatterSample> Sample(const ScatterQuery &q, double u0, const Vec2 &u) const override {
-        if (q.rayOptics || !q.gr) return SampleRay(q);
+    /// Ray-optics limit (or no GR): one near-delta lobe, straight transmission. A generalized ray:
+    /// one footprint-aware continuous lobe (the diffraction pattern |A|²).
+    unsigned Capabilities(const ScatterQuery &q) const override {
+        return RayLimit(q) ? CapNearDelta : (CapContinuous | CapFootprintAware);
+    }
+
+    /// Ray-optics limit: lobe 1, straight through with the transmission t at the hit.
+    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
+        if (!RayLimit(q)) return;
+        const double t = TransmissionAtHit(q);
+        if (!(t > 0) || q.wi.z == 0) return;
+        NearDeltaLobe &l = out.Add();
+        l.id = StraightLobe;
+        l.flags = ScatterTransmission | ScatterNearDelta;
+        l.wo.fill(-q.wi);
+        l.weight = SampledSpectrum(t);
+        l.nIn.fill(q.etaOutside);
+        l.nOut.fill(q.etaOutside);
+        l.prob = 1;
+    }
+
+    /// Scalar diffraction (Kirchhoff) keeps the polarisation: M = value·I, Jones = √value·I
+    /// (the phase of a single lobe does not enter its Mueller matrix). Lobe 0: the GR's
+    /// diffraction lobe, value Eval·|cosθo|; lobe 1 (ray limit): straight transmission t.
+    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
+        SampledSpectrum v(0.0);
+        if (lobe == StraightLobe && RayLimit(q) && SameDirection(wo, -q.wi)) v = SampledSpectrum(TransmissionAtHit(q));
+        else if (lobe == 0 && !RayLimit(q)) v = EvalContinuous(q, wo) * std::abs(wo.z);
+        else return std::nullopt;
+        LobeResponse r;
+        r.hasJones = true;
+        for (int i = 0; i < q.wl->Count(); ++i) {
+            r.jones[i] = Jones::Identity() * Complex(std::sqrt(std::max(0.0, v[i])), 0);
+            r.mueller[i] = Mueller::Identity() * std::max(0.0, v[i]);
+        }
+        return r;
+    }
+
+    // See the file comment: the value depends on the incident GR's footprint.
+    bool IsReciprocal() const override { return false; }
+    const ApertureMask *Openings() const override { return &mask_; }
+
+  protected:
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
+        if (RayLimit(q)) return SampleRay(q);
         Geometry geo;
         if (!MakeGeometry(q, &geo)) return std::nullopt;
         const Proxy px = MakeProxy(q, geo);
@@ -297,19 +340,19 @@ class ApertureMaterial final : public Material {
         return s;
     }
 
-    SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const override {
-        return EvalFrom(q, wo, IncidentWave{});
+    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
+        return EvalContinuousFrom(q, wo, IncidentWave{});
     }
 
-    SampledSpectrum EvalFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const override {
-        if (q.rayOptics || !q.gr || wo.z == 0) return SampledSpectrum(0.0);
+    SampledSpectrum EvalContinuousFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const override {
+        if (RayLimit(q) || wo.z == 0) return SampledSpectrum(0.0);
         Geometry geo;
         if (!MakeGeometry(q, &geo)) return SampledSpectrum(0.0);
         return EvalWorld(q, geo, q.si->shading.ToWorld(wo), wo.z, w);
     }
 
-    double Pdf(const ScatterQuery &q, const Vec3 &wo) const override {
-        if (q.rayOptics || !q.gr) return 0;
+    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
+        if (RayLimit(q)) return 0;
         Geometry geo;
         if (!MakeGeometry(q, &geo)) return 0;
         const Proxy px = MakeProxy(q, geo);
@@ -317,12 +360,7 @@ class ApertureMaterial final : public Material {
         return ProxyPdf(px, geo, q.si->shading.ToWorld(wo));
     }
 
-    bool IsDeltaOnly() const override { return false; }
-    // See the file comment: the value depends on the incident GR's footprint.
-    bool IsReciprocal() const override { return false; }
-    bool IsFootprintAware() const override { return true; }
-    const ApertureMask *Openings() const override { return &mask_; }
-
+  public:
     void CheckShape(const Shape &shape) const override {
         const std::string desc = shape.ToString();
         const std::string type = desc.substr(0, desc.find(' '));
@@ -467,19 +505,25 @@ class ApertureMaterial final : public Material {
         return px.k * px.k * cosO * (ProbLobe * lobe + ProbDiffraction * diff) + ProbCosine * cosO * InvPi;
     }
 
-    // Ray-optics limit: straight transmission with the transmission at the hit point.
-    std::optional<ScatterSample> SampleRay(const ScatterQuery &q) const {
-        if (!q.si || !q.si->shape || q.wi.z == 0) return std::nullopt;
+    static constexpr int StraightLobe = 1;  // the ray-optics limit's lobe id
+    static bool RayLimit(const ScatterQuery &q) { return q.rayOptics || !q.gr; }
+    /// The mask's transmission at the hit point (0 without a hit).
+    double TransmissionAtHit(const ScatterQuery &q) const {
+        if (!q.si || !q.si->shape) return 0;
         const Transform &tw = q.si->shape->objectToWorld;
         const Vec3 rel = q.si->p - tw.Point(Vec3(0, 0, 0));
-        const double t =
-            mask_.Transmission(Vec2(Dot(rel, tw.Vector(Vec3(1, 0, 0))), Dot(rel, tw.Vector(Vec3(0, 1, 0)))));
-        if (!(t > 0)) return std::nullopt;
+        return mask_.Transmission(Vec2(Dot(rel, tw.Vector(Vec3(1, 0, 0))), Dot(rel, tw.Vector(Vec3(0, 1, 0)))));
+    }
+
+    // Ray-optics limit: straight transmission with the transmission at the hit point.
+    std::optional<ScatterSample> SampleRay(const ScatterQuery &q) const {
+        const double t = TransmissionAtHit(q);
+        if (!(t > 0) || q.wi.z == 0) return std::nullopt;
         ScatterSample s;
         s.wo = -q.wi;
         s.weight = SampledSpectrum(t);
         s.pdf = 1;
-        s.lobe = 0;
+        s.lobe = StraightLobe;
         s.flags = ScatterTransmission | ScatterNearDelta;
         s.eta = 1;
         return s;

@@ -8,8 +8,8 @@
 // Valid when the surface roughness is ≪ λ over the footprint (otherwise use a rough kernel).
 // Two-sided like pbrt's conductor: a ray arriving from below the shading normal is mirrored on
 // that side too (the inside of a metal is unreachable, so this only matters for thin sheets and
-// flipped normals). Never transmits; the rest (1 − R) is absorbed. For a generalized ray
-// (!ScatterQuery::rayOptics) Eval reports the lobe as the GR's angular Gaussian (near_delta.h).
+// flipped normals). Never transmits; the rest (1 − R) is absorbed. The lobe is listed
+// (ListNearDelta, id 0), so integrators measure delta sources through it in closed form (D14).
 //
 // Index: `ior` (a complex constant), or `eta` and `k` (spectra), or `metal` (tabulated: Al from
 // Rakić et al. 1998, Ag/Au/Cu from Johnson & Christy 1972; see metal_ior.h). The index is relative
@@ -22,7 +22,6 @@
 #include "core/registry.h"
 #include "materials/fresnel.h"
 #include "materials/metal_ior.h"
-#include "materials/near_delta.h"
 
 namespace phasor {
 
@@ -133,7 +132,42 @@ class ConductorMaterial final : public Material {
         return p;
     }
 
-    std::optional<ScatterSample> Sample(const ScatterQuery &q, double, const Vec2 &) const override {
+    unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
+
+    /// One lobe, id 0: the mirror direction (on wi's side: two-sided), weight R(λ).
+    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
+        if (q.wi.z == 0) return;
+        NearDeltaLobe &l = out.Add();
+        l.id = 0;
+        l.flags = ScatterReflection | ScatterNearDelta;
+        l.wo.fill(ReflectLocal(q.wi));
+        l.weight = Reflectance(q);
+        l.nIn.fill(q.etaOutside);
+        l.nOut.fill(q.etaOutside);
+        l.prob = 1;
+    }
+
+    /// Lobe 0 towards the mirror direction: Jones diag(r_s, r_p) (theory §4.1).
+    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
+        if (lobe != 0 || q.wi.z == 0 || !SameDirection(wo, ReflectLocal(q.wi))) return std::nullopt;
+        LobeResponse r;
+        r.hasJones = true;
+        for (int i = 0; i < q.wl->Count(); ++i) {
+            const FresnelCoefficients c = FresnelAmplitudes(std::abs(q.wi.z), q.etaOutside, Index(q.wl->lambda[i]));
+            r.jones[i] = Jones::Diagonal(c.rs, c.rp);
+            r.mueller[i] = Mueller::FromJones(r.jones[i]);
+        }
+        return r;
+    }
+
+    std::string ToString() const override {
+        std::ostringstream os;
+        os << "ConductorMaterial[ eta = " << eta_->ToString() << ", k = " << k_->ToString() << " ]";
+        return os.str();
+    }
+
+  private:
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double, const Vec2 &) const override {
         if (q.wi.z == 0) return std::nullopt;
         ScatterSample s;
         s.wo = ReflectLocal(q.wi);  // mirrored on wi's side (two-sided)
@@ -145,42 +179,14 @@ class ConductorMaterial final : public Material {
         return s;
     }
 
-    SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const override {
-        // Ray-optics limit: a Dirac delta has no finite density. A generalized ray's mirror lobe
-        // is its own angular Gaussian about the mirror direction (near_delta.h), so
-        // f·|cosθo| = R·N(wo; wr, σ_k²/k²): NEE to a delta-direction source then yields the glint
-        // R·E·k²·N₂(Δk⊥; 0, σ_k²I) of theory §2.4 item 2.
-        if (!SpreadNearDelta(q) || q.wi.z == 0 || wo.z == 0) return SampledSpectrum(0);
-        const Vec3 wr = ReflectLocal(q.wi);
-        const SampledSpectrum r = Reflectance(q);
-        SampledSpectrum f(0.0);
-        for (int i = 0; i < q.wl->Count(); ++i) {
-            const double var = NearDeltaAngularVariance(q, q.etaOutside, q.wl->lambda[i]);
-            f[i] = r[i] * NearDeltaDensity(wo, wr, var) / std::abs(wo.z);
-        }
-        return f;
-    }
+    /// The complex index at vacuum wavelength l [m]; a tabulated metal is evaluated once (not once
+    /// for n and once for κ).
+    Complex Index(double l) const { return metal_ ? MetalIndex(*metal_, l) : Complex(eta_->Eval(l), k_->Eval(l)); }
 
-    double Pdf(const ScatterQuery &, const Vec3 &) const override { return 0; }
-
-    bool IsDeltaOnly() const override { return true; }
-
-    std::string ToString() const override {
-        std::ostringstream os;
-        os << "ConductorMaterial[ eta = " << eta_->ToString() << ", k = " << k_->ToString() << " ]";
-        return os.str();
-    }
-
-  private:
     SampledSpectrum Reflectance(const ScatterQuery &q) const {
         SampledSpectrum r;
         const double cosI = std::abs(q.wi.z);
-        for (int i = 0; i < q.wl->Count(); ++i) {
-            const double l = q.wl->lambda[i];
-            // A tabulated metal is evaluated once per wavelength (not once for n and once for κ).
-            const Complex n = metal_ ? MetalIndex(*metal_, l) : Complex(eta_->Eval(l), k_->Eval(l));
-            r[i] = FresnelComplex(cosI, q.etaOutside, n);
-        }
+        for (int i = 0; i < q.wl->Count(); ++i) r[i] = FresnelComplex(cosI, q.etaOutside, Index(q.wl->lambda[i]));
         return r;
     }
 

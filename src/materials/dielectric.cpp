@@ -12,8 +12,8 @@
 // refracted radiance carries the (η_i/η_t)² factor (camera paths transport radiance, whose
 // basic invariant is L/n²). A wavelength-dependent index makes refraction dispersive: its
 // direction is the hero's, and the integrator drops the companions (theory §0 D10). For a
-// generalized ray (!ScatterQuery::rayOptics) Eval reports both lobes as the GR's angular Gaussians
-// (near_delta.h).
+// generalized ray both lobes are listed (ListNearDelta: ids 0 reflection, 1 refraction) and
+// measured in closed form by the integrator (D14).
 //
 // Dispersion: `ior` may be any spectrum; `cauchy_b` adds Cauchy's term, η(λ) = ior(λ) + B/λ²
 // (Cauchy 1836; e.g. BK7 ≈ 1.5046 + 4.20e-3 µm²/λ²).
@@ -24,7 +24,6 @@
 #include "core/material.h"
 #include "core/registry.h"
 #include "materials/fresnel.h"
-#include "materials/near_delta.h"
 
 namespace phasor {
 
@@ -80,76 +79,65 @@ class DielectricMaterial final : public Material {
         return p;
     }
 
-    std::optional<ScatterSample> Sample(const ScatterQuery &q, double u0, const Vec2 &) const override {
-        const Vec3 &wi = q.wi;
-        if (wi.z == 0) return std::nullopt;
-        const bool entering = wi.z > 0;  // wi on the outside: the path crosses into the interior
-        const double cosI = std::abs(wi.z);
-        const int count = q.wl->Count();
+    unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
 
-        // Relative index η = n_(far side)/n_(wi side) and Fresnel reflectance per wavelength.
-        std::array<double, NumWavelengths> eta{}, refl{};
-        for (int i = 0; i < count; ++i) {
-            const double n = Index(q.wl->lambda[i]);
-            if (!(n > 0)) return std::nullopt;  // outside the index data: treat as absorbed
-            eta[i] = entering ? n / q.etaOutside : q.etaOutside / n;
-            refl[i] = FresnelDielectric(cosI, eta[i]);
+    /// Lobe 0: reflection, weight R(λ); lobe 1: refraction by Snell's law, weight T(λ)·(η_i/η_t)²,
+    /// per wavelength along its own direction (dispersive when η varies); not listed under total
+    /// internal reflection at the hero wavelength. Probabilities as in Sample: R and T at the hero.
+    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
+        Interface f;
+        if (!Evaluate(q, &f)) return;
+        // A lobe that carries nothing at any wavelength (index matched: R = 0) is not listed.
+        bool reflects = false;
+        for (int i = 0; i < q.wl->Count(); ++i) reflects = reflects || f.refl[i] > 0;
+        NearDeltaLobe scratch;
+        NearDeltaLobe &r = reflects ? out.Add() : scratch;
+        r.id = 0;
+        r.flags = ScatterReflection | ScatterNearDelta;
+        r.wo.fill(ReflectLocal(q.wi));
+        r.prob = f.refl[0];
+        Vec3 wt;
+        const bool refracts = f.refl[0] < 1 && RefractLocal(q.wi, f.eta[0], &wt);
+        NearDeltaLobe *t = refracts ? &out.Add() : nullptr;
+        if (t) {
+            t->id = 1;
+            t->flags = ScatterTransmission | ScatterNearDelta | (dispersive_ ? ScatterDispersive : 0u);
+            t->prob = 1 - f.refl[0];
         }
-
-        ScatterSample s;
-        const double rHero = refl[0];
-        if (u0 < rHero) {
-            // Specular reflection, chosen with probability R(λ_hero): weight = R(λ)/R(λ_hero).
-            s.wo = ReflectLocal(wi);
-            for (int i = 0; i < count; ++i) s.weight[i] = refl[i] / rHero;
-            s.pdf = rHero;
-            s.lobe = 0;
-            s.flags = ScatterReflection | ScatterNearDelta;
-            s.eta = 1;
-            return s;
-        }
-        // Refraction at the hero wavelength (total internal reflection has R = 1 and never gets
-        // here), chosen with probability T(λ_hero) = 1 − R(λ_hero).
-        if (!RefractLocal(wi, eta[0], &s.wo)) return std::nullopt;  // unreachable: R = 1 under TIR
-        const double tHero = 1 - rHero;
-        // weight = T(λ)/T(λ_hero) · (η_i/η_t)²: radiance scaling on crossing the interface.
-        for (int i = 0; i < count; ++i) s.weight[i] = (1 - refl[i]) / tHero / (eta[i] * eta[i]);
-        s.pdf = tHero;
-        s.lobe = 1;
-        s.flags = ScatterTransmission | ScatterNearDelta | (dispersive_ ? ScatterDispersive : 0u);
-        s.eta = eta[0];
-        return s;
-    }
-
-    SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const override {
-        // Ray-optics limit: both lobes are Dirac deltas with no finite density. For a generalized
-        // ray each lobe is the GR's angular Gaussian about its direction (near_delta.h), in the
-        // medium the lobe travels in: f·|cosθo| = R·N(wo; wr, σ_k²/k_i²) + (T/η²)·N(wo; wt, σ_k²/k_t²)
-        // per wavelength (β and ρ are kept, only |k| follows the medium, S6.4).
-        const Vec3 &wi = q.wi;
-        if (!SpreadNearDelta(q) || wi.z == 0 || wo.z == 0) return SampledSpectrum(0);
-        const bool entering = wi.z > 0;
-        const double cosI = std::abs(wi.z);
-        const Vec3 wr = ReflectLocal(wi);
-        SampledSpectrum f(0.0);
         for (int i = 0; i < q.wl->Count(); ++i) {
-            const double lambda = q.wl->lambda[i], n = Index(lambda);
-            if (!(n > 0)) continue;
-            const double etaI = entering ? q.etaOutside : n, etaT = entering ? n : q.etaOutside;
-            const double eta = etaT / etaI, refl = FresnelDielectric(cosI, eta);
-            double v = refl * NearDeltaDensity(wo, wr, NearDeltaAngularVariance(q, etaI, lambda));
-            Vec3 wt;
-            if (refl < 1 && RefractLocal(wi, eta, &wt))
-                v += (1 - refl) / (eta * eta) *
-                     NearDeltaDensity(wo, wt, NearDeltaAngularVariance(q, etaT, lambda));
-            f[i] = v / std::abs(wo.z);
+            r.weight[i] = f.refl[i];
+            r.nIn[i] = r.nOut[i] = f.nI[i];
+            if (!t) continue;
+            t->nIn[i] = f.nI[i];
+            t->nOut[i] = f.nT[i];
+            if (RefractLocal(q.wi, f.eta[i], &t->wo[i])) t->weight[i] = (1 - f.refl[i]) / (f.eta[i] * f.eta[i]);
+            else t->wo[i] = wt;  // weight 0 at this companion (total internal reflection)
         }
-        return f;
     }
 
-    double Pdf(const ScatterQuery &, const Vec3 &) const override { return 0; }
-
-    bool IsDeltaOnly() const override { return true; }
+    /// Lobe 0 (mirror direction): Jones diag(r_s, r_p); lobe 1 (refracted direction at the hero):
+    /// diag(t_s, t_p)·√(Re(n_t cosθ_t)/(n_i cosθ_i))·(η_i/η_t), so that M00 is the listed weight
+    /// T·(η_i/η_t)² (theory §4.1: power factor and radiance scaling).
+    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
+        Interface f;
+        if ((lobe != 0 && lobe != 1) || !Evaluate(q, &f)) return std::nullopt;
+        Vec3 dir = ReflectLocal(q.wi);
+        if (lobe == 1 && !RefractLocal(q.wi, f.eta[0], &dir)) return std::nullopt;
+        if (!SameDirection(wo, dir)) return std::nullopt;
+        LobeResponse r;
+        r.hasJones = true;
+        const double cosI = std::abs(q.wi.z);
+        for (int i = 0; i < q.wl->Count(); ++i) {
+            const FresnelCoefficients c = FresnelAmplitudes(cosI, f.nI[i], Complex(f.nT[i], 0));
+            if (lobe == 0) r.jones[i] = Jones::Diagonal(c.rs, c.rp);
+            else {
+                const double power = std::max(0.0, (f.nT[i] * c.cosThetaT).real()) / (f.nI[i] * cosI);
+                r.jones[i] = Jones::Diagonal(c.ts, c.tp) * Complex(std::sqrt(power) / f.eta[i], 0);
+            }
+            r.mueller[i] = Mueller::FromJones(r.jones[i]);
+        }
+        return r;
+    }
 
     std::string ToString() const override {
         std::ostringstream os;
@@ -162,6 +150,56 @@ class DielectricMaterial final : public Material {
     double Index(double lambda) const { return ior_->Eval(lambda) + cauchyB_ / (lambda * lambda); }
 
   private:
+    /// The interface as seen from wi, per wavelength: indices of wi's side (nI) and the far side
+    /// (nT), η = nT/nI and the unpolarised reflectance.
+    struct Interface {
+        std::array<double, NumWavelengths> nI{}, nT{}, eta{}, refl{};
+    };
+    /// False if wi is grazing or outside the index data (treated as absorbed).
+    bool Evaluate(const ScatterQuery &q, Interface *f) const {
+        if (q.wi.z == 0) return false;
+        const bool entering = q.wi.z > 0;  // wi on the outside: the path crosses into the interior
+        const double cosI = std::abs(q.wi.z);
+        for (int i = 0; i < q.wl->Count(); ++i) {
+            const double n = Index(q.wl->lambda[i]);
+            if (!(n > 0)) return false;
+            f->nI[i] = entering ? q.etaOutside : n;
+            f->nT[i] = entering ? n : q.etaOutside;
+            f->eta[i] = f->nT[i] / f->nI[i];
+            f->refl[i] = FresnelDielectric(cosI, f->eta[i]);
+        }
+        return true;
+    }
+
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const override {
+        Interface f;
+        if (!Evaluate(q, &f)) return std::nullopt;
+        const int count = q.wl->Count();
+        ScatterSample s;
+        const double rHero = f.refl[0];
+        if (u0 < rHero) {
+            // Specular reflection, chosen with probability R(λ_hero): weight = R(λ)/R(λ_hero).
+            s.wo = ReflectLocal(q.wi);
+            for (int i = 0; i < count; ++i) s.weight[i] = f.refl[i] / rHero;
+            s.pdf = rHero;
+            s.lobe = 0;
+            s.flags = ScatterReflection | ScatterNearDelta;
+            s.eta = 1;
+            return s;
+        }
+        // Refraction at the hero wavelength (total internal reflection has R = 1 and never gets
+        // here), chosen with probability T(λ_hero) = 1 − R(λ_hero).
+        if (!RefractLocal(q.wi, f.eta[0], &s.wo)) return std::nullopt;  // unreachable: R = 1 under TIR
+        const double tHero = 1 - rHero;
+        // weight = T(λ)/T(λ_hero) · (η_i/η_t)²: radiance scaling on crossing the interface.
+        for (int i = 0; i < count; ++i) s.weight[i] = (1 - f.refl[i]) / tHero / (f.eta[i] * f.eta[i]);
+        s.pdf = tHero;
+        s.lobe = 1;
+        s.flags = ScatterTransmission | ScatterNearDelta | (dispersive_ ? ScatterDispersive : 0u);
+        s.eta = f.eta[0];
+        return s;
+    }
+
     std::shared_ptr<const Spectrum> ior_;
     double cauchyB_ = 0;  // Cauchy B [m²]
     bool dispersive_ = false;

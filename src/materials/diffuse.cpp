@@ -72,7 +72,19 @@ class DiffuseMaterial final : public Material {
         return p;
     }
 
-    std::optional<ScatterSample> Sample(const ScatterQuery &q, double, const Vec2 &u) const override {
+    unsigned Capabilities(const ScatterQuery &) const override { return CapContinuous; }
+
+    /// Lobe 0 (the only one): a depolariser, M = (R/π)·|cosθo|·diag(1, 0, 0, 0) (theory §4.9).
+    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
+        if (lobe != 0 || !SameSide(q.wi, wo)) return std::nullopt;
+        const SampledSpectrum f = Reflectance(q) * (InvPi * std::abs(wo.z));
+        LobeResponse r;
+        for (int i = 0; i < q.wl->Count(); ++i) r.mueller[i] = Mueller::Depolarizer(f[i]);
+        return r;
+    }
+
+  protected:
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double, const Vec2 &u) const override {
         if (q.wi.z == 0) return std::nullopt;
         // Malley's method: project a uniform disc sample up to the hemisphere (pdf = cosθ/π).
         const Vec2 d = ConcentricDisc(u);
@@ -88,17 +100,16 @@ class DiffuseMaterial final : public Material {
         return s;
     }
 
-    SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const override {
+    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
         if (!SameSide(q.wi, wo)) return SampledSpectrum(0);
         return Reflectance(q) * InvPi;
     }
 
-    double Pdf(const ScatterQuery &q, const Vec3 &wo) const override {
+    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
         return SameSide(q.wi, wo) ? std::abs(wo.z) * InvPi : 0;
     }
 
-    bool IsDeltaOnly() const override { return false; }
-
+  public:
     std::string ToString() const override {
         std::ostringstream os;
         os << "DiffuseMaterial[ "

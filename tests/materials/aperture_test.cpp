@@ -675,7 +675,18 @@ TEST(ApertureKernel, CheckShapeWantsARigidPlanarShape) {
     }
     EXPECT_THROW(m->CheckShape(Plate(true, Transform::Scale(Vec3(2, 2, 2)))), Error);
     EXPECT_TRUE(m->IsFootprintAware());
-    EXPECT_FALSE(m->IsDeltaOnly());
+    // Capabilities depend on the query: a straight near-delta transmission in the ray-optics
+    // limit, a footprint-aware continuous lobe for a generalized ray.
+    ScatterQuery ray;
+    ray.wi = Vec3(0, 0, 1);
+    EXPECT_TRUE(m->IsDeltaOnly(ray));
+    EXPECT_EQ(m->Capabilities(ray), unsigned(CapNearDelta));
+    SpectralGenRay gr;
+    ScatterQuery wave = ray;
+    wave.rayOptics = false;
+    wave.gr = &gr;
+    EXPECT_FALSE(m->IsDeltaOnly(wave));
+    EXPECT_EQ(m->Capabilities(wave), unsigned(CapContinuous | CapFootprintAware));
     EXPECT_FALSE(m->IsReciprocal());
     ASSERT_NE(m->Openings(), nullptr);
     EXPECT_NEAR(m->Openings()->OpenArea(), 4e-12, 1e-24);

@@ -121,7 +121,7 @@ TEST(Dielectric, DeltaOnlyInTheRayLimit) {
     auto m = Dielectric(1.5);
     const SampledWavelengths wl = TestWavelengths(550e-9);
     const ScatterQuery q = Query(DirectionFromCosTheta(0.5, 0.3), wl);
-    EXPECT_TRUE(m->IsDeltaOnly());
+    EXPECT_TRUE(m->IsDeltaOnly(q));
     EXPECT_TRUE(m->Eval(q, ReflectLocal(q.wi)).IsZero());
     EXPECT_EQ(m->Pdf(q, ReflectLocal(q.wi)), 0);
 }

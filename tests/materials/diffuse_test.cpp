@@ -27,7 +27,7 @@ TEST(Diffuse, LambertianValueAndTwoSidedness) {
         EXPECT_GT(s->wo.z * side, 0);  // reflected on wi's side
         EXPECT_NEAR(s->weight[0], 0.7, 1e-15);
     }
-    EXPECT_FALSE(m->IsDeltaOnly());
+    EXPECT_FALSE(m->IsDeltaOnly(ScatterQuery{}));
 }
 
 TEST(Diffuse, TextureDrivesTheReflectance) {

@@ -6,8 +6,12 @@
 //
 // Conventions checked (core/material.h): local frame, wi and wo point away from the surface;
 // continuous samples have weight = Eval·|cosθo|/Pdf and report pdf = Pdf(wo); near-delta samples
-// report their lobe's selection probability as pdf, have Eval = Pdf = 0 in the ray-optics limit,
-// and obey the law of reflection or Snell's law (tangential wave vector kept, η = ScatterSample::eta).
+// are one of the lobes ListNearDelta lists (same id, direction, probability and weight a_j/p_j),
+// each listed lobe obeys the vector grating equation with its own tangential shift (the law of
+// reflection and Snell's law for shift 0), lists no evanescent direction and Σ a_j ≤ 1; Eval and
+// Pdf hold the continuous lobes only and the lobe mask (ScatterQuery::lobes) splits Sample into
+// the continuous and near-delta parts; EvalLobe's Mueller matrix has M00 = the lobe's value and
+// equals FromJones(Jones) where a Jones matrix is given.
 // Statistical checks use proper tests (χ², Welch / one-sample t) with fixed seeds and a Šidák
 // correction over the whole instantiation at family-wise level 1 %.
 //
@@ -39,8 +43,9 @@ struct Incident {
 constexpr Incident Incidents[] = {{1.0, 0.0},  {0.8, 0.7},  {0.4, 2.1}, {0.08, 3.9},
                                   {0.01, 5.2}, {-0.9, 1.3}, {-0.5, 4.4}};
 constexpr int NumLambdas = int(std::size(Lambdas)), NumIncidents = int(std::size(Incidents));
-// Statistical test kinds per instance (χ² sphere, importance vs uniform, furnace, discrete orders).
-constexpr int StatTestsPerCase = 4;
+// Statistical test kinds per instance (χ² sphere, importance vs uniform, furnace, discrete orders,
+// lobe mask split).
+constexpr int StatTestsPerCase = 5;
 
 struct ContractCase {
     std::string kernel;
@@ -202,8 +207,6 @@ void AttachFootprint(ScatterQuery &q, SpectralGenRay &gr, SurfaceInteraction &si
         gr.rho[i] = ContractRho;
     }
     q.rayOptics = false;
-    q.beta2 = gr.beta2[0];
-    q.rho = gr.rho[0];
     q.gr = &gr;
     q.si = &si;
 }
@@ -231,7 +234,7 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
         q_.etaOutside = 1;
         q_.rayOptics = true;
         q_.uv = Vec2(0.13 + 0.19 * c_.incident, 0.61 - 0.07 * c_.incident);
-        footprint_ = material_->IsFootprintAware();
+        footprint_ = material_->IsFootprintAware();  // wave-regime capability
         if (footprint_) {
             ASSERT_NO_THROW(material_->CheckShape(plate_));
             si_.p = ContractHit;
@@ -329,7 +332,7 @@ TEST_P(MaterialContract, Chi2SamplingMatchesPdf) {
     // M = 10⁶ at the 550 nm hero, 2.5·10⁵ at 400/700 nm (the continuous kernels' angular shape
     // rarely depends on λ; this halves the suite's run time). Delta-only kernels have nothing to
     // histogram: a short run checks that no continuous sample appears.
-    const long long m = material_->IsDeltaOnly() ? 10000 : Count(c_.lambdaIndex == 1 ? 1000000 : 250000);
+    const long long m = material_->IsDeltaOnly(Stat()) ? 10000 : Count(c_.lambdaIndex == 1 ? 1000000 : 250000);
     TestRng rng = Rng("chi2");
     std::vector<double> obs(std::size_t(GridCos) * GridPhi + 1, 0);
     for (long long i = 0; i < m; ++i) {
@@ -389,7 +392,7 @@ TEST_P(MaterialContract, SampleWeightMatchesEval) {
         if (s->flags & ScatterNearDelta) {
             EXPECT_GT(s->pdf, 0);
             EXPECT_LE(s->pdf, 1 + 1e-12) << "a discrete lobe's selection probability";
-            if (material_->IsDeltaOnly()) {
+            if (material_->IsDeltaOnly(q_)) {
                 // Ray-optics limit: nothing but deltas, so no finite density anywhere.
                 EXPECT_TRUE(material_->Eval(q_, s->wo).IsZero());
                 EXPECT_EQ(material_->Pdf(q_, s->wo), 0);
@@ -397,7 +400,7 @@ TEST_P(MaterialContract, SampleWeightMatchesEval) {
             continue;
         }
         ++continuous;
-        ASSERT_FALSE(material_->IsDeltaOnly()) << "IsDeltaOnly() but Sample returned a continuous lobe";
+        ASSERT_FALSE(material_->IsDeltaOnly(q_)) << "IsDeltaOnly() but Sample returned a continuous lobe";
         const double pdf = material_->Pdf(q_, s->wo);
         ASSERT_GT(s->pdf, 0);
         EXPECT_NEAR(s->pdf, pdf, 1e-6 * s->pdf) << "pdf reported by Sample differs from Pdf()";
@@ -409,7 +412,7 @@ TEST_P(MaterialContract, SampleWeightMatchesEval) {
         }
         if (HasFailure()) break;
     }
-    if (!material_->IsDeltaOnly()) {
+    if (!material_->IsDeltaOnly(q_)) {
         EXPECT_GT(continuous, 0) << "never sampled a continuous lobe";
     }
 }
@@ -418,7 +421,7 @@ TEST_P(MaterialContract, ImportanceVsUniformEstimate) {
     // ∫ f(wi, wo)|cosθo| dωo over the continuous lobes, by the kernel's own sampling and by uniform
     // sphere sampling; the two estimates must agree (Welch's t-test).
     // A delta-only kernel has nothing to estimate (Eval ≡ 0): a short run confirms it.
-    const int n = material_->IsDeltaOnly() ? 10000 : int(Count(100000));
+    const int n = material_->IsDeltaOnly(Stat()) ? 10000 : int(Count(100000));
     TestRng rng = Rng("importance");
     Moments imp, uni;
     for (int i = 0; i < n; ++i) {
@@ -593,17 +596,21 @@ TEST_P(MaterialContract, DiscreteOrders) {
         it->second.first += 1;
         ASSERT_NEAR(it->second.second, s->pdf, 1e-12)
             << "lobe " << s->lobe << " reports different probabilities";
-        const Vec3 &wi = q_.wi, &wo = s->wo;
-        if ((s->flags & ScatterReflection) && !(s->flags & ScatterTransmission)) {
-            // Law of reflection.
-            ASSERT_LT(Length(wo - Vec3(-wi.x, -wi.y, wi.z)), 1e-9)
-                << "wi " << ToString(wi) << " wo " << ToString(wo);
-        } else if (s->flags & ScatterTransmission) {
-            // Snell: n_t·wo_t = −n_i·wi_t (tangential wave vector kept), wo on the other side.
-            ASSERT_LT(wo.z * wi.z, 0);
-            ASSERT_LT(std::hypot(s->eta * wo.x + wi.x, s->eta * wo.y + wi.y), 1e-9)
-                << "eta " << s->eta << " wi " << ToString(wi) << " wo " << ToString(wo);
-            ASSERT_NEAR(Length(wo), 1, 1e-12);
+        // The sample is the listed lobe of its id (geometry: NearDeltaListing).
+        NearDeltaLobes listed;
+        material_->ListNearDelta(Stat(), listed);
+        const NearDeltaLobe *l = nullptr;
+        for (const NearDeltaLobe &x : listed)
+            if (x.id == s->lobe) l = &x;
+        ASSERT_NE(l, nullptr) << "Sample returned near-delta lobe " << s->lobe << ", which ListNearDelta does not list";
+        ASSERT_LT(Length(s->wo - l->wo[0]), 1e-9) << "lobe " << s->lobe << ": wo " << ToString(s->wo);
+        ASSERT_NEAR(s->pdf, l->prob, 1e-12) << "lobe " << s->lobe << ": Sample's probability vs the listed one";
+        ASSERT_NEAR(s->eta, l->Eta(0), 1e-12) << "lobe " << s->lobe;
+        ASSERT_EQ(s->flags, l->flags) << "lobe " << s->lobe;
+        for (int j = 0; j < Stat().wl->Count(); ++j) {
+            if (j > 0 && (s->flags & ScatterDispersive)) break;  // companions follow the hero (D10)
+            ASSERT_NEAR(s->weight[j] * s->pdf, l->weight[j], 1e-9 * l->weight[j] + 1e-15)
+                << "lobe " << s->lobe << ", slot " << j << ": weight·p vs the listed a_j";
         }
     }
     std::vector<double> obs, ex;
@@ -628,6 +635,157 @@ TEST_P(MaterialContract, DiscreteOrders) {
     EXPECT_TRUE(std::isfinite(r.pValue) && r.pValue >= Alpha() && r.observedInEmptyCells == 0)
         << material_->ToString() << "\n"
         << r.ToString() << ", alpha = " << Alpha();
+}
+
+TEST_P(MaterialContract, NearDeltaListing) {
+    // Every listed lobe, per carried wavelength with a non-zero weight: the vector grating equation
+    // n_out·wo.xy = −n_in·wi.xy + shift·λ/(2π) with its own shift, a unit propagating direction on
+    // the side its flags say, finite non-negative weights; ids unique; Σ a_j ≤ 1 in energy (the
+    // radiance factor (n_in/n_out)² undone on transmission); probabilities in (0, 1] summing to ≤ 1;
+    // near-delta lobes only where Capabilities says so.
+    for (const ScatterQuery *q : std::initializer_list<const ScatterQuery *>{&q_, &Stat()}) {
+        NearDeltaLobes lobes;
+        material_->ListNearDelta(*q, lobes);
+        if (!(material_->Capabilities(*q) & CapNearDelta)) {
+            EXPECT_EQ(lobes.count, 0) << "lobes listed, but Capabilities() has no CapNearDelta";
+            continue;
+        }
+        std::vector<double> energy(std::size_t(q->wl->Count()), 0.0);
+        double prob = 0;
+        std::vector<int> ids;
+        for (const NearDeltaLobe &l : lobes) {
+            EXPECT_TRUE(l.flags & ScatterNearDelta) << "lobe " << l.id;
+            const bool transmission = (l.flags & ScatterTransmission) != 0;
+            EXPECT_NE(transmission, (l.flags & ScatterReflection) != 0) << "lobe " << l.id << ": one side";
+            EXPECT_TRUE(std::find(ids.begin(), ids.end(), l.id) == ids.end()) << "duplicate lobe id " << l.id;
+            ids.push_back(l.id);
+            // p = 0 is allowed for a lobe Sample never picks at the hero (a companion may still use it).
+            EXPECT_TRUE(l.prob >= 0 && l.prob <= 1 + 1e-12) << "lobe " << l.id << ": probability " << l.prob;
+            EXPECT_FALSE(l.weight.IsZero()) << "lobe " << l.id << " carries nothing: do not list it";
+            prob += l.prob;
+            for (int j = 0; j < q->wl->Count(); ++j) {
+                const double a = l.weight[j];
+                ASSERT_TRUE(std::isfinite(a) && a >= 0) << "lobe " << l.id << ", slot " << j << ": weight " << a;
+                if (a == 0) continue;
+                const Vec3 &wo = l.wo[j];
+                const double lambda = q->wl->lambda[j];
+                ASSERT_TRUE(l.nIn[j] > 0 && l.nOut[j] > 0) << "lobe " << l.id << ", slot " << j;
+                ASSERT_NEAR(Length(wo), 1, 1e-12) << "lobe " << l.id << ", slot " << j;
+                ASSERT_GT(std::abs(wo.z), 0) << "lobe " << l.id << ": grazing (evanescent) direction listed";
+                ASSERT_EQ(wo.z * q->wi.z < 0, transmission) << "lobe " << l.id << ", slot " << j << ": wrong side";
+                const double s = lambda / (2 * Pi);
+                ASSERT_LT(std::hypot(l.nOut[j] * wo.x + l.nIn[j] * q->wi.x - l.shift.x * s,
+                                     l.nOut[j] * wo.y + l.nIn[j] * q->wi.y - l.shift.y * s),
+                          1e-9 * l.nOut[j])
+                    << "lobe " << l.id << ", slot " << j << ": wi " << ToString(q->wi) << " wo " << ToString(wo)
+                    << " shift (" << l.shift.x << ", " << l.shift.y << ") rad/m";
+                Vec3 expected;
+                ASSERT_TRUE(NearDeltaDirection(q->wi, l.nIn[j], l.nOut[j], l.shift, lambda, transmission, &expected));
+                ASSERT_LT(Length(expected - wo), 1e-9) << "lobe " << l.id << ", slot " << j;
+                energy[std::size_t(j)] += transmission ? a * std::pow(l.Eta(j), 2) : a;
+            }
+        }
+        EXPECT_LE(prob, 1 + 1e-12) << "listed probabilities sum to more than one";
+        for (std::size_t j = 0; j < energy.size(); ++j)
+            EXPECT_LE(energy[j], 1 + 1e-9) << "slot " << j << ": the listed lobes carry more energy than arrives";
+    }
+}
+
+TEST_P(MaterialContract, LobeMaskSplitsSampleAndEval) {
+    // Eval and Pdf are the continuous part under every mask that has it, zero under the
+    // near-delta mask; Sample under a mask returns only lobes in it; and the split is complete:
+    // E[weight | all lobes] = E[weight | continuous] + Σ_j a_j(hero) (listed) — Welch t-test between
+    // the all-lobe estimate and the continuous estimate plus the exact listed sum.
+    ScatterQuery cont = Stat(), delta = Stat();
+    cont.lobes = LobeContinuous;
+    delta.lobes = LobeNearDelta;
+    TestRng rng = Rng("mask");
+    for (int i = 0; i < 200; ++i) {
+        const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
+        const SampledSpectrum fa = material_->Eval(Stat(), wo), fc = material_->Eval(cont, wo);
+        ASSERT_TRUE(material_->Eval(delta, wo).IsZero()) << "Eval under the near-delta mask";
+        ASSERT_EQ(material_->Pdf(delta, wo), 0) << "Pdf under the near-delta mask";
+        ASSERT_EQ(material_->Pdf(cont, wo), material_->Pdf(Stat(), wo));
+        for (int j = 0; j < Stat().wl->Count(); ++j) ASSERT_EQ(fa[j], fc[j]) << "slot " << j;
+    }
+    NearDeltaLobes lobes;
+    material_->ListNearDelta(Stat(), lobes);
+    double listed = 0;
+    for (const NearDeltaLobe &l : lobes) listed += l.weight[0];
+    const int n = int(Count(100000));
+    Moments all, cpart;
+    bool deterministic = true;
+    for (int i = 0; i < n; ++i) {
+        auto a = DrawWith(Stat(), rng);
+        auto c = DrawWith(cont, rng);
+        auto d = DrawWith(delta, rng);
+        if (c) {
+            ASSERT_FALSE(c->flags & ScatterNearDelta) << "near-delta sample under the continuous mask";
+        }
+        if (d) {
+            ASSERT_TRUE(d->flags & ScatterNearDelta) << "continuous sample under the near-delta mask";
+        }
+        all.Add(a ? a->weight[0] : 0.0);
+        cpart.Add(c ? c->weight[0] : 0.0);
+        if (i == 9999 && all.m2 == 0 && cpart.m2 == 0) break;  // deterministic weights: exact below
+        deterministic = deterministic && all.m2 == 0 && cpart.m2 == 0;
+    }
+    const double diff = all.mean - (cpart.mean + listed);
+    if (deterministic || std::abs(diff) <= 1e-9 * (std::abs(all.mean) + 1e-300)) {
+        // Exact up to rounding (e.g. a grating's a_j/p_j = R for every order): no statistics needed.
+        EXPECT_NEAR(all.mean, cpart.mean + listed, 1e-9 * all.mean + 1e-12) << material_->ToString();
+        return;
+    }
+    TTestResult t = WelchTTest(all.mean, all.VarianceOfMean(), all.n - 1, cpart.mean + listed, cpart.VarianceOfMean(),
+                               cpart.n - 1);
+    EXPECT_GE(t.pValue, Alpha()) << material_->ToString() << "\nall lobes " << all.mean << ", continuous "
+                                 << cpart.mean << " + listed " << listed << ": " << t.ToString();
+}
+
+TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
+    // EvalLobe of a listed lobe towards its hero direction: M00 = a_j per wavelength; of a sampled
+    // continuous lobe: 0 < M00 ≤ Eval·|cosθo| (one lobe of possibly several). Where a Jones matrix
+    // is given, its Mueller matrix is the one returned. A direction off a near-delta lobe has no
+    // response.
+    auto checkJones = [](const LobeResponse &r, int count) {
+        if (!r.hasJones) return;
+        for (int j = 0; j < count; ++j) {
+            const Mueller m = Mueller::FromJones(r.jones[j]);
+            for (int a = 0; a < 4; ++a)
+                for (int b = 0; b < 4; ++b)
+                    ASSERT_NEAR(m.m[a][b], r.mueller[j].m[a][b], 1e-9 * std::abs(r.mueller[j].m[0][0]) + 1e-15)
+                        << "Mueller(" << a << ", " << b << ") vs FromJones, slot " << j;
+        }
+    };
+    NearDeltaLobes lobes;
+    material_->ListNearDelta(q_, lobes);
+    for (const NearDeltaLobe &l : lobes) {
+        auto r = material_->EvalLobe(q_, l.id, l.wo[0]);
+        ASSERT_TRUE(r) << "no response of listed lobe " << l.id;
+        for (int j = 0; j < wl_.Count(); ++j) {
+            if (j > 0 && !(l.wo[j] == l.wo[0])) continue;  // a dispersive companion elsewhere
+            EXPECT_NEAR(r->mueller[j].m[0][0], l.weight[j], 1e-9 * l.weight[j] + 1e-15) << "lobe " << l.id << ", slot " << j;
+        }
+        checkJones(*r, wl_.Count());
+        const Vec3 off = Normalize(l.wo[0] + Vec3(1e-3, -2e-3, 0));
+        EXPECT_FALSE(material_->EvalLobe(q_, l.id, off)) << "lobe " << l.id << " answers off its direction";
+    }
+    TestRng rng = Rng("evallobe");
+    int continuous = 0;
+    for (int i = 0; i < 200 && continuous < 20; ++i) {
+        auto s = Draw(rng);
+        if (!s || (s->flags & ScatterNearDelta)) continue;
+        ++continuous;
+        auto r = material_->EvalLobe(q_, s->lobe, s->wo);
+        ASSERT_TRUE(r) << "no response of sampled continuous lobe " << s->lobe;
+        const SampledSpectrum f = material_->Eval(q_, s->wo) * std::abs(s->wo.z);
+        for (int j = 0; j < wl_.Count(); ++j) {
+            EXPECT_GE(r->mueller[j].m[0][0], 0) << "slot " << j;
+            EXPECT_LE(r->mueller[j].m[0][0], f[j] * (1 + 1e-9) + 1e-300) << "slot " << j;
+        }
+        EXPECT_GT(r->mueller[0].m[0][0], 0) << "the sampled lobe has no value at its own sample";
+        checkJones(*r, wl_.Count());
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKernels, MaterialContract, ::testing::ValuesIn(AllCases()),

@@ -87,14 +87,17 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
             tbb::simple_partitioner());
         local.combine_each([&](const PathStats &p) {
             stats.rays += p.rays;
-            stats.footprintAfterSpreadFree += p.footprintAfterSpreadFree;
-            stats.specularAfterSpreadFree += p.specularAfterSpreadFree;
+            stats.counters += p.counters;
         });
         if (cancelled()) break;  // the pass may be incomplete: `done` stays the count every pixel has
         done = end;
         batch = std::min(batch * 2, 16);
         if (opt.progress) opt.progress(done, opt.spp);
     }
+    for (std::size_t i = 0; i < stats.counters.n.size(); ++i)
+        if (stats.counters.n[i] > 0)
+            stats.metadata[std::string("phasor:count:") + Describe(RenderEvent(i)).key] =
+                std::to_string(stats.counters.n[i]);
     stats.cancelled = done < opt.spp;
     // Pixels finished during an interrupted pass hold more samples than the others.
     long long fewest = film.SampleCount(0, 0), most = fewest;

@@ -48,49 +48,49 @@ namespace phasor {
 // clang-format off
 template <> const char *Registry<Spectrum>::Family() { return "spectrum"; }
 template <> const std::vector<PluginEntry<Spectrum>> &Registry<Spectrum>::Entries() {
-    static const std::vector<PluginEntry<Spectrum>> e = {
+    static std::vector<PluginEntry<Spectrum>> e = {  // not const: Registry::Register appends
 #include "plugins_spectrum.inc"
     };
     return e;
 }
 template <> const char *Registry<Texture>::Family() { return "texture"; }
 template <> const std::vector<PluginEntry<Texture>> &Registry<Texture>::Entries() {
-    static const std::vector<PluginEntry<Texture>> e = {
+    static std::vector<PluginEntry<Texture>> e = {  // not const: Registry::Register appends
 #include "plugins_texture.inc"
     };
     return e;
 }
 template <> const char *Registry<Material>::Family() { return "material"; }
 template <> const std::vector<PluginEntry<Material>> &Registry<Material>::Entries() {
-    static const std::vector<PluginEntry<Material>> e = {
+    static std::vector<PluginEntry<Material>> e = {  // not const: Registry::Register appends
 #include "plugins_material.inc"
     };
     return e;
 }
 template <> const char *Registry<Shape>::Family() { return "shape"; }
 template <> const std::vector<PluginEntry<Shape>> &Registry<Shape>::Entries() {
-    static const std::vector<PluginEntry<Shape>> e = {
+    static std::vector<PluginEntry<Shape>> e = {  // not const: Registry::Register appends
 #include "plugins_shape.inc"
     };
     return e;
 }
 template <> const char *Registry<Light>::Family() { return "light"; }
 template <> const std::vector<PluginEntry<Light>> &Registry<Light>::Entries() {
-    static const std::vector<PluginEntry<Light>> e = {
+    static std::vector<PluginEntry<Light>> e = {  // not const: Registry::Register appends
 #include "plugins_light.inc"
     };
     return e;
 }
 template <> const char *Registry<Detector>::Family() { return "detector"; }
 template <> const std::vector<PluginEntry<Detector>> &Registry<Detector>::Entries() {
-    static const std::vector<PluginEntry<Detector>> e = {
+    static std::vector<PluginEntry<Detector>> e = {  // not const: Registry::Register appends
 #include "plugins_detector.inc"
     };
     return e;
 }
 template <> const char *Registry<Integrator>::Family() { return "integrator"; }
 template <> const std::vector<PluginEntry<Integrator>> &Registry<Integrator>::Entries() {
-    static const std::vector<PluginEntry<Integrator>> e = {
+    static std::vector<PluginEntry<Integrator>> e = {  // not const: Registry::Register appends
 #include "plugins_integrator.inc"
     };
     return e;

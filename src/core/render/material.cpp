@@ -1,0 +1,68 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the non-virtual part of the kernel interface (core/material.h): the lobe mask is
+// applied here, once, for every kernel.
+#include "core/material.h"
+
+#include "core/diagnostics.h"
+#include "core/genray.h"
+
+namespace phasor {
+
+double ScatterQuery::Beta2(int i) const { return gr ? gr->beta2[i] : 0; }
+double ScatterQuery::Rho(int i) const { return gr ? gr->rho[i] : 0; }
+
+NearDeltaLobe &NearDeltaLobes::Add() {
+    if (count >= Capacity)
+        throw Error("a kernel listed more than " + std::to_string(Capacity) + " near-delta lobes");
+    lobe[count] = NearDeltaLobe{};
+    return lobe[count++];
+}
+
+namespace {
+unsigned MaskOf(unsigned scatterFlags) {
+    return (scatterFlags & ScatterNearDelta) ? LobeNearDelta : LobeContinuous;
+}
+}  // namespace
+
+std::optional<ScatterSample> Material::Sample(const ScatterQuery &q, double u0, const Vec2 &u) const {
+    auto s = SampleLobes(q, u0, u);
+    if (s && !(q.lobes & MaskOf(s->flags))) return std::nullopt;  // outside the mask: unbiased for the rest
+    return s;
+}
+
+SampledSpectrum Material::Eval(const ScatterQuery &q, const Vec3 &wo) const {
+    return (q.lobes & LobeContinuous) ? EvalContinuous(q, wo) : SampledSpectrum(0.0);
+}
+
+SampledSpectrum Material::EvalFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const {
+    return (q.lobes & LobeContinuous) ? EvalContinuousFrom(q, wo, w) : SampledSpectrum(0.0);
+}
+
+double Material::Pdf(const ScatterQuery &q, const Vec3 &wo) const {
+    return (q.lobes & LobeContinuous) ? PdfContinuous(q, wo) : 0;
+}
+
+bool Material::IsFootprintAware() const {
+    static const SpectralGenRay gr;  // a generalized-ray query (Capabilities reads no geometry)
+    ScatterQuery q;
+    q.wi = Vec3(0, 0, 1);
+    q.rayOptics = false;
+    q.gr = &gr;
+    return (Capabilities(q) & CapFootprintAware) != 0;
+}
+
+bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda,
+                        bool transmission, Vec3 *wo) {
+    // theory §4.2 (vector grating equation): the tangential wave vector of the incident wave
+    // (travelling along −wi) plus the lobe's shift is the outgoing one.
+    const double s = lambda / (2 * Pi);
+    const double tx = (-nIn * wi.x + shift.x * s) / nOut, ty = (-nIn * wi.y + shift.y * s) / nOut;
+    const double t2 = tx * tx + ty * ty;
+    if (!(t2 < 1)) return false;  // evanescent
+    const double z = std::sqrt(1 - t2);
+    const double side = wi.z >= 0 ? 1.0 : -1.0;  // wi's side
+    *wo = Vec3(tx, ty, transmission ? -side * z : side * z);
+    return true;
+}
+
+}  // namespace phasor

@@ -1,0 +1,29 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the named render-time counters (core/integrator.h, RenderEvent): one table of keys
+// and messages.
+#include "core/integrator.h"
+
+namespace phasor {
+
+const RenderEventInfo &Describe(RenderEvent e) {
+    static const RenderEventInfo table[] = {
+        {"footprint_after_spread_free",
+         "path vertices met an aperture after another aperture; it acted geometrically (only the first "
+         "footprint-aware kernel on a path diffracts)"},
+        {"specular_after_spread_free",
+         "path vertices scattered specularly after an aperture; delta lights (plane waves, point, spot, "
+         "directional, laser beams) are not reached through such a surface, so their light behind it is "
+         "missing (theory §9 item 5)"},
+    };
+    static_assert(std::size(table) == std::size_t(RenderEvent::Count), "one entry per RenderEvent");
+    return table[std::size_t(e)];
+}
+
+std::vector<std::string> RenderCounters::Warnings() const {
+    std::vector<std::string> out;
+    for (std::size_t i = 0; i < n.size(); ++i)
+        if (n[i] > 0) out.push_back(std::to_string(n[i]) + " " + Describe(RenderEvent(i)).message);
+    return out;
+}
+
+}  // namespace phasor

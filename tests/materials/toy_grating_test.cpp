@@ -1,0 +1,138 @@
+// SPDX-License-Identifier: Apache-2.0
+// A toy reflection grating, written only against the kernel author's guide (docs/kernels.md) to
+// prove that a many-lobe, dispersive kernel needs nothing outside its own file and its
+// registration line: the contract suite (kernel_contract_test.cpp) picks it up from the registry
+// and checks its listed orders against the vector grating equation, their weights, the lobe
+// choice and EvalLobe. Not a physical model worth rendering: orders j = −M…M of a sinusoidal
+// phase grating (thin-phase amplitudes J_j(m)², m = k·h·cosθ_i, theory §4.2) on a grey mirror of
+// reflectance R, grooves along the local y axis (grating vector along x), renormalised over the
+// propagating orders. Registered only in the test executables.
+#include <cmath>
+#include <sstream>
+
+#include "core/material.h"
+#include "core/registry.h"
+
+namespace phasor {
+
+class ToyGratingMaterial final : public Material {
+  public:
+    ToyGratingMaterial(double period, double height, int maxOrder, double reflectance)
+        : period_(period), height_(height), maxOrder_(maxOrder), reflectance_(reflectance) {}
+
+    static const Schema &GetSchema() {
+        static const Schema s{"material",
+                              "toy_grating",
+                              "test kernel: a thin-phase reflection grating on a grey mirror",
+                              {P::Length("period", "groove period Λ").Default(Value::Number(1.6e-6, Dim::Length())).Min(0, true),
+                               P::Length("height", "peak-to-peak groove height").Default(Value::Number(0.1e-6, Dim::Length())).Min(0),
+                               P::Integer("max_order", "highest order |j| listed").Default(Value::Integer(3)).Min(0).Max(20),
+                               P::Number("reflectance", "grey mirror reflectance R").Default(Value::Number(0.9)).Min(0).Max(1)}};
+        return s;
+    }
+    static std::unique_ptr<Material> Create(const ParamDict &d, BuildContext &) {
+        return std::make_unique<ToyGratingMaterial>(d.GetNumber("period"), d.GetNumber("height"), d.GetInt("max_order"),
+                                                    d.GetNumber("reflectance"));
+    }
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(3);
+        // p[0]: defaults (1.6 µm, a CD's pitch); p[1]: many orders; p[2]: the zeroth order only.
+        p[1].Set("period", Value::Number(5e-6, Dim::Length())).Set("height", Value::Number(0.3e-6, Dim::Length()));
+        p[2].Set("max_order", Value::Integer(0));
+        return p;
+    }
+
+    unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
+    // m = k·h·cosθ_i and the renormalisation depend on the incident direction only.
+    bool IsReciprocal() const override { return false; }
+
+    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
+        if (q.wi.z == 0) return;
+        const int count = q.wl->Count();
+        std::array<double, NumWavelengths> total{};  // Σ_j J_j² over the propagating orders, per λ
+        for (int j = -maxOrder_; j <= maxOrder_; ++j) {
+            const Vec2 shift(j * 2 * Pi / period_, 0);
+            Vec3 wo0;
+            if (!NearDeltaDirection(q.wi, q.etaOutside, q.etaOutside, shift, q.wl->lambda[0], false, &wo0))
+                continue;  // evanescent at the hero: not listed
+            NearDeltaLobe &l = out.Add();
+            l.id = j;
+            l.flags = ScatterReflection | ScatterNearDelta | (j != 0 ? ScatterDispersive : 0u);
+            l.shift = shift;
+            l.nIn.fill(q.etaOutside);
+            l.nOut.fill(q.etaOutside);
+            for (int i = 0; i < count; ++i) {
+                l.wo[i] = wo0;
+                const double lambda = q.wl->lambda[i];
+                if (!NearDeltaDirection(q.wi, q.etaOutside, q.etaOutside, shift, lambda, false, &l.wo[i])) continue;
+                const double a = std::pow(std::cyl_bessel_j(double(std::abs(j)), Modulation(q, lambda)), 2);
+                l.weight[i] = a;
+                total[i] += a;
+            }
+        }
+        // Renormalised over the propagating orders; lobes are picked ∝ their hero weight.
+        for (int k = 0; k < out.count; ++k) {
+            NearDeltaLobe &l = out.lobe[k];
+            for (int i = 0; i < count; ++i) l.weight[i] = total[i] > 0 ? reflectance_ * l.weight[i] / total[i] : 0;
+            l.prob = reflectance_ > 0 ? l.weight[0] / reflectance_ : 1.0 / out.count;
+        }
+    }
+
+    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
+        NearDeltaLobes lobes;
+        ListNearDelta(q, lobes);
+        for (const NearDeltaLobe &l : lobes) {
+            if (l.id != lobe || !SameDirection(wo, l.wo[0])) continue;
+            LobeResponse r;
+            r.hasJones = true;
+            for (int i = 0; i < q.wl->Count(); ++i) {
+                r.jones[i] = Jones::Identity() * Complex(std::sqrt(l.weight[i]), 0);
+                r.mueller[i] = Mueller::Identity() * l.weight[i];
+            }
+            return r;
+        }
+        return std::nullopt;
+    }
+
+    std::string ToString() const override {
+        std::ostringstream os;
+        os << "ToyGratingMaterial[ period = " << period_ << ", height = " << height_ << ", max_order = " << maxOrder_
+           << ", reflectance = " << reflectance_ << " ]";
+        return os.str();
+    }
+
+  protected:
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const override {
+        NearDeltaLobes lobes;
+        ListNearDelta(q, lobes);
+        double c = 0;
+        for (const NearDeltaLobe &l : lobes) {
+            c += l.prob;
+            if (u0 >= c && &l + 1 != lobes.end()) continue;
+            if (!(l.prob > 0)) return std::nullopt;
+            ScatterSample s;
+            s.wo = l.wo[0];
+            s.weight = l.weight / l.prob;
+            s.pdf = l.prob;
+            s.lobe = l.id;
+            s.flags = l.flags;
+            s.eta = 1;
+            return s;
+        }
+        return std::nullopt;
+    }
+
+  private:
+    // m = k·h·cosθ_i (theory §4.2, D6); h is peak-to-peak, the phase amplitude is k·h·cosθ_i.
+    double Modulation(const ScatterQuery &q, double lambda) const {
+        return 2 * Pi * q.etaOutside / lambda * height_ * std::abs(q.wi.z);
+    }
+
+    double period_, height_;
+    int maxOrder_;
+    double reflectance_;
+};
+
+PHASOR_REGISTER_PLUGIN(Material, ToyGratingMaterial, "toy_grating");
+
+}  // namespace phasor
