@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — the footprint integral of the `aperture` kernel (theory §9, docs/kernels.md "aperture").
+// phasor — the footprint integral of the `aperture` kernel (theory §9, docs/aperture.md).
 //
 // A generalized ray (GR) meets a planar mask. Its traced wave function on the plate (the oblique
 // cut of theory §6.3 step 3), the mask transmission t and an incident plane or spherical wave
@@ -11,7 +11,7 @@
 // is positive definite. Over each mask piece (core/aperture.h: a trapezoid with linear limits or a
 // clipped disc) one axis is integrated in closed form with the Faddeeva function w and the other
 // with Gauss–Legendre quadrature whose order follows from the integrand's variation over the
-// interval (see IntegratePiece). docs/kernels.md "aperture" describes the whole chain.
+// interval (see IntegratePiece). docs/aperture.md describes the whole chain.
 #pragma once
 
 #include "core/aperture.h"
@@ -37,7 +37,7 @@ Complex GaussianSegmentIntegral(Complex alpha, Complex beta, double x0, double x
 ///
 /// With `evolve` (set by MakePlateGaussian) the quadratic form is only the integrand's expansion
 /// at the hit point; the integrand itself is the GR's exact paraxial beam, which evolves along its
-/// own axis, times the exact spherical incident wave (theory §9; docs/kernels.md "aperture"):
+/// own axis, times the exact spherical incident wave (theory §9; docs/aperture.md):
 ///     ψ ∝ (q/(q+a))·exp(ik a + ik T/(2(q+a))),  a = d1 x + d2 y,  T = x² + y² − a²,
 /// 1/q = (ρ + i)/(kβ²) (so ik/(2q) = −γ), and U_inc ∝ (R/r)·e^{ik(r − R)}, r = |Δ + R s|.
 /// IntegratePiece re-expands that exponent to second order about the centre of each
