@@ -12,6 +12,7 @@
 
 #include "core/math.h"
 #include "core/spectrum.h"
+#include "core/texture.h"
 
 namespace phasor {
 
@@ -50,7 +51,7 @@ struct ScatterQuery {
     /// integrator clears it for next-event estimation, because it measures light through
     /// near-delta lobes by following the sampled lobe (closed forms, theory §0 D14).
     bool evalNearDelta = true;
-    Vec2 uv;                               // surface parameterisation of the hit
+    TextureEvalContext tex;                // where textures are evaluated (uv, p, dp/du, β …)
     /// Footprint-aware kernels (IsFootprintAware, theory §9) need the whole incident GR and the
     /// hit: `gr` is the traced GR at the hit point in world space (gr->d points into the surface,
     /// per-wavelength k, β², ρ; traced convention, ρ > 0 diverging along d), `si` the interaction
@@ -120,17 +121,6 @@ class Material {
     /// Aperture kernels: the plate's openings in plate coordinates (core/aperture.h); nullptr for
     /// every other kernel. The forward `rs` integrator reads them.
     virtual const ApertureMask *Openings() const { return nullptr; }
-    virtual std::string ToString() const = 0;
-};
-
-/// A texture: a scalar-per-wavelength value over the surface (e.g. reflectance).
-class Texture {
-  public:
-    virtual ~Texture() = default;
-    /// Value at surface parameters uv for the sampled wavelengths.
-    virtual SampledSpectrum Eval(const Vec2 &uv, const SampledWavelengths &wl) const = 0;
-    /// Upper bound over the surface and all wavelengths.
-    virtual double MaxValue() const = 0;
     virtual std::string ToString() const = 0;
 };
 

@@ -147,7 +147,7 @@ class GrtIntegrator final : public PixelIntegrator {
             q.beta2 = spreadFree ? 0 : g.beta2[0];
             q.rho = spreadFree ? 0 : g.rho[0];
             q.evalNearDelta = false;
-            q.uv = si->uv;
+            q.tex = TextureEvalContext(*si, std::sqrt(q.beta2));  // hero footprint radius β
             q.gr = spreadFree ? nullptr : &g;
             q.si = &*si;
             if (spreadFree && mat->IsFootprintAware()) ++stats.footprintAfterSpreadFree;
