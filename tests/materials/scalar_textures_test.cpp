@@ -357,6 +357,24 @@ TEST(FloatTextureAccessor, NumbersAndTexturesAreRangeChecked) {
     EXPECT_NE(err.find("expects an angle; got bare number"), std::string::npos) << err;
 }
 
+// What the integrators pass (ScatterQuery::tex = TextureEvalContext(*si, β)): the hit's fields.
+TEST(ScalarTextures, ContextFromAnInteraction) {
+    SurfaceInteraction si;
+    si.p = Vec3(1, 2, 3);
+    si.uv = Vec2(0.25, 0.75);
+    si.dpdu = Vec3(0, 2, 0);
+    si.dpdv = Vec3(0, 0, -1);
+    si.shading = Frame::FromNormalTangent(Vec3(1, 0, 0), si.dpdu);
+    const TextureEvalContext c(si, 3e-6);
+    EXPECT_EQ(c.p, si.p);
+    EXPECT_EQ(c.uv, si.uv);
+    EXPECT_EQ(c.dpdu, si.dpdu);
+    EXPECT_EQ(c.dpdv, si.dpdv);
+    EXPECT_EQ(c.n, Vec3(1, 0, 0));
+    EXPECT_EQ(c.beta, 3e-6);
+    EXPECT_EQ(TextureEvalContext(si).beta, 0);  // a classical ray
+}
+
 // The angle → direction rule: angle 0 is dp/du projected onto the tangent plane, π/2 is n × that.
 TEST(ScalarTextures, TangentAtAngleRotatesDpduAboutTheNormal) {
     const Vec3 n = Normalize(Vec3(0.2, -0.1, 1)), dpdu(2, 0.5, 0.3);

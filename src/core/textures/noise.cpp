@@ -3,10 +3,10 @@
 //
 // Gradient noise (Perlin 1985, with the quintic fade of Perlin 2002): at the 8 corners c of the
 // lattice cell holding x, a pseudo-random unit gradient g_c (one of the 12 cube-edge directions,
-// chosen by an integer hash of c and the seed) gives the linear function g_c·(x − c); they are
-// blended with the fade weights w(t) = 6t⁵ − 15t⁴ + 10t³ per axis. The value is 0 at every
-// lattice point, C² across cells, and |Σ w_c g_c·(x − c)| ≤ Σ w_c |x − c| ≤ √3/2 (the sum peaks
-// at the cell centre), so n = (2/√3)·Σ … lies in [−1, 1].
+// chosen by the integer hash of c and the seed in core/sampler.h) gives the linear function
+// g_c·(x − c); they are blended with the fade weights w(t) = 6t⁵ − 15t⁴ + 10t³ per axis. The
+// value is 0 at every lattice point, C² across cells, and |Σ w_c g_c·(x − c)| ≤ Σ w_c |x − c|
+// ≤ √3/2 (the sum peaks at the cell centre), so n = (2/√3)·Σ … lies in [−1, 1].
 // fBm: f(x) = Σ_o 2^−o n_o(2^o x / scale) / Σ_o 2^−o over `octaves` octaves (lacunarity 2,
 // gain 1/2, each octave its own hash seed), also in [−1, 1], with mean 0 over the lattice (the
 // gradients are symmetric). The texture is clamp(offset + amplitude·f, min, max); its dimension
@@ -18,31 +18,13 @@
 #include <sstream>
 
 #include "core/registry.h"
+#include "core/sampler.h"
 #include "core/texture.h"
 #include "core/textures/texture_common.h"
 
 namespace phasor {
 
 namespace {
-
-// Murmur3's 32-bit finaliser (a bijection with good avalanche).
-uint32_t Mix(uint32_t h) {
-    h ^= h >> 16;
-    h *= 0x85EBCA6Bu;
-    h ^= h >> 13;
-    h *= 0xC2B2AE35u;
-    h ^= h >> 16;
-    return h;
-}
-
-// Hash of a lattice point and a seed (coordinates wrap modulo 2³²: the pattern repeats after
-// 2³² cells, far beyond any scene).
-uint32_t LatticeHash(int64_t x, int64_t y, int64_t z, uint32_t seed) {
-    uint32_t h = Mix(seed + 0x9E3779B9u);
-    h = Mix(h ^ uint32_t(x));
-    h = Mix(h ^ (uint32_t(y) * 0x27D4EB2Fu));
-    return Mix(h ^ (uint32_t(z) * 0x165667B1u));
-}
 
 double Fade(double t) { return t * t * t * (t * (6 * t - 15) + 10); }
 
@@ -52,6 +34,8 @@ double GradientNoise(const Vec3 &x, uint32_t seed) {
     static const std::array<Vec3, 12> grad = {Vec3(s, s, 0),  Vec3(-s, s, 0),  Vec3(s, -s, 0),  Vec3(-s, -s, 0),
                                               Vec3(s, 0, s),  Vec3(-s, 0, s),  Vec3(s, 0, -s),  Vec3(-s, 0, -s),
                                               Vec3(0, s, s),  Vec3(0, -s, s),  Vec3(0, s, -s),  Vec3(0, -s, -s)};
+    // Beyond 2⁵³ cells (or at a non-finite point) there is no sub-cell position left: 0.
+    if (!(MaxComponent(Vec3(std::abs(x.x), std::abs(x.y), std::abs(x.z))) < 0x1p53)) return 0;
     const double fx = std::floor(x.x), fy = std::floor(x.y), fz = std::floor(x.z);
     const int64_t ix = int64_t(fx), iy = int64_t(fy), iz = int64_t(fz);
     const Vec3 f(x.x - fx, x.y - fy, x.z - fz);
@@ -59,7 +43,7 @@ double GradientNoise(const Vec3 &x, uint32_t seed) {
     double sum = 0;
     for (int c = 0; c < 8; ++c) {
         const int cx = c & 1, cy = (c >> 1) & 1, cz = (c >> 2) & 1;
-        const Vec3 &g = grad[LatticeHash(ix + cx, iy + cy, iz + cz, seed) % 12];
+        const Vec3 &g = grad[Hash(uint64_t(ix + cx), uint64_t(iy + cy), uint64_t(iz + cz), seed) % 12];
         const double weight = (cx ? w.x : 1 - w.x) * (cy ? w.y : 1 - w.y) * (cz ? w.z : 1 - w.z);
         sum += weight * Dot(g, Vec3(f.x - cx, f.y - cy, f.z - cz));
     }
