@@ -13,6 +13,7 @@
 #include "core/math.h"
 #include "core/polarization.h"
 #include "core/spectrum.h"
+#include "core/texture.h"
 
 namespace phasor {
 
@@ -74,7 +75,7 @@ struct ScatterQuery {
     bool rayOptics = true;
     /// The lobes Sample, Eval and Pdf are about (LobeMask). `grt`'s NEE asks for LobeContinuous.
     unsigned lobes = LobeAll;
-    Vec2 uv;                               // surface parameterisation of the hit
+    TextureEvalContext tex;                // where textures are evaluated (uv, p, dp/du, β …)
     /// The incident generalized ray and the hit, for kernels that depend on the GR's footprint:
     /// `gr` is the traced GR at the hit point in world space (gr->d points into the surface,
     /// per-wavelength k, β², ρ; traced convention, ρ > 0 diverging along d), `si` the interaction

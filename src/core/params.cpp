@@ -176,6 +176,8 @@ const char *ToString(ParamKind k) {
         case ParamKind::Transform: return "transform";
         case ParamKind::Ref: return "reference";
         case ParamKind::RefList: return "reference list";
+        case ParamKind::FloatTexture: return "number or texture";
+        case ParamKind::SpectrumTexture: return "spectrum or texture";
     }
     return "?";
 }
@@ -195,9 +197,10 @@ std::vector<std::string> Schema::Names() const {
 namespace {
 std::string KindText(const ParamSpec &p) {
     std::string k = ToString(p.kind);
-    if ((p.kind == ParamKind::Number || p.kind == ParamKind::Vector3 || p.kind == ParamKind::NumberList) &&
-        !p.dim.IsNone())
-        k += " [" + p.dim.ToString() + "]";
+    const bool dimensioned = p.kind == ParamKind::Number || p.kind == ParamKind::Vector3 ||
+                             p.kind == ParamKind::NumberList || p.kind == ParamKind::FloatTexture;
+    if (p.anyDim) k += p.kind == ParamKind::Spectrum ? " or number [any unit]" : " [any unit]";
+    else if (dimensioned && !p.dim.IsNone()) k += " [" + p.dim.ToString() + "]";
     if (!p.refFamily.empty()) k += " (" + p.refFamily + ")";
     return k;
 }
@@ -281,6 +284,10 @@ ParamSpec RefList(std::string n, std::string family, std::string d) {
     s.refFamily = std::move(family);
     return s;
 }
+ParamSpec FloatTexture(std::string n, std::string d, Dim dim) {
+    return Make(std::move(n), ParamKind::FloatTexture, std::move(d), dim);
+}
+ParamSpec SpectrumTexture(std::string n, std::string d) { return Make(std::move(n), ParamKind::SpectrumTexture, std::move(d)); }
 }  // namespace P
 
 // ---- ParamDict ----------------------------------------------------------------------------
@@ -320,7 +327,7 @@ bool CheckNumber(const Value &v, const ParamSpec &s, const Param &p, Diagnostics
         diag.Error(WhereOf(v, p), "'" + s.name + "' expects " + s.dim.Describe() + "; got " + v.DescribeKind());
         return false;
     }
-    if (v.dim != s.dim) {
+    if (v.dim != s.dim && !s.anyDim) {
         if (v.dim.IsNone())
             diag.Error(WhereOf(v, p), "'" + s.name + "' expects " + s.dim.Describe() + "; got bare number " +
                                           v.ToString() + BareNumberHint(v, s.dim));
@@ -423,9 +430,18 @@ bool CheckValue(const Value &v, const ParamSpec &s, const Param &p, Diagnostics 
             return true;
         }
         case ParamKind::Spectrum:
-            if (v.kind == K::Number && v.dim.IsNone()) return true;
+            if (v.kind == K::Number && (v.dim.IsNone() || s.anyDim)) return true;
             if (v.kind == K::Call || v.kind == K::Ref) return true;
             return kindError("a spectrum (a number, a call such as blackbody(5800 K), or @name)");
+        case ParamKind::SpectrumTexture:
+            if (v.kind == K::Number && v.dim.IsNone()) return true;
+            if (v.kind == K::Call || v.kind == K::Ref) return true;
+            return kindError("a spectrum (a number, a call such as blackbody(5800 K), or @name) or @texture");
+        case ParamKind::FloatTexture:
+            // A reference's dimension is checked when the texture is built (GetFloatTexture).
+            if (v.kind == K::Ref) return true;
+            if (v.kind == K::Number) return CheckNumber(v, s, p, diag);
+            return kindError((s.anyDim ? std::string("a number") : s.dim.Describe()) + " or @texture");
         case ParamKind::Transform:
             if (v.kind == K::Call) return true;
             if (v.kind == K::List) {

@@ -67,6 +67,12 @@ enum class ParamKind {
     Transform,   // a call (translate/rotate/scale/lookat/matrix) or a list of calls
     Ref,         // @name of an object of family `refFamily`
     RefList,     // list of @names
+    /// Constant-or-texture, scalar: a number with the spec's dimension or @ref to a scalar
+    /// texture of that dimension (read with BuildContext::GetFloatTexture).
+    FloatTexture,
+    /// Constant-or-texture, spectral: what Spectrum accepts, or @ref to a spectral or a
+    /// dimensionless scalar texture (read with BuildContext::GetSpectrumTexture).
+    SpectrumTexture,
 };
 const char *ToString(ParamKind k);
 
@@ -84,6 +90,9 @@ struct ParamSpec {
     std::string refFamily;  // Ref / RefList / Spectrum: family the reference must belong to
     std::vector<std::string> choices;  // String: allowed values
     int listSize = -1;  // NumberList / IntegerList: required length (-1 = any)
+    /// Number / NumberList / FloatTexture: any dimension is accepted, the value brings its own
+    /// (e.g. a texture's `offset = 300 nm`); Spectrum: also a number with a unit.
+    bool anyDim = false;
 
     // Fluent helpers so schemas read as one line per parameter.
     ParamSpec &Default(Value v) { defaultValue = std::move(v); return *this; }
@@ -92,6 +101,7 @@ struct ParamSpec {
     ParamSpec &Max(double v) { maxValue = v; return *this; }
     ParamSpec &Choices(std::vector<std::string> c) { choices = std::move(c); return *this; }
     ParamSpec &Size(int n) { listSize = n; return *this; }
+    ParamSpec &AnyDim() { anyDim = true; return *this; }
 };
 
 /// A plug-in's schema: family ("shape"), scene name ("sphere"), one-line doc, parameters.
@@ -125,6 +135,8 @@ ParamSpec Spectrum(std::string name, std::string doc);
 ParamSpec Transform(std::string name, std::string doc);
 ParamSpec Ref(std::string name, std::string family, std::string doc);
 ParamSpec RefList(std::string name, std::string family, std::string doc);
+ParamSpec FloatTexture(std::string name, std::string doc, Dim dim = Dim::None());
+ParamSpec SpectrumTexture(std::string name, std::string doc);
 }  // namespace P
 
 struct Param {

@@ -20,11 +20,10 @@
 
 #include "core/diagnostics.h"
 #include "core/params.h"
+#include "core/texture.h"
 
 namespace phasor {
 
-class Spectrum;
-class Texture;
 class Material;
 class Shape;
 class Light;
@@ -135,6 +134,15 @@ class BuildContext {
     /// lookat(eye, target, up), matrix([16 numbers, row-major]), or a list applied in order
     /// (the first listed is applied first).
     Transform GetTransform(const ParamDict &dict, const std::string &name);
+    /// A constant-or-texture scalar parameter (ParamKind::FloatTexture): a number → a constant;
+    /// @ref → a scalar texture, whose dimension must be the spec's (unless the spec is AnyDim:
+    /// then the value brings its own, FloatTexture::GetDim) and whose [MinValue, MaxValue] must
+    /// lie in the spec's range. Throws phasor::Error naming both dimensions on a mismatch.
+    FloatTexture GetFloatTexture(const ParamDict &dict, const std::string &name);
+    /// A constant-or-texture spectral parameter (ParamKind::SpectrumTexture, also Spectrum and
+    /// Ref-to-texture parameters): what GetSpectrum accepts, or @ref to a spectral or a
+    /// dimensionless scalar texture (whose range must lie in the spec's). Throws phasor::Error.
+    SpectrumTexture GetSpectrumTexture(const ParamDict &dict, const std::string &name);
     Transform TransformFromValue(const Value &v);
 
     /// The object a Ref parameter names; it must be of family T. Throws phasor::Error.
@@ -176,6 +184,10 @@ class BuildContext {
         const SceneEntity *entity;
     };
     std::shared_ptr<void> Resolve(const Value &ref, const std::string &family);
+    /// The family ("texture") of the entity a reference names; "" if it names none.
+    std::string FamilyOf(const Value &ref) const;
+    /// The texture a constant-or-texture parameter names, with its range checked against the spec.
+    std::shared_ptr<const Texture> ResolveTexture(const ParamDict &dict, const std::string &name);
     std::shared_ptr<void> BuildEntity(std::size_t index);
     std::shared_ptr<void> CreateFromCall(const Value &call, const std::string &family);
 

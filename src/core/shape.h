@@ -43,6 +43,10 @@ struct SurfaceInteraction {
     Vec3 n;
     Frame shading;
     Vec2 uv;
+    /// ∂p/∂u and ∂p/∂v [m per unit of u, v], world space, for textures (TextureEvalContext);
+    /// zero where a shape's uv parameterisation is degenerate (e.g. a triangle whose uvs are
+    /// collinear). Not unit, not necessarily orthogonal.
+    Vec3 dpdu, dpdv;
     double t = 0;
     const class Shape *shape = nullptr;
     const Material *material = nullptr;  // null: an interface that only bounds a light, or black

@@ -151,7 +151,7 @@ class GrtIntegrator final : public PixelIntegrator {
             q.wi = frame.ToLocal(-g.d);
             q.wl = &wl;
             q.rayOptics = spreadFree;  // a spread-free GR continues as a classical ray (theory §9.5)
-            q.uv = si->uv;
+            q.tex = TextureEvalContext(*si, spreadFree ? 0 : std::sqrt(g.beta2[0]));  // hero footprint radius β
             q.gr = spreadFree ? nullptr : &g;
             q.si = &*si;
             const unsigned caps = mat->Capabilities(q);

@@ -52,7 +52,7 @@ class RayIntegrator final : public PixelIntegrator {
             q.wi = frame.ToLocal(-ray.d);
             q.wl = &wl;
             q.rayOptics = true;
-            q.uv = si->uv;
+            q.tex = TextureEvalContext(*si);  // a classical ray: footprint 0
             q.si = &*si;
 
             // Next-event estimation (the samples are drawn even when unused, to keep dimensions aligned).

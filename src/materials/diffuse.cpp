@@ -21,8 +21,7 @@ namespace phasor {
 
 class DiffuseMaterial final : public Material {
   public:
-    DiffuseMaterial(std::shared_ptr<const Spectrum> reflectance, std::shared_ptr<Texture> texture)
-        : reflectance_(std::move(reflectance)), texture_(std::move(texture)) {}
+    explicit DiffuseMaterial(SpectrumTexture reflectance) : reflectance_(std::move(reflectance)) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -30,36 +29,31 @@ class DiffuseMaterial final : public Material {
             "diffuse",
             "Lambertian reflector (two-sided, no transmission): f = R/π, cosine-weighted sampling",
             {
-                P::Spectrum("reflectance", "directional-hemispherical reflectance R(λ) in [0, 1]")
+                P::SpectrumTexture("reflectance",
+                                   "directional-hemispherical reflectance R(λ) in [0, 1], or a spectral or "
+                                   "dimensionless texture R(uv, λ)")
                     .Default(Value::Number(0.5))
                     .Min(0)
                     .Max(1),
-                P::Ref("texture", "texture",
-                       "spatially varying reflectance R(uv, λ) in [0, 1]; replaces 'reflectance'"),
+                P::Ref("texture", "texture", "the same as reflectance = @texture; replaces 'reflectance'")
+                    .Min(0)
+                    .Max(1),
             }};
         return s;
     }
 
     static std::unique_ptr<Material> Create(const ParamDict &dict, BuildContext &ctx) {
-        if (dict.Has("texture")) {
-            if (dict.Has("reflectance")) {
-                ctx.Diag().Warning(dict.Loc("reflectance"),
-                                   "ignoring 'reflectance' because 'texture' was given");
-                dict.GetValue("reflectance");  // reported here, not again as unused
-            }
-            std::shared_ptr<Texture> tex = ctx.GetRef<Texture>(dict, "texture");
-            if (!(tex->MaxValue() <= 1))
-                throw Error(dict.Loc("texture"),
-                            "the texture of a diffuse material is a reflectance and must "
-                            "not exceed 1 (its maximum is " +
-                                std::to_string(tex->MaxValue()) + ")");
-            return std::make_unique<DiffuseMaterial>(nullptr, std::move(tex));
+        if (dict.Has("texture") && dict.Has("reflectance")) {
+            ctx.Diag().Warning(dict.Loc("reflectance"), "ignoring 'reflectance' because 'texture' was given");
+            dict.GetValue("reflectance");  // reported here, not again as unused
         }
-        std::shared_ptr<const Spectrum> r = ctx.GetSpectrum(dict, "reflectance");
-        if (!(r->MaxValue() <= 1))
-            throw Error(dict.Loc("reflectance"),
-                        "'reflectance' must lie in [0, 1]; its maximum is " + std::to_string(r->MaxValue()));
-        return std::make_unique<DiffuseMaterial>(std::move(r), nullptr);
+        // A texture's range is checked against [0, 1] by the accessor; a spectrum's here.
+        const std::string param = dict.Has("texture") ? "texture" : "reflectance";
+        SpectrumTexture r = ctx.GetSpectrumTexture(dict, param);
+        if (!r.IsTexture() && !(r.MaxValue() <= 1))
+            throw Error(dict.Loc(param),
+                        "'reflectance' must lie in [0, 1]; its maximum is " + std::to_string(r.MaxValue()));
+        return std::make_unique<DiffuseMaterial>(std::move(r));
     }
 
     /// Presets for the generic contract suite (tests/materials/kernel_contract_test.cpp). The
@@ -112,24 +106,16 @@ class DiffuseMaterial final : public Material {
   public:
     std::string ToString() const override {
         std::ostringstream os;
-        os << "DiffuseMaterial[ "
-           << (texture_ ? "texture = " + texture_->ToString() : "reflectance = " + reflectance_->ToString())
-           << " ]";
+        os << "DiffuseMaterial[ reflectance = " << reflectance_.ToString() << " ]";
         return os.str();
     }
 
   private:
     static bool SameSide(const Vec3 &a, const Vec3 &b) { return a.z * b.z > 0; }
 
-    SampledSpectrum Reflectance(const ScatterQuery &q) const {
-        if (texture_) return texture_->Eval(q.uv, *q.wl);
-        SampledSpectrum r;
-        for (int i = 0; i < q.wl->Count(); ++i) r[i] = reflectance_->Eval(q.wl->lambda[i]);
-        return r;
-    }
+    SampledSpectrum Reflectance(const ScatterQuery &q) const { return reflectance_.Eval(q.tex, *q.wl); }
 
-    std::shared_ptr<const Spectrum> reflectance_;
-    std::shared_ptr<Texture> texture_;
+    SpectrumTexture reflectance_;
 };
 
 PHASOR_EXPORT_PLUGIN(Material, DiffuseMaterial)

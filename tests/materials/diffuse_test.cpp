@@ -38,9 +38,9 @@ TEST(Diffuse, TextureDrivesTheReflectance) {
     ScatterQuery q;
     q.wi = Vec3(0, 0, 1);
     q.wl = &wl;
-    q.uv = Vec2(0.1, 0.1);  // check (0, 0): color0 = 0.1 (scale 4)
+    q.tex.uv = Vec2(0.1, 0.1);  // check (0, 0): color0 = 0.1 (scale 4)
     EXPECT_NEAR(m->Sample(q, 0.5, Vec2(0.5, 0.5))->weight[0], 0.1, 1e-15);
-    q.uv = Vec2(0.3, 0.1);  // check (1, 0): color1 = 0.9
+    q.tex.uv = Vec2(0.3, 0.1);  // check (1, 0): color1 = 0.9
     EXPECT_NEAR(m->Sample(q, 0.5, Vec2(0.5, 0.5))->weight[0], 0.9, 1e-15);
     EXPECT_NEAR(m->Eval(q, Vec3(0, 0.6, 0.8))[0], 0.9 / Pi, 1e-15);
 }

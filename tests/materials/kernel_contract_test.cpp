@@ -233,7 +233,7 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
         q_.wl = &wl_;
         q_.etaOutside = 1;
         q_.rayOptics = true;
-        q_.uv = Vec2(0.13 + 0.19 * c_.incident, 0.61 - 0.07 * c_.incident);
+        q_.tex.uv = Vec2(0.13 + 0.19 * c_.incident, 0.61 - 0.07 * c_.incident);
         footprint_ = material_->IsFootprintAware();  // wave-regime capability
         if (footprint_) {
             ASSERT_NO_THROW(material_->CheckShape(plate_));
@@ -543,7 +543,7 @@ TEST_P(MaterialContract, FiniteEverywhere) {
             default:
                 q.wi = UniformSphere(rng.Uniform(), rng.Uniform());
         }
-        q.uv = Vec2(4 * rng.Uniform() - 2, 4 * rng.Uniform() - 2);
+        q.tex.uv = Vec2(4 * rng.Uniform() - 2, 4 * rng.Uniform() - 2);
         if (footprint_) {
             // The GR follows wi; the hit wanders over ±10 µm (openings in, partly in, out of the window).
             si.p = Vec3(2e-5 * rng.Uniform() - 1e-5, 2e-5 * rng.Uniform() - 1e-5, 0);

@@ -23,7 +23,7 @@ TEST(Textures, ConstantIsTheSameEverywhere) {
     ASSERT_TRUE(t && diag.All().empty());
     const SampledWavelengths wl = TestWavelengths(500e-9);
     for (Vec2 uv : {Vec2(0, 0), Vec2(0.7, -3.2), Vec2(1e6, 2)}) {
-        const SampledSpectrum v = t->Eval(uv, wl);
+        const SampledSpectrum v = t->Eval(TextureEvalContext::AtUV(uv), wl);
         for (int j = 0; j < NumWavelengths; ++j) EXPECT_EQ(v[j], 0.25);
     }
     EXPECT_EQ(t->MaxValue(), 0.25);
@@ -39,7 +39,7 @@ TEST(Textures, CheckerboardPattern) {
                           diag);
     ASSERT_TRUE(t && diag.All().empty());
     const SampledWavelengths wl = LineWavelength(550e-9);
-    auto at = [&](double u, double v) { return t->Eval(Vec2(u, v), wl)[0]; };
+    auto at = [&](double u, double v) { return t->Eval(TextureEvalContext::AtUV(Vec2(u, v)), wl)[0]; };
     EXPECT_EQ(at(0.1, 0.1), 0.1);    // check (0, 0)
     EXPECT_EQ(at(0.3, 0.1), 0.7);    // (1, 0)
     EXPECT_EQ(at(0.3, 0.3), 0.1);    // (1, 1)

@@ -103,6 +103,9 @@ SurfaceInteraction AnalyticSphere::Interaction(const Ray &ray, double t, unsigne
     // Frame::FromNormalTangent falls back to an arbitrary tangent.
     Vec3 dpdu = rotation_.Vector(Vec3(-l.y, l.x, 0));
     si.shading = Frame::FromNormalTangent(n, dpdu);
+    // p = c + r·(sinθ cosφ, sinθ sinφ, cosθ) with u = φ/2π, v = θ/π.
+    si.dpdu = (2 * Pi * radius_) * dpdu;
+    si.dpdv = (Pi * radius_) * rotation_.Vector(Vec3(l.z * std::cos(phi), l.z * std::sin(phi), -std::sin(theta)));
     return si;
 }
 
@@ -177,6 +180,9 @@ SurfaceInteraction AnalyticDisk::Interaction(const Ray &ray, double t, unsigned,
     if (phi < 0) phi += 2 * Pi;
     si.uv = Vec2(phi * Inv2Pi, std::sqrt(x * x + y * y) / radius_);
     si.shading = Frame::FromNormalTangent(normal_, toWorld_.Vector(Vec3(-y, x, 0)));
+    // p = to_world·(ρ cosφ, ρ sinφ, 0) with u = φ/2π, v = ρ/radius.
+    si.dpdu = toWorld_.Vector(Vec3(-2 * Pi * y, 2 * Pi * x, 0));
+    si.dpdv = toWorld_.Vector(Vec3(radius_ * std::cos(phi), radius_ * std::sin(phi), 0));
     return si;
 }
 

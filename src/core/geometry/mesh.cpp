@@ -180,10 +180,13 @@ SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, 
     Vec3 dp02 = p0 - p2, dp12 = p1 - p2;
     double det = duv02.x * duv12.y - duv02.y * duv12.x;
     Vec3 dpdu;
-    if (std::abs(det) > 1e-14 * (LengthSquared(duv02) + LengthSquared(duv12)))
+    if (std::abs(det) > 1e-14 * (LengthSquared(duv02) + LengthSquared(duv12))) {
         dpdu = (duv12.y * dp02 - duv02.y * dp12) / det;
-    else
-        dpdu = p1 - p0;
+        si.dpdu = dpdu;
+        si.dpdv = (duv02.x * dp12 - duv12.x * dp02) / det;
+    } else {
+        dpdu = p1 - p0;  // only orients the shading frame; si.dpdu, si.dpdv stay zero
+    }
     si.shading = Frame::FromNormalTangent(ns, dpdu);
     return si;
 }

@@ -360,6 +360,72 @@ Transform BuildContext::GetTransform(const ParamDict &dict, const std::string &n
     return TransformFromValue(dict.GetValue(name));
 }
 
+std::string BuildContext::FamilyOf(const Value &ref) const {
+    auto it = byName_.find(ref.text);
+    if (ref.kind != Value::Kind::Ref || it == byName_.end()) return "";
+    const FamilyOps *ops = FindOps(desc_.entities[it->second].keyword);
+    return ops ? ops->family : "";
+}
+
+std::shared_ptr<const Texture> BuildContext::ResolveTexture(const ParamDict &dict, const std::string &name) {
+    const Value &v = dict.GetValue(name);
+    auto tex = std::static_pointer_cast<const Texture>(Resolve(v, "texture"));
+    const ParamSpec *spec = dict.GetSchema() ? dict.GetSchema()->Find(name) : nullptr;
+    if (!spec) return tex;
+    const double lo = tex->MinValue(), hi = tex->MaxValue();
+    const bool tooLow = spec->minValue && (spec->minExclusive ? !(lo > *spec->minValue) : !(lo >= *spec->minValue));
+    const bool tooHigh = spec->maxValue && !(hi <= *spec->maxValue);
+    if (tooLow || tooHigh) {
+        const Dim d = tex->ScalarDim().value_or(Dim::None());
+        std::string range;
+        if (spec->minValue)
+            range += std::string(spec->minExclusive ? "> " : "≥ ") + Value::Number(*spec->minValue, d).ToString();
+        if (spec->maxValue)
+            range += (range.empty() ? "" : " and ") + std::string("≤ ") + Value::Number(*spec->maxValue, d).ToString();
+        throw Error(v.loc, "'" + name + "' must be " + range + " everywhere, but texture '@" + v.text +
+                               "' ranges over [" + Value::Number(lo, d).ToString() + ", " +
+                               Value::Number(hi, d).ToString() + "]");
+    }
+    return tex;
+}
+
+FloatTexture BuildContext::GetFloatTexture(const ParamDict &dict, const std::string &name) {
+    const Value &v = dict.GetValue(name);
+    const ParamSpec *spec = dict.GetSchema() ? dict.GetSchema()->Find(name) : nullptr;
+    const bool anyDim = spec && spec->anyDim;
+    const Dim want = spec ? spec->dim : Dim::None();
+    const std::string expected = anyDim ? "a number" : want.Describe();
+    if (v.kind == Value::Kind::Number) {
+        if (!anyDim && v.dim != want)
+            throw Error(v.loc, "'" + name + "' expects " + expected + "; got " + v.DescribeKind());
+        return FloatTexture(v.number, v.dim);
+    }
+    if (v.kind != Value::Kind::Ref)
+        throw Error(v.loc, "'" + name + "' expects " + expected + " or @texture; got " + v.DescribeKind());
+    std::shared_ptr<const Texture> tex = ResolveTexture(dict, name);
+    const std::optional<Dim> d = tex->ScalarDim();
+    if (!d || (!anyDim && *d != want))
+        throw Error(v.loc, "'" + name + "' expects " + expected + " (or a texture of " + expected + "); texture '@" +
+                               v.text + "' yields " + tex->DescribeYield());
+    return FloatTexture(std::static_pointer_cast<const ScalarTexture>(tex));
+}
+
+SpectrumTexture BuildContext::GetSpectrumTexture(const ParamDict &dict, const std::string &name) {
+    const Value &v = dict.GetValue(name);
+    if (v.kind != Value::Kind::Ref) return SpectrumTexture(SpectrumFromValue(v));
+    // A Ref parameter (e.g. diffuse's `texture`) names only its own family.
+    const ParamSpec *spec = dict.GetSchema() ? dict.GetSchema()->Find(name) : nullptr;
+    const std::string allowed = spec && spec->kind == ParamKind::Ref ? spec->refFamily : "spectrum or texture";
+    const std::string family = FamilyOf(v);
+    if (family == "spectrum" && allowed != "texture") return SpectrumTexture(SpectrumFromValue(v));
+    if (family != "texture") Resolve(v, allowed);  // throws: undefined, or of another family
+    std::shared_ptr<const Texture> tex = ResolveTexture(dict, name);
+    if (const std::optional<Dim> d = tex->ScalarDim(); d && !d->IsNone())
+        throw Error(v.loc, "'" + name + "' expects a spectrum or a dimensionless texture; texture '@" + v.text +
+                               "' yields " + tex->DescribeYield());
+    return SpectrumTexture(std::move(tex));
+}
+
 std::shared_ptr<void> BuildContext::CreateFromCall(const Value &call, const std::string &family) {
     const FamilyOps *ops = FindOps(family);
     const Schema *schema = ops ? ops->schema(call.text) : nullptr;

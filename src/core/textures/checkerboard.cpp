@@ -8,8 +8,8 @@
 #include <memory>
 #include <sstream>
 
-#include "core/material.h"
 #include "core/registry.h"
+#include "core/texture.h"
 
 namespace phasor {
 
@@ -44,13 +44,16 @@ class CheckerboardTexture final : public Texture {
         return std::fmod(std::abs(iu + iv), 2.0) == 0 ? 0 : 1;
     }
 
-    SampledSpectrum Eval(const Vec2 &uv, const SampledWavelengths &wl) const override {
-        const Spectrum &s = CheckAt(uv) == 0 ? *c0_ : *c1_;
+    std::optional<Dim> ScalarDim() const override { return std::nullopt; }
+
+    SampledSpectrum Eval(const TextureEvalContext &ctx, const SampledWavelengths &wl) const override {
+        const Spectrum &s = CheckAt(ctx.uv) == 0 ? *c0_ : *c1_;
         SampledSpectrum r;
         for (int i = 0; i < wl.Count(); ++i) r[i] = s.Eval(wl.lambda[i]);
         return r;
     }
 
+    double MinValue() const override { return 0; }  // a lower bound: spectra are never negative
     double MaxValue() const override { return std::max(c0_->MaxValue(), c1_->MaxValue()); }
 
     std::string ToString() const override {

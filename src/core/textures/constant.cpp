@@ -1,40 +1,67 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — `constant` texture: the same spectrum everywhere on the surface.
+// phasor — `constant` texture: the same value everywhere on the surface.
+//
+// By value kind: a number makes a scalar texture of the number's dimension (`value = 300 nm` is
+// a length texture; a plain number is dimensionless and also serves where a spectrum is
+// expected); a spectrum call or @spectrum makes a spectral texture.
 #include <memory>
+#include <sstream>
 
-#include "core/material.h"
 #include "core/registry.h"
+#include "core/texture.h"
 
 namespace phasor {
 
-class ConstantTexture final : public Texture {
-  public:
-    explicit ConstantTexture(std::shared_ptr<const Spectrum> value) : value_(std::move(value)) {}
+namespace {
 
+class ConstantScalarTexture final : public ScalarTexture {
+  public:
+    ConstantScalarTexture(double value, Dim dim) : ScalarTexture(dim), value_(value) {}
+    double EvalScalar(const TextureEvalContext &) const override { return value_; }
+    double MinValue() const override { return value_; }
+    double MaxValue() const override { return value_; }
+    std::string ToString() const override {
+        return "ConstantTexture[ value = " + Value::Number(value_, GetDim()).ToString() + " ]";
+    }
+
+  private:
+    double value_;
+};
+
+class ConstantSpectralTexture final : public Texture {
+  public:
+    explicit ConstantSpectralTexture(std::shared_ptr<const Spectrum> value) : value_(std::move(value)) {}
+    std::optional<Dim> ScalarDim() const override { return std::nullopt; }
+    SampledSpectrum Eval(const TextureEvalContext &ctx, const SampledWavelengths &wl) const override {
+        return value_.Eval(ctx, wl);
+    }
+    double MinValue() const override { return value_.MinValue(); }
+    double MaxValue() const override { return value_.MaxValue(); }
+    std::string ToString() const override { return "ConstantTexture[ value = " + value_.ToString() + " ]"; }
+
+  private:
+    SpectrumTexture value_;  // holds a spectrum, never a texture
+};
+
+}  // namespace
+
+/// The plug-in: builds one of the two classes above.
+class ConstantTexture {
+  public:
     static const Schema &GetSchema() {
         static const Schema s{"texture",
                               "constant",
-                              "a spectrum that does not vary over the surface",
-                              {P::Spectrum("value", "the value at every point").Default(Value::Number(0.5))}};
+                              "the same value everywhere: a number (its unit gives the texture's dimension) or a "
+                              "spectrum",
+                              {P::Spectrum("value", "the value at every point").Default(Value::Number(0.5)).AnyDim()}};
         return s;
     }
 
     static std::unique_ptr<Texture> Create(const ParamDict &dict, BuildContext &ctx) {
-        return std::make_unique<ConstantTexture>(ctx.GetSpectrum(dict, "value"));
+        const Value &v = dict.GetValue("value");
+        if (v.kind == Value::Kind::Number) return std::make_unique<ConstantScalarTexture>(v.number, v.dim);
+        return std::make_unique<ConstantSpectralTexture>(ctx.GetSpectrum(dict, "value"));
     }
-
-    SampledSpectrum Eval(const Vec2 &, const SampledWavelengths &wl) const override {
-        SampledSpectrum r;
-        for (int i = 0; i < wl.Count(); ++i) r[i] = value_->Eval(wl.lambda[i]);
-        return r;
-    }
-
-    double MaxValue() const override { return value_->MaxValue(); }
-
-    std::string ToString() const override { return "ConstantTexture[ value = " + value_->ToString() + " ]"; }
-
-  private:
-    std::shared_ptr<const Spectrum> value_;
 };
 
 PHASOR_EXPORT_PLUGIN(Texture, ConstantTexture)
