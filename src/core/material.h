@@ -259,15 +259,4 @@ bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shi
 /// True if unit directions a and b agree to `tol` [rad] (EvalLobe's test for a near-delta lobe).
 inline bool SameDirection(const Vec3 &a, const Vec3 &b, double tol = 1e-9) { return Length(a - b) <= tol; }
 
-/// A texture: a scalar-per-wavelength value over the surface (e.g. reflectance).
-class Texture {
-  public:
-    virtual ~Texture() = default;
-    /// Value at surface parameters uv for the sampled wavelengths.
-    virtual SampledSpectrum Eval(const Vec2 &uv, const SampledWavelengths &wl) const = 0;
-    /// Upper bound over the surface and all wavelengths.
-    virtual double MaxValue() const = 0;
-    virtual std::string ToString() const = 0;
-};
-
 }  // namespace phasor
