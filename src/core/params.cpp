@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/params.h"
 
+#include "core/named_ior.h"
+
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -65,6 +67,7 @@ Value Value::Call(std::string name, std::vector<Value> args, std::vector<std::st
     v.items = std::move(args);
     v.argNames = std::move(argNames);
     v.argNames.resize(v.items.size());
+    v.argLocs.resize(v.items.size());
     v.loc = std::move(loc);
     return v;
 }
@@ -178,6 +181,8 @@ const char *ToString(ParamKind k) {
         case ParamKind::RefList: return "reference list";
         case ParamKind::FloatTexture: return "number or texture";
         case ParamKind::SpectrumTexture: return "spectrum or texture";
+        case ParamKind::ComplexSpectrum: return "complex spectrum";
+        case ParamKind::RecordList: return "record list";
     }
     return "?";
 }
@@ -202,6 +207,7 @@ std::string KindText(const ParamSpec &p) {
     if (p.anyDim) k += p.kind == ParamKind::Spectrum ? " or number [any unit]" : " [any unit]";
     else if (dimensioned && !p.dim.IsNone()) k += " [" + p.dim.ToString() + "]";
     if (!p.refFamily.empty()) k += " (" + p.refFamily + ")";
+    if (p.kind == ParamKind::RecordList && p.record) k = "list of " + p.record->name + "(…)";
     return k;
 }
 std::string DefaultText(const ParamSpec &p) {
@@ -214,7 +220,7 @@ std::string RangeText(const ParamSpec &p) {
     if (p.minValue) r += std::string(p.minExclusive ? "> " : "≥ ") + FormatDouble(*p.minValue);
     if (p.maxValue) r += (r.empty() ? "" : ", ") + std::string("≤ ") + FormatDouble(*p.maxValue);
     if (!p.choices.empty()) {
-        r += "one of:";
+        r += p.kind == ParamKind::ComplexSpectrum ? "or a named material:" : "one of:";
         for (const auto &c : p.choices) r += " " + c;
     }
     return r;
@@ -230,6 +236,14 @@ std::string Schema::Describe() const {
         std::string r = RangeText(p);
         if (!r.empty()) os << "  (" << r << ")";
         os << "\n      " << p.doc << "\n";
+        if (p.kind == ParamKind::RecordList && p.record) {
+            // The record's fields, indented one level further.
+            std::istringstream fields(p.record->Describe());
+            std::string line;
+            std::getline(fields, line);  // the record's own header
+            os << "      " << p.record->name << "(…) — " << p.record->doc << "\n";
+            while (std::getline(fields, line)) os << "    " << line << "\n";
+        }
     }
     return os.str();
 }
@@ -242,6 +256,14 @@ std::string Schema::Markdown() const {
     for (const ParamSpec &p : params)
         os << "| `" << p.name << "` | " << KindText(p) << " | `" << DefaultText(p) << "` | " << RangeText(p)
            << " | " << p.doc << " |\n";
+    for (const ParamSpec &p : params)
+        if (p.kind == ParamKind::RecordList && p.record) {
+            os << "\nFields of each `" << p.record->name << "(…)` record in `" << p.name << "` ("
+               << p.record->doc << "):\n\n| field | kind | default | range | description |\n|---|---|---|---|---|\n";
+            for (const ParamSpec &f : p.record->params)
+                os << "| `" << f.name << "` | " << KindText(f) << " | `" << DefaultText(f) << "` | " << RangeText(f)
+                   << " | " << f.doc << " |\n";
+        }
     return os.str() + "\n";
 }
 
@@ -288,6 +310,17 @@ ParamSpec FloatTexture(std::string n, std::string d, Dim dim) {
     return Make(std::move(n), ParamKind::FloatTexture, std::move(d), dim);
 }
 ParamSpec SpectrumTexture(std::string n, std::string d) { return Make(std::move(n), ParamKind::SpectrumTexture, std::move(d)); }
+ParamSpec ComplexSpectrum(std::string n, std::string d) {
+    ParamSpec s = Make(std::move(n), ParamKind::ComplexSpectrum, std::move(d));
+    s.choices = NamedIndexNames();
+    return s;
+}
+ParamSpec RecordList(std::string n, std::string d, std::string recordName, std::string recordDoc,
+                     std::vector<ParamSpec> fields) {
+    ParamSpec s = Make(std::move(n), ParamKind::RecordList, std::move(d));
+    s.record = std::make_shared<const Schema>(Schema{"record", std::move(recordName), std::move(recordDoc), std::move(fields)});
+    return s;
+}
 }  // namespace P
 
 // ---- ParamDict ----------------------------------------------------------------------------
@@ -380,6 +413,24 @@ bool CheckList(const Value &v, const ParamSpec &s, const Param &p, Diagnostics &
     return true;
 }
 
+// A string against the spec's choices (none: anything goes). For a ComplexSpectrum the choices
+// are the named materials, and a string outside them is an unknown material.
+bool CheckChoice(const Value &v, const ParamSpec &s, const Param &p, Diagnostics &diag) {
+    if (s.choices.empty()) return true;
+    for (const auto &c : s.choices)
+        if (c == v.text) return true;
+    std::string list;
+    for (const auto &c : s.choices) list += (list.empty() ? "" : ", ") + ("\"" + c + "\"");
+    std::string sug = Suggest(v.text, s.choices);
+    std::string msg = s.kind == ParamKind::ComplexSpectrum
+                          ? "'" + s.name + "': unknown material \"" + v.text + "\" (known: " + list + ")"
+                          : "'" + s.name + "' must be one of " + list + "; got \"" + v.text + "\"";
+    diag.Error(WhereOf(v, p), msg + (sug.empty() ? "" : "; did you mean \"" + sug + "\"?"));
+    return false;
+}
+
+bool CheckRecords(const Value &v, const ParamSpec &s, const Param &p, Diagnostics &diag);
+
 bool CheckValue(const Value &v, const ParamSpec &s, const Param &p, Diagnostics &diag) {
     using K = Value::Kind;
     auto kindError = [&](const std::string &expected) {
@@ -392,17 +443,7 @@ bool CheckValue(const Value &v, const ParamSpec &s, const Param &p, Diagnostics 
         case ParamKind::Bool: return v.kind == K::Bool ? true : kindError("a boolean (true or false)");
         case ParamKind::String:
             if (v.kind != K::String) return kindError("a string");
-            if (!s.choices.empty()) {
-                for (const auto &c : s.choices)
-                    if (c == v.text) return true;
-                std::string list;
-                for (const auto &c : s.choices) list += (list.empty() ? "" : ", ") + ("\"" + c + "\"");
-                std::string sug = Suggest(v.text, s.choices);
-                diag.Error(WhereOf(v, p), "'" + s.name + "' must be one of " + list + "; got \"" + v.text + "\"" +
-                                              (sug.empty() ? "" : "; did you mean \"" + sug + "\"?"));
-                return false;
-            }
-            return true;
+            return CheckChoice(v, s, p, diag);
         case ParamKind::File: return v.kind == K::String ? true : kindError("a file name (a string)");
         case ParamKind::Complex:
             if (v.kind == K::Complex || (v.kind == K::Number && v.dim.IsNone())) return true;
@@ -463,8 +504,41 @@ bool CheckValue(const Value &v, const ParamSpec &s, const Param &p, Diagnostics 
                     return false;
                 }
             return true;
+        case ParamKind::ComplexSpectrum:
+            if (v.kind == K::String) return CheckChoice(v, s, p, diag);
+            if ((v.kind == K::Number && v.dim.IsNone()) || v.kind == K::Complex || v.kind == K::Call ||
+                v.kind == K::Ref)
+                return true;
+            return kindError("a complex index (a number such as 1.5, n+ik such as 0.2+3.4i, a material such as "
+                             "\"Au\", a spectrum such as table(…), or nk(n = …, k = …))");
+        case ParamKind::RecordList: return CheckRecords(v, s, p, diag);
     }
     return true;
+}
+
+bool CheckRecords(const Value &v, const ParamSpec &s, const Param &p, Diagnostics &diag) {
+    const Schema &rec = *s.record;
+    const std::string expected = "a list of " + rec.name + "(…) records";
+    if (v.kind != Value::Kind::Call && v.kind != Value::Kind::List) {
+        diag.Error(WhereOf(v, p), "'" + s.name + "' expects " + expected + "; got " + v.DescribeKind());
+        return false;
+    }
+    const std::vector<Value> one = {v};
+    bool ok = true;
+    for (const Value &it : v.kind == Value::Kind::Call ? one : v.items) {
+        if (it.kind != Value::Kind::Call || it.text != rec.name) {
+            std::string sug = it.kind == Value::Kind::Call ? Suggest(it.text, {rec.name}) : "";
+            diag.Error(WhereOf(it, p), "'" + s.name + "' expects " + expected + "; got " + it.DescribeKind() +
+                                           (sug.empty() ? "" : "; did you mean '" + sug + "'?"));
+            ok = false;
+            continue;
+        }
+        // Each record is validated like an entity: unknown fields, missing ones, kinds, ranges.
+        const std::size_t before = diag.ErrorCount();
+        ParamDict fields = ParamDict::FromRecord(it, rec, &diag);
+        ok = diag.ErrorCount() == before && fields.Validate(rec, diag) && ok;
+    }
+    return ok;
 }
 
 }  // namespace
@@ -538,6 +612,42 @@ std::vector<int> ParamDict::GetInts(const std::string &name) const {
     for (const Value &it : GetValue(name).items) out.push_back((int)std::llround(it.number));
     return out;
 }
+ParamDict ParamDict::FromRecord(const Value &call, const Schema &record, Diagnostics *diag) {
+    ParamDict d(call.loc);
+    const std::vector<std::string> order = record.Names();
+    std::size_t next = 0;
+    for (std::size_t i = 0; i < call.items.size(); ++i) {
+        const Value &arg = call.items[i];
+        const FileLoc argLoc = arg.loc.Known() ? arg.loc : call.loc;
+        std::string name = i < call.argNames.size() ? call.argNames[i] : "";
+        FileLoc nameLoc = i < call.argLocs.size() && call.argLocs[i].Known() ? call.argLocs[i] : argLoc;
+        std::string problem;
+        if (name.empty()) {
+            if (next >= order.size()) problem = "too many arguments to '" + call.text + "'";
+            else name = order[next++];
+        }
+        if (problem.empty() && !d.Add(name, arg, nameLoc)) problem = "field '" + name + "' of '" + call.text + "' given twice";
+        if (problem.empty()) continue;
+        if (!diag) throw Error(argLoc, problem);
+        diag->Error(argLoc, problem);
+    }
+    d.schema_ = &record;
+    return d;
+}
+
+std::vector<ParamDict> ParamDict::GetRecords(const std::string &name) const {
+    const Param *p = Find(name);
+    const ParamSpec *spec = schema_ ? schema_->Find(name) : nullptr;
+    if (!spec || !spec->record) throw std::logic_error("internal: '" + name + "' is not a record list of the schema");
+    if (!p && !spec->defaultValue) return {};
+    const Value &v = GetValue(name);
+    std::vector<ParamDict> out;
+    if (v.kind == Value::Kind::Call) out.push_back(FromRecord(v, *spec->record, nullptr));
+    else
+        for (const Value &it : v.items) out.push_back(FromRecord(it, *spec->record, nullptr));
+    return out;
+}
+
 std::vector<std::string> ParamDict::GetStrings(const std::string &name) const {
     std::vector<std::string> out;
     for (const Value &it : GetValue(name).items) out.push_back(it.text);

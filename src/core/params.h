@@ -30,6 +30,7 @@ struct Value {
     std::string text;  // String: content; Ref: name without '@'; Call: function name
     std::vector<Value> items;  // List: elements; Call: arguments (see argNames)
     std::vector<std::string> argNames;  // Call: one per argument ("" = positional)
+    std::vector<FileLoc> argLocs;  // Call: location of each argument's name (unknown if positional or absent)
     FileLoc loc;
 
     static Value Number(double si, Dim d = Dim::None(), FileLoc loc = {});
@@ -73,8 +74,14 @@ enum class ParamKind {
     /// Constant-or-texture, spectral: what Spectrum accepts, or @ref to a spectral or a
     /// dimensionless scalar texture (read with BuildContext::GetSpectrumTexture).
     SpectrumTexture,
+    ComplexSpectrum,  // n + iκ(λ): number, n+ik, named material ("Au"), spectrum call/@ref, nk(n=…, k=…)
+                      // (core/complex_spectrum.h; read with BuildContext::GetComplexSpectrum)
+    RecordList,  // list of calls to the record `record->name`, e.g. [layer(ior = 1.5, thickness = 80nm), …],
+                 // each validated against the sub-schema `record` (read with ParamDict::GetRecords)
 };
 const char *ToString(ParamKind k);
+
+struct Schema;
 
 /// One parameter in a plug-in's schema: the single source of its name, kind, unit, default,
 /// range and documentation (docs and `phasor describe` are generated from it).
@@ -88,11 +95,14 @@ struct ParamSpec {
     std::optional<double> minValue, maxValue;  // inclusive bounds on SI numbers (and list items)
     bool minExclusive = false;
     std::string refFamily;  // Ref / RefList / Spectrum: family the reference must belong to
-    std::vector<std::string> choices;  // String: allowed values
+    std::vector<std::string> choices;  // String: allowed values; ComplexSpectrum: the named materials
     int listSize = -1;  // NumberList / IntegerList: required length (-1 = any)
     /// Number / NumberList / FloatTexture: any dimension is accepted, the value brings its own
     /// (e.g. a texture's `offset = 300 nm`); Spectrum: also a number with a unit.
     bool anyDim = false;
+    /// RecordList: the record's schema (its `name` is the call name, e.g. "layer"; its params are
+    /// the record's fields with kinds, dimensions, defaults, required flags and ranges).
+    std::shared_ptr<const Schema> record;
 
     // Fluent helpers so schemas read as one line per parameter.
     ParamSpec &Default(Value v) { defaultValue = std::move(v); return *this; }
@@ -137,6 +147,12 @@ ParamSpec Ref(std::string name, std::string family, std::string doc);
 ParamSpec RefList(std::string name, std::string family, std::string doc);
 ParamSpec FloatTexture(std::string name, std::string doc, Dim dim = Dim::None());
 ParamSpec SpectrumTexture(std::string name, std::string doc);
+/// A complex index n + iκ(λ); the named materials of core/named_ior.h are its choices.
+ParamSpec ComplexSpectrum(std::string name, std::string doc);
+/// A list of `recordName(field = …, …)` records with the given fields (positional arguments bind to
+/// the fields in order). A single record is accepted as a list of one.
+ParamSpec RecordList(std::string name, std::string doc, std::string recordName, std::string recordDoc,
+                     std::vector<ParamSpec> fields);
 }  // namespace P
 
 struct Param {
@@ -181,12 +197,21 @@ class ParamDict {
     std::vector<double> GetNumbers(const std::string &name) const;
     std::vector<int> GetInts(const std::string &name) const;
     std::vector<std::string> GetStrings(const std::string &name) const;
+    /// A RecordList parameter: one dictionary per record, in written order, each with the
+    /// record's schema (defaults apply) and a location per field (Loc(field)); an absent
+    /// parameter without default is an empty list.
+    std::vector<ParamDict> GetRecords(const std::string &name) const;
     /// The raw value (parameter or schema default); marks it used.
     const Value &GetValue(const std::string &name) const;
     /// Location of a parameter (or of the entity, if absent) for follow-up errors.
     FileLoc Loc(const std::string &name) const;
     const FileLoc &EntityLoc() const { return entityLoc_; }
     const Schema *GetSchema() const { return schema_; }
+
+    /// The dictionary of one record: `call`'s arguments bound to the fields of `record`
+    /// (positional ones in field order). Binding errors (too many arguments, a field given twice)
+    /// go to `diag` when given, else throw phasor::Error.
+    static ParamDict FromRecord(const Value &call, const Schema &record, Diagnostics *diag);
 
   private:
     std::vector<Param> params_;

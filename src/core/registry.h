@@ -24,6 +24,9 @@
 
 namespace phasor {
 
+class Spectrum;
+class ComplexSpectrum;
+class Texture;
 class Material;
 class Shape;
 class Light;
@@ -130,6 +133,13 @@ class BuildContext {
     std::shared_ptr<const Spectrum> GetSpectrum(const ParamDict &dict, const std::string &name);
     /// A spectrum from a Value (used by plug-ins whose parameters hold nested spectra).
     std::shared_ptr<const Spectrum> SpectrumFromValue(const Value &v);
+    /// A ComplexSpectrum parameter (core/complex_spectrum.h): n + iκ(λ) from a plain number or
+    /// n+ik (constant), a named material ("Au"), a spectrum call or @ref (κ = 0), or
+    /// nk(n = spectrum, k = spectrum) (k defaults to 0). Every kernel with an index reads it
+    /// through this. Throws phasor::Error at the parameter if n ≤ 0 or κ < 0 anywhere in
+    /// 360–1000 nm (a passive medium).
+    std::shared_ptr<const ComplexSpectrum> GetComplexSpectrum(const ParamDict &dict, const std::string &name);
+    std::shared_ptr<const ComplexSpectrum> ComplexSpectrumFromValue(const Value &v);
     /// A transform parameter: translate(v), rotate(angle, axis = v), scale(s | v),
     /// lookat(eye, target, up), matrix([16 numbers, row-major]), or a list applied in order
     /// (the first listed is applied first).

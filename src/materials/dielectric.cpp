@@ -15,11 +15,13 @@
 // generalized ray both lobes are listed (ListNearDelta: ids 0 reflection, 1 refraction) and
 // measured in closed form by the integrator (D14).
 //
-// Dispersion: `ior` may be any spectrum; `cauchy_b` adds Cauchy's term, η(λ) = ior(λ) + B/λ²
-// (Cauchy 1836; e.g. BK7 ≈ 1.5046 + 4.20e-3 µm²/λ²).
+// Dispersion: `ior` is a complex spectrum (core/complex_spectrum.h) with κ = 0: a constant, a named
+// glass ("BK7", "fused_silica", "water", …; core/named_ior.h) or any spectrum; `cauchy_b` adds
+// Cauchy's term, η(λ) = ior(λ) + B/λ² (Cauchy 1836; e.g. BK7 ≈ 1.5046 + 4.20e-3 µm²/λ²).
 #include <memory>
 #include <sstream>
 
+#include "core/complex_spectrum.h"
 #include "core/diagnostics.h"
 #include "core/material.h"
 #include "core/registry.h"
@@ -29,7 +31,7 @@ namespace phasor {
 
 class DielectricMaterial final : public Material {
   public:
-    DielectricMaterial(std::shared_ptr<const Spectrum> ior, double cauchyB)
+    DielectricMaterial(std::shared_ptr<const ComplexSpectrum> ior, double cauchyB)
         : ior_(std::move(ior)), cauchyB_(cauchyB) {
         // Dispersive if η varies over the band a path may carry (checked on a fine grid).
         const double eta0 = Index(550e-9);
@@ -43,9 +45,10 @@ class DielectricMaterial final : public Material {
             "dielectric",
             "smooth dielectric interface: Fresnel-weighted specular reflection and Snell refraction",
             {
-                P::Spectrum("ior",
-                            "index of refraction η(λ) of the inside (real, > 0; the outside is the "
-                            "query's medium, normally air = 1)")
+                P::ComplexSpectrum("ior",
+                                   "index of refraction η(λ) of the inside (real: κ = 0, n > 0; the outside "
+                                   "is the query's medium, normally air = 1): a number, a glass such as "
+                                   "\"BK7\", or a spectrum")
                     .Default(Value::Number(1.5)),
                 P::Number("cauchy_b",
                           "Cauchy dispersion term B added to 'ior': η(λ) = ior(λ) + B/λ² "
@@ -57,7 +60,11 @@ class DielectricMaterial final : public Material {
     }
 
     static std::unique_ptr<Material> Create(const ParamDict &dict, BuildContext &ctx) {
-        auto ior = ctx.GetSpectrum(dict, "ior");
+        auto ior = ctx.GetComplexSpectrum(dict, "ior");
+        for (double l = 360e-9; l <= 1000e-9; l += 5e-9)
+            if (ior->Eval(l).imag() != 0)
+                throw Error(dict.Loc("ior"), "dielectric 'ior' must be real (κ = 0: the interior does not "
+                                             "absorb); it is " + ior->ToString() + " (use 'conductor' for metals)");
         const double b = dict.GetNumber("cauchy_b");
         auto m = std::make_unique<DielectricMaterial>(ior, b);
         for (double l = 360e-9; l <= 1000e-9; l += 5e-9)
@@ -147,7 +154,7 @@ class DielectricMaterial final : public Material {
     }
 
     /// Index of the interior at vacuum wavelength lambda [m].
-    double Index(double lambda) const { return ior_->Eval(lambda) + cauchyB_ / (lambda * lambda); }
+    double Index(double lambda) const { return ior_->Eval(lambda).real() + cauchyB_ / (lambda * lambda); }
 
   private:
     /// The interface as seen from wi, per wavelength: indices of wi's side (nI) and the far side
@@ -200,7 +207,7 @@ class DielectricMaterial final : public Material {
         return s;
     }
 
-    std::shared_ptr<const Spectrum> ior_;
+    std::shared_ptr<const ComplexSpectrum> ior_;  // κ = 0 (checked in Create)
     double cauchyB_ = 0;  // Cauchy B [m²]
     bool dispersive_ = false;
 };

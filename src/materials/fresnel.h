@@ -8,29 +8,48 @@
 // (0 = grazing, 1 = normal); all results are for unpolarised light unless the name says s or p.
 #pragma once
 
+#include <limits>
+
 #include "core/math.h"
 
 namespace phasor {
 
-/// Complex amplitude reflection and transmission coefficients of a planar interface between a
-/// medium of real index n1 (incident side) and a medium of index n2 = n + iκ (theory §4.1):
+/// Complex amplitude reflection and transmission coefficients of a planar interface between an
+/// incident medium of index n1 and a medium of index n2 (theory §4.1):
 ///   r_s = (n₁cosθ_i − n₂cosθ_t)/(n₁cosθ_i + n₂cosθ_t),  r_p = (n₂cosθ_i − n₁cosθ_t)/(n₂cosθ_i + n₁cosθ_t),
-///   t_s = 2n₁cosθ_i/(n₁cosθ_i + n₂cosθ_t),              t_p = 2n₁cosθ_i/(n₂cosθ_i + n₁cosθ_t),
-/// with cosθ_t = √(1 − (n₁/n₂)² sin²θ_i) on the principal branch (Re ≥ 0, and Im ≥ 0 for κ ≥ 0:
-/// the transmitted or evanescent wave decays away from the interface).
+///   t_s = 2n₁cosθ_i/(n₁cosθ_i + n₂cosθ_t),              t_p = 2n₁cosθ_i/(n₂cosθ_i + n₁cosθ_t).
+/// r and t are ratios of electric-field amplitudes in the (s, p) basis of core/polarization.h
+/// (Jones::Diagonal(r_s, r_p) is the interface's Jones matrix). Power transmittances need the
+/// factors of FresnelPowerFactorS/P below.
 struct FresnelCoefficients {
     Complex rs, rp, ts, tp;
     Complex cosThetaT;  // cosine of the (complex) refraction angle
 };
 
-inline FresnelCoefficients FresnelAmplitudes(double cosThetaI, double n1, Complex n2) {
-    const double cosI = Clamp(cosThetaI, 0.0, 1.0);
-    const double sin2I = std::max(0.0, 1 - cosI * cosI);
-    // Principal branch (Re ≥ 0). For κ > 0 the argument has Im > 0, far from the cut; for real n₂
-    // under total internal reflection it is a negative real and cosθ_t = ±i·a: |r_s| = |r_p| = 1
-    // on either sign, so the reflectances do not depend on how the cut is approached.
-    const Complex cosT = std::sqrt(1.0 - (n1 / n2) * (n1 / n2) * sin2I);
+/// cosθ_t in a medium of index n2 for a wave whose tangential wave-vector is that of cosθ_i in n1
+/// (Snell's invariant n₁sinθ_i = n₂sinθ_t, all complex): cosθ_t = ±√(1 − (n₁/n₂)² sin²θ_i), the sign
+/// chosen so that the wave decays away from the interface, Im(n₂cosθ_t) > 0, or, when
+/// n₂cosθ_t is real (lossless and propagating), travels away from it, Re(n₂cosθ_t) ≥ 0.
+/// "Real" means |Im| ≤ 100 ε·|n₂cosθ_t|: round-off leaves such imaginary parts of either sign
+/// on a propagating wave in a lossless medium, and their sign must not flip the direction.
+/// For real n1 and κ₂ ≥ 0 this is the principal branch (Re cosθ_t ≥ 0); under total internal
+/// reflection it picks the evanescent wave that decays (cosθ_t = +i·a for real n₂ > 0).
+inline Complex RefractedCos(Complex n1, Complex cosThetaI, Complex n2) {
+    const Complex sin2I = 1.0 - cosThetaI * cosThetaI;
+    Complex cosT = std::sqrt(1.0 - (n1 / n2) * (n1 / n2) * sin2I);
+    const Complex q = n2 * cosT;  // normal wave-vector component / k₀
+    const bool real = std::abs(q.imag()) <= 100 * std::numeric_limits<double>::epsilon() * std::abs(q);
+    if (real ? q.real() < 0 : q.imag() < 0) cosT = -cosT;
+    return cosT;
+}
+
+/// The coefficients above for complex indices n1, n2 (n + iκ, κ ≥ 0) and a complex cosθ_i in
+/// the incident medium, as inside an absorbing layer stack (layer_stack.h). cosθ_t follows
+/// RefractedCos. Stokes' relations hold exactly in this normalisation: swapping the media gives
+/// r' = −r and t·t' − r·r' = 1 per polarisation.
+inline FresnelCoefficients FresnelAmplitudes(Complex n1, Complex cosThetaI, Complex n2) {
     FresnelCoefficients c;
+    const Complex cosI = cosThetaI, cosT = RefractedCos(n1, cosThetaI, n2);
     c.cosThetaT = cosT;
     const Complex a = n1 * cosI, b = n2 * cosT;    // s-polarisation terms
     const Complex ap = n2 * cosI, bp = n1 * cosT;  // p-polarisation terms
@@ -39,6 +58,23 @@ inline FresnelCoefficients FresnelAmplitudes(double cosThetaI, double n1, Comple
     c.ts = 2.0 * a / (a + b);
     c.tp = 2.0 * a / (ap + bp);
     return c;
+}
+
+/// The interface n1 (real, incident side) → n2 = n + iκ for a real cosθ_i (clamped to [0, 1]);
+/// the complex overload above with Im(n₁) = Im(cosθ_i) = 0.
+inline FresnelCoefficients FresnelAmplitudes(double cosThetaI, double n1, Complex n2) {
+    return FresnelAmplitudes(Complex(n1, 0), Complex(Clamp(cosThetaI, 0.0, 1.0), 0), n2);
+}
+
+/// Power factors that turn |t|² into a transmittance, T = factor·|t|² (Born & Wolf §1.5 for
+/// absorbing media): s: Re(n₂cosθ_t)/Re(n₁cosθ_i), p: Re(n₂·conj(cosθ_t))/Re(n₁·conj(cosθ_i)).
+/// Both reduce to theory §4.1's n₂cosθ_t/(n₁cosθ_i) for lossless media; 0 for an evanescent
+/// transmitted wave. Defined for an incident medium with Re(n₁cosθ_i) > 0.
+inline double FresnelPowerFactorS(Complex n1, Complex cosI, Complex n2, Complex cosT) {
+    return (n2 * cosT).real() / (n1 * cosI).real();
+}
+inline double FresnelPowerFactorP(Complex n1, Complex cosI, Complex n2, Complex cosT) {
+    return (n2 * std::conj(cosT)).real() / (n1 * std::conj(cosI)).real();
 }
 
 /// Unpolarised reflectance of the interface n1 (real) → n2 = n + iκ: (|r_s|² + |r_p|²)/2

@@ -223,6 +223,7 @@ bool Evaluator::ApplyUnit(Value &v, double scale, Dim dim, const std::string &un
 std::optional<Value> Evaluator::EvalCall(const Expr &e, const std::string &file, const FileLoc &loc) {
     std::vector<Value> args;
     std::vector<std::string> names;
+    std::vector<FileLoc> nameLocs;
     bool ok = true;
     std::set<std::string> seen;
     for (std::size_t i = 0; i < e.kids.size(); ++i) {
@@ -240,10 +241,14 @@ std::optional<Value> Evaluator::EvalCall(const Expr &e, const std::string &file,
         }
         args.push_back(std::move(*v));
         names.push_back(n);
+        const Pos &p = i < e.argNamePos.size() ? e.argNamePos[i] : Pos{};
+        nameLocs.push_back(n.empty() ? FileLoc{} : FileLoc{file, p.line, p.col, std::max(1, p.length)});
     }
     if (!ok) return std::nullopt;
     if (IsMath(e.text)) return EvalMath(e, args, file, loc);
-    return Value::Call(e.text, std::move(args), std::move(names), loc);
+    Value call = Value::Call(e.text, std::move(args), std::move(names), loc);
+    call.argLocs = std::move(nameLocs);  // where each named argument's name is (records report there)
+    return call;
 }
 
 std::optional<Value> Evaluator::EvalMath(const Expr &e, std::vector<Value> &args, const std::string &file,

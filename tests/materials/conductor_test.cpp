@@ -4,7 +4,7 @@
 
 #include "material_test_util.h"
 #include "materials/fresnel.h"
-#include "materials/metal_ior.h"
+#include "core/named_ior.h"
 
 namespace phasor::test {
 namespace {
@@ -37,9 +37,11 @@ TEST(Conductor, WeightIsComplexFresnel) {
     }
 }
 
-TEST(Conductor, EtaAndKEqualTheComplexIor) {
+Value Nk(Value n, Value k) { return Value::Call("nk", {std::move(n), std::move(k)}, {"n", "k"}); }
+
+TEST(Conductor, NkSpectraEqualTheComplexIor) {
     auto a = Conductor(ParamDict().Set("ior", Value::ComplexNumber(Complex(1.2, 7.26))));
-    auto b = Conductor(ParamDict().Set("eta", Value::Number(1.2)).Set("k", Value::Number(7.26)));
+    auto b = Conductor(ParamDict().Set("ior", Nk(Value::Number(1.2), Value::Number(7.26))));
     const SampledWavelengths wl = TestWavelengths(700e-9);
     ScatterQuery q;
     q.wi = DirectionFromCosTheta(0.3, 0.0);
@@ -50,8 +52,10 @@ TEST(Conductor, EtaAndKEqualTheComplexIor) {
 }
 
 TEST(Conductor, TabulatedMetalsPerWavelength) {
-    for (const std::string &name : MetalNames()) {
-        auto m = Conductor(ParamDict().Set("metal", Value::String(name)));
+    const std::pair<std::string, Metal> metals[] = {
+        {"Al", Metal::Al}, {"Ag", Metal::Ag}, {"Au", Metal::Au}, {"Cu", Metal::Cu}};
+    for (const auto &[name, metal] : metals) {
+        auto m = Conductor(ParamDict().Set("ior", Value::String(name)));
         const SampledWavelengths wl = TestWavelengths(450e-9);
         ScatterQuery q;
         q.wi = DirectionFromCosTheta(0.8, 0.0);
@@ -59,12 +63,11 @@ TEST(Conductor, TabulatedMetalsPerWavelength) {
         auto s = m->Sample(q, 0.5, Vec2());
         ASSERT_TRUE(s);
         for (int j = 0; j < NumWavelengths; ++j)
-            EXPECT_NEAR(s->weight[j], FresnelConductor(0.8, MetalIndex(*MetalFromName(name), wl.lambda[j])),
-                        1e-15)
+            EXPECT_NEAR(s->weight[j], FresnelConductor(0.8, MetalIndex(metal, wl.lambda[j])), 1e-15)
                 << name;
     }
     // Gold is yellow: it reflects red far better than blue.
-    auto au = Conductor(ParamDict().Set("metal", Value::String("Au")));
+    auto au = Conductor(ParamDict().Set("ior", Value::String("Au")));
     const SampledWavelengths blue = LineWavelength(450e-9), red = LineWavelength(700e-9);
     ScatterQuery q;
     q.wi = Vec3(0, 0, 1);
@@ -77,7 +80,7 @@ TEST(Conductor, TabulatedMetalsPerWavelength) {
 
 TEST(Conductor, DefaultIsAluminium) {
     auto def = Conductor(ParamDict());
-    auto al = Conductor(ParamDict().Set("metal", Value::String("Al")));
+    auto al = Conductor(ParamDict().Set("ior", Value::String("Al")));
     const SampledWavelengths wl = TestWavelengths(550e-9);
     ScatterQuery q;
     q.wi = DirectionFromCosTheta(0.9, 0.0);
@@ -97,14 +100,14 @@ TEST(Conductor, OutsideMediumEntersTheFresnelTerm) {
 
 TEST(Conductor, ConflictingOrInvalidParametersAreErrors) {
     const ParamDict bad[] = {
-        ParamDict().Set("ior", Value::ComplexNumber(Complex(0.2, 3.0))).Set("metal", Value::String("Au")),
-        ParamDict().Set("ior", Value::ComplexNumber(Complex(0.2, 3.0))).Set("eta", Value::Number(1)),
-        ParamDict().Set("eta", Value::Number(1.2)),
-        ParamDict().Set("k", Value::Number(1.2)),
+        ParamDict().Set("metal", Value::String("Au")),  // the old parameter: now ior = "Au"
         ParamDict().Set("ior", Value::ComplexNumber(Complex(0.2, -3.0))),
         ParamDict().Set("ior", Value::ComplexNumber(Complex(-0.2, 3.0))),
-        ParamDict().Set("eta", Value::Number(-1)).Set("k", Value::Number(1)),
-        ParamDict().Set("metal", Value::String("Pt")),
+        ParamDict().Set("ior", Nk(Value::Number(-1), Value::Number(1))),
+        ParamDict().Set("ior", Nk(Value::Number(1), Value::Number(-1))),
+        ParamDict().Set("ior", Value::String("Pt")),
+        ParamDict().Set("ior", Value::Call("nk", {Value::Number(1)}, {"kappa"})),
+        ParamDict().Set("ior", Value::Number(1, Dim::Length())),
     };
     for (const ParamDict &d : bad) {
         Diagnostics diag;

@@ -126,16 +126,38 @@ TEST(Dielectric, DeltaOnlyInTheRayLimit) {
     EXPECT_EQ(m->Pdf(q, ReflectLocal(q.wi)), 0);
 }
 
-TEST(Dielectric, RejectsNonPositiveIndex) {
-    // A negative number is no spectrum at all (the spectrum builder's error); zero is a spectrum
-    // but no index (the kernel's).
-    for (const auto &[ior, fragment] : {std::pair{-1.2, "cannot be negative"}, std::pair{0.0, "positive"}}) {
+TEST(Dielectric, RejectsNonPositiveOrAbsorbingIndex) {
+    // The index is a complex spectrum (ctx.GetComplexSpectrum): n ≤ 0 is no passive medium, and the
+    // dielectric's interior does not absorb, so κ must be 0.
+    const std::pair<Value, const char *> bad[] = {
+        {Value::Number(-1.2), "must be n + iκ with n > 0 and κ ≥ 0; it is -1.2+0i at 360 nm"},
+        {Value::Number(0.0), "must be n + iκ with n > 0"},
+        {Value::ComplexNumber({1.5, 0.01}), "dielectric 'ior' must be real"},
+        {Value::String("Au"), "dielectric 'ior' must be real"},
+    };
+    for (const auto &[ior, fragment] : bad) {
         ParamDict d;
-        d.Set("ior", Value::Number(ior));
+        d.Set("ior", ior);
         Diagnostics diag;
         EXPECT_FALSE(BuildMaterial("dielectric", d, diag));
         ASSERT_TRUE(diag.HasErrors());
         EXPECT_NE(diag.All()[0].message.find(fragment), std::string::npos) << diag.All()[0].message;
+    }
+}
+
+TEST(Dielectric, NamedGlassIsDispersive) {
+    // ior = "BK7" (Sellmeier, core/named_ior.h): the kernel sees the glass's index per wavelength.
+    ParamDict d;
+    d.Set("ior", Value::String("BK7"));
+    Diagnostics diag;
+    auto m = BuildMaterial("dielectric", d, diag);
+    ASSERT_TRUE(m && diag.All().empty());
+    const SampledWavelengths blue = LineWavelength(486.13e-9), red = LineWavelength(656.27e-9);
+    for (const auto &[wl, n] : {std::pair{&blue, 1.5224}, std::pair{&red, 1.5143}}) {
+        const ScatterQuery q = Query(Vec3(0, 0, 1), *wl);
+        auto s = m->Sample(q, 1 - 1e-12, Vec2(0.5, 0.5));  // the refracted lobe
+        ASSERT_TRUE(s);
+        EXPECT_NEAR(s->eta, n, 1e-4);  // Schott's n_F, n_C (4 decimals)
     }
 }
 

@@ -559,5 +559,26 @@ TEST(Parser, ReadsFilesFromDisk) {
     EXPECT_EQ(diag.ErrorCount(), 1u);
 }
 
+TEST(Parser, RecordListFieldsKeepTheirLocations) {
+    // A list of calls with named arguments parses to Calls whose arguments know where their names
+    // are, so a record field's errors point at the field (ParamKind::RecordList, params.h).
+    Parsed p = One("layers = [layer(ior = 1.55, thickness = 85 nm),\n    layer(ior = \"BK7\", thicknes = 0.1 um)]");
+    ASSERT_TRUE(p.desc) << p.Errors();
+    const Schema s{"shape", "sphere", "", {P::RecordList("layers", "layers", "layer", "a layer",
+                                                         {P::ComplexSpectrum("ior", "index").Required(),
+                                                          P::Length("thickness", "thickness").Required()})}};
+    Diagnostics d;
+    const ParamDict &dict = p.desc->entities[0].params;
+    EXPECT_FALSE(dict.Validate(s, d));
+    ASSERT_EQ(d.ErrorCount(), 2u);
+    EXPECT_EQ(d.All()[0].loc.ToString(), "main.wscene:3:24");  // the misspelt field's name
+    EXPECT_NE(d.All()[0].message.find("did you mean 'thickness'?"), std::string::npos) << d.All()[0].message;
+    EXPECT_EQ(d.All()[1].loc.ToString(), "main.wscene:3:5");  // the record missing 'thickness'
+    const Value &first = Param(p, "layers").items[0];
+    ASSERT_EQ(first.argLocs.size(), 2u);
+    EXPECT_EQ(first.argLocs[1].col, 50);  // 'thickness' in line 2
+    EXPECT_EQ(first.items[1].loc.col, 62);  // its value
+}
+
 }  // namespace
 }  // namespace phasor

@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 
+#include "core/complex_spectrum.h"
 #include "core/detector.h"
 #include "core/integrator.h"
 #include "core/light.h"
@@ -349,6 +351,52 @@ Transform BuildContext::TransformFromValue(const Value &v) {
     }
     std::string s = Suggest(f, {"translate", "scale", "rotate", "lookat", "matrix"});
     throw Error(v.loc, "unknown transform '" + f + "'" + (s.empty() ? "" : "; did you mean '" + s + "'?"));
+}
+
+std::shared_ptr<const ComplexSpectrum> BuildContext::ComplexSpectrumFromValue(const Value &v) {
+    switch (v.kind) {
+        case Value::Kind::Complex: return std::make_shared<ConstantComplexSpectrum>(v.complex);
+        case Value::Kind::Number:
+            if (!v.dim.IsNone())
+                throw Error(v.loc, "a complex index given as a number must be a plain number; got " + v.DescribeKind());
+            return std::make_shared<ConstantComplexSpectrum>(Complex(v.number, 0));
+        case Value::Kind::String: {
+            if (const NamedIndex *m = FindNamedIndex(v.text)) return std::make_shared<NamedComplexSpectrum>(*m);
+            const std::string s = Suggest(v.text, NamedIndexNames());
+            throw Error(v.loc, "unknown material \"" + v.text + "\"" + (s.empty() ? "" : "; did you mean \"" + s + "\"?"));
+        }
+        case Value::Kind::Call:
+            if (v.text == "nk") {
+                static const std::vector<std::string> order = {"n", "k"};
+                auto slots = BindArgs(v, order);
+                auto k = slots[1] ? SpectrumFromValue(*slots[1]) : nullptr;
+                return std::make_shared<NkSpectrum>(SpectrumFromValue(Need(slots, 0, v, order)), std::move(k));
+            }
+            if (!Registry<Spectrum>::Find(v.text)) {
+                std::vector<std::string> names = Registry<Spectrum>::Names();
+                names.push_back("nk");
+                const std::string s = Suggest(v.text, names);
+                throw Error(v.loc, "unknown complex spectrum '" + v.text + "' (nk(n = …, k = …) or a spectrum)" +
+                                       (s.empty() ? "" : "; did you mean '" + s + "'?"));
+            }
+            return std::make_shared<NkSpectrum>(SpectrumFromValue(v), nullptr);
+        case Value::Kind::Ref: return std::make_shared<NkSpectrum>(SpectrumFromValue(v), nullptr);
+        default: throw Error(v.loc, "expected a complex index; got " + v.DescribeKind());
+    }
+}
+
+std::shared_ptr<const ComplexSpectrum> BuildContext::GetComplexSpectrum(const ParamDict &dict, const std::string &name) {
+    auto s = ComplexSpectrumFromValue(dict.GetValue(name));
+    // A passive medium over the visible and near infrared (the range every kernel checked before).
+    for (double l = 360e-9; l <= 1000e-9; l += 5e-9) {
+        const Complex n = s->Eval(l);
+        if (!(n.real() > 0) || !(n.imag() >= 0)) {
+            char at[96];
+            std::snprintf(at, sizeof at, "%.6g%+.6gi at %.0f nm", n.real(), n.imag(), l * 1e9);
+            throw Error(dict.Loc(name), "'" + name + "' must be n + iκ with n > 0 and κ ≥ 0; it is " + at);
+        }
+    }
+    return s;
 }
 
 Transform BuildContext::GetTransform(const ParamDict &dict, const std::string &name) {

@@ -1,5 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — complex refractive indices n + iκ of common metals (used by the `conductor` kernel).
+// phasor — complex refractive indices n + iκ (κ ≥ 0, e^{-iωt} convention as in
+// materials/fresnel.h) of named materials, as a function of vacuum wavelength λ [m]. These are the
+// strings a `complex spectrum` parameter accepts (ior = "Au"; core/complex_spectrum.h).
 //
 // Sources (numeric data only):
 //   Ag, Au, Cu: P. B. Johnson and R. W. Christy, "Optical constants of the noble metals",
@@ -9,10 +11,19 @@
 //               metallic films for vertical-cavity optoelectronic devices", Appl. Opt. 37, 5271
 //               (1998), Lorentz–Drude model with the paper's Al parameters, evaluated over 0.1–10 µm
 //               (clamped outside).
+//   BK7:        Schott N-BK7 data sheet, Sellmeier coefficients (n_d = 1.5168 at 587.6 nm).
+//   fused_silica: I. H. Malitson, "Interspecimen comparison of the refractive index of fused
+//               silica", J. Opt. Soc. Am. 55, 1205 (1965), three-term Sellmeier, 0.21–3.71 µm
+//               (n_d = 1.4585).
+//   water:      constant n_D = 1.333 (CRC Handbook, 20 °C: 1.33299); not dispersive (give a
+//               table for rainbows).
+//   chitin:     constant 1.56, the value commonly used for insect cuticle (theory §4.5 uses
+//               1.55); not dispersive.
+// Sellmeier glasses are evaluated with λ clamped to 0.2–3.7 µm (outside, the formula's poles are
+// near). All glasses here are lossless (κ = 0).
 #pragma once
 
 #include <array>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,19 +32,6 @@
 namespace phasor {
 
 enum class Metal { Al, Ag, Au, Cu };
-
-inline const std::vector<std::string> &MetalNames() {
-    static const std::vector<std::string> names = {"Al", "Ag", "Au", "Cu"};
-    return names;
-}
-
-inline std::optional<Metal> MetalFromName(const std::string &name) {
-    if (name == "Al") return Metal::Al;
-    if (name == "Ag") return Metal::Ag;
-    if (name == "Au") return Metal::Au;
-    if (name == "Cu") return Metal::Cu;
-    return std::nullopt;
-}
 
 namespace metal_detail {
 
@@ -115,6 +113,62 @@ inline Complex RakicAluminiumIndex(double lambda) {
 inline Complex MetalIndex(Metal m, double lambda) {
     if (m == Metal::Al) return metal_detail::RakicAluminiumIndex(lambda);
     return metal_detail::JohnsonChristyIndex(m, lambda);
+}
+
+namespace glass_detail {
+
+// Sellmeier: n² = 1 + Σ B_j λ²/(λ² − C_j), λ in µm, C_j in µm².
+inline double Sellmeier(double lambda, const double (&b)[3], const double (&c)[3]) {
+    const double l2 = Sqr(Clamp(lambda, 0.2e-6, 3.7e-6) * 1e6);
+    double n2 = 1;
+    for (int j = 0; j < 3; ++j) n2 += b[j] * l2 / (l2 - c[j]);
+    return std::sqrt(n2);
+}
+inline Complex Bk7Index(double lambda) {
+    constexpr double b[3] = {1.03961212, 0.231792344, 1.01046945};
+    constexpr double c[3] = {0.00600069867, 0.0200179144, 103.560653};
+    return Sellmeier(lambda, b, c);
+}
+inline Complex FusedSilicaIndex(double lambda) {
+    constexpr double b[3] = {0.6961663, 0.4079426, 0.8974794};
+    constexpr double c[3] = {0.0684043 * 0.0684043, 0.1162414 * 0.1162414, 9.896161 * 9.896161};
+    return Sellmeier(lambda, b, c);
+}
+
+}  // namespace glass_detail
+
+/// A named material: its scene name, a one-line source, and its index n + iκ at λ [m].
+struct NamedIndex {
+    const char *name;
+    const char *source;
+    Complex (*index)(double lambda);
+};
+
+/// Every named material, in the order docs list them.
+inline const std::vector<NamedIndex> &NamedIndices() {
+    static const std::vector<NamedIndex> table = {
+        {"Al", "aluminium, Rakić et al. 1998 (Lorentz–Drude)", [](double l) { return MetalIndex(Metal::Al, l); }},
+        {"Ag", "silver, Johnson & Christy 1972", [](double l) { return MetalIndex(Metal::Ag, l); }},
+        {"Au", "gold, Johnson & Christy 1972", [](double l) { return MetalIndex(Metal::Au, l); }},
+        {"Cu", "copper, Johnson & Christy 1972", [](double l) { return MetalIndex(Metal::Cu, l); }},
+        {"BK7", "Schott N-BK7 crown glass (Sellmeier)", glass_detail::Bk7Index},
+        {"fused_silica", "fused silica, Malitson 1965 (Sellmeier)", glass_detail::FusedSilicaIndex},
+        {"water", "water, constant n_D = 1.333", [](double) { return Complex(1.333, 0); }},
+        {"chitin", "insect chitin, constant 1.56", [](double) { return Complex(1.56, 0); }},
+    };
+    return table;
+}
+
+inline const NamedIndex *FindNamedIndex(const std::string &name) {
+    for (const NamedIndex &m : NamedIndices())
+        if (name == m.name) return &m;
+    return nullptr;
+}
+
+inline std::vector<std::string> NamedIndexNames() {
+    std::vector<std::string> names;
+    for (const NamedIndex &m : NamedIndices()) names.push_back(m.name);
+    return names;
 }
 
 }  // namespace phasor
