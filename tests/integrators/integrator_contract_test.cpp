@@ -326,6 +326,22 @@ TEST(IntegratorContract, EveryIntegratorDeclaresItsCases) {
     }
 }
 
+// The registry's reading of a declaration: a class without ContractCases() has none (nullopt, which
+// fails the test above), one with an empty list declares that it supports no case.
+struct WithoutCases {};
+struct WithNoCase {
+    static std::vector<std::string> ContractCases() { return {}; }
+};
+struct WithFurnace {
+    static std::vector<std::string> ContractCases() { return {"furnace"}; }
+};
+TEST(IntegratorContract, UndeclaredCasesAreNotAnEmptyDeclaration) {
+    EXPECT_FALSE(ContractCasesOf<WithoutCases>().has_value());
+    ASSERT_TRUE(ContractCasesOf<WithNoCase>().has_value());
+    EXPECT_TRUE(ContractCasesOf<WithNoCase>()->empty());
+    EXPECT_EQ(ContractCasesOf<WithFurnace>(), std::optional<std::vector<std::string>>({"furnace"}));
+}
+
 // ---- closed-form cases ---------------------------------------------------------------------------
 
 struct Pair {
