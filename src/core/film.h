@@ -53,7 +53,9 @@ class Film {
     static double MemoryNeeded(int width, int height);
 
     /// Final image: R, G, B (linear Rec.709 for CIE sensors; equal to intensity for radiometric
-    /// ones), intensity, variance (the sample variance of the *mean* of `intensity`: s²/n).
+    /// ones), intensity, variance (the sample variance of the *mean* of `intensity`: s²/n, the i.i.d.
+    /// estimate — exact in expectation for independent samples only; for Owen-scrambled Sobol'
+    /// samples the real error is usually far smaller: docs/architecture.md, "Error estimates").
     /// Every value is finite: pixels that would overflow float are 0 (see InvalidSampleCount).
     /// When pixels hold different numbers of samples (a render stopped during a pass) a sixth
     /// channel, `samples`, holds each pixel's count (a pixel with 0 has no estimate: all 0).

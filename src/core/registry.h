@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <unordered_set>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,10 @@ struct PluginEntry {
     /// 2–5 parameter sets for the generic contract tests (empty if the class defines no
     /// `static std::vector<ParamDict> TestPresets()`).
     std::vector<ParamDict> (*presets)();
+    /// The cases of the integrator contract suite (tests/integrators/integrator_contract_test.cpp)
+    /// the class supports, from its `static std::vector<std::string> ContractCases()`; nullopt if
+    /// it declares none (an integrator without it fails that suite; other families have none).
+    std::optional<std::vector<std::string>> (*contractCases)();
 };
 
 /// The class's TestPresets() if it has one.
@@ -49,6 +54,13 @@ template <typename C>
 std::vector<ParamDict> PresetsOf() {
     if constexpr (requires { C::TestPresets(); }) return C::TestPresets();
     else return {};
+}
+
+/// The class's ContractCases() if it has one.
+template <typename C>
+std::optional<std::vector<std::string>> ContractCasesOf() {
+    if constexpr (requires { C::ContractCases(); }) return C::ContractCases();
+    else return std::nullopt;
 }
 
 /// Registry of one plug-in family. The entries come from the generated plug-in tables.
@@ -228,4 +240,7 @@ class BuildContext {
     std::unique_ptr<Interface> PhasorCreate_##Class(const ParamDict &d, BuildContext &c) {     \
         return Class::Create(d, c);                                                            \
     }                                                                                          \
-    std::vector<ParamDict> PhasorPresets_##Class() { return PresetsOf<Class>(); }
+    std::vector<ParamDict> PhasorPresets_##Class() { return PresetsOf<Class>(); }              \
+    std::optional<std::vector<std::string>> PhasorContractCases_##Class() {                    \
+        return ContractCasesOf<Class>();                                                       \
+    }

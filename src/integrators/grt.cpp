@@ -68,6 +68,14 @@ class GrtIntegrator final : public PixelIntegrator {
         return std::make_unique<GrtIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"),
                                                d.GetInt("light_samples"));
     }
+    /// The integrator contract cases `grt` supports (tests/integrators/integrator_contract_test.cpp).
+    /// Not yet `plane_wave_open_plate`: through a wide opening the plane wave is found by sampling
+    /// directions, not in closed form, and the three pixels read 2.54, 2.35, 3.37 for 3 at 4096 spp
+    /// (0 at 16 spp).
+    static std::vector<std::string> ContractCases() {
+        return {"furnace",           "direct_light",        "camera_emitter",
+                "plane_wave_sensor", "point_source_sensor", "pairwise_cornell"};
+    }
 
     RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override {
         const Detector &det = scene.GetDetector();

@@ -25,6 +25,11 @@ class RayIntegrator final : public PixelIntegrator {
     static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
         return std::make_unique<RayIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"));
     }
+    /// The integrator contract cases `ray` supports (tests/integrators/integrator_contract_test.cpp).
+    /// Not the sensor-plane normalisations: a ray cannot reach a delta light (plane wave, point).
+    static std::vector<std::string> ContractCases() {
+        return {"furnace", "direct_light", "camera_emitter", "pairwise_cornell"};
+    }
 
     SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
                                   PathStats &stats) const override {

@@ -53,7 +53,8 @@ class SceneBuilder {
     SceneDesc desc_;
 };
 
-/// Renders with the scene's integrator and returns the resolved image.
+/// Renders with the scene's integrator and returns the resolved image. Its `variance` channel is
+/// the i.i.d. variance of each pixel mean: for error estimates use support/replicas.h.
 inline Image RenderImage(const Scene &scene, int spp, uint64_t seed = 1, const std::string &sampler = "sobol") {
     const Detector &d = scene.GetDetector();
     Film film(d.Width(), d.Height(), d.Response());
@@ -63,25 +64,6 @@ inline Image RenderImage(const Scene &scene, int spp, uint64_t seed = 1, const s
     opt.sampler = sampler;
     scene.GetIntegrator().Render(scene, film, opt);
     return film.Resolve();
-}
-
-/// Mean of a channel over a pixel block and the variance of that mean (pixels independent).
-struct BlockMean {
-    double mean = 0, varianceOfMean = 0;
-    int pixels = 0;
-};
-inline BlockMean MeanOver(const Image &img, int x0, int y0, int x1, int y1) {
-    int ci = img.ChannelIndex("intensity"), vi = img.ChannelIndex("variance");
-    BlockMean m;
-    for (int y = y0; y < y1; ++y)
-        for (int x = x0; x < x1; ++x) {
-            m.mean += img.At(x, y, ci);
-            m.varianceOfMean += img.At(x, y, vi);
-            ++m.pixels;
-        }
-    m.mean /= m.pixels;
-    m.varianceOfMean /= double(m.pixels) * m.pixels;
-    return m;
 }
 
 }  // namespace phasor::test

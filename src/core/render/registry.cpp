@@ -22,7 +22,8 @@ namespace phasor {
 #define PHASOR_PLUGIN(name, Class)                                                                 \
     const Schema &PhasorSchema_##Class();                                                          \
     std::unique_ptr<PHASOR_IFACE> PhasorCreate_##Class(const ParamDict &, BuildContext &);         \
-    std::vector<ParamDict> PhasorPresets_##Class();
+    std::vector<ParamDict> PhasorPresets_##Class();                                              \
+    std::optional<std::vector<std::string>> PhasorContractCases_##Class();
 #define PHASOR_IFACE Spectrum
 #include "plugins_spectrum.inc"
 #undef PHASOR_IFACE
@@ -46,7 +47,8 @@ namespace phasor {
 #undef PHASOR_IFACE
 #undef PHASOR_PLUGIN
 
-#define PHASOR_PLUGIN(name, Class) {name, &PhasorSchema_##Class, &PhasorCreate_##Class, &PhasorPresets_##Class},
+#define PHASOR_PLUGIN(name, Class) \
+    {name, &PhasorSchema_##Class, &PhasorCreate_##Class, &PhasorPresets_##Class, &PhasorContractCases_##Class},
 // clang-format off
 template <> const char *Registry<Spectrum>::Family() { return "spectrum"; }
 template <> const std::vector<PluginEntry<Spectrum>> &Registry<Spectrum>::Entries() {
