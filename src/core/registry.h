@@ -229,7 +229,7 @@ class BuildContext {
 /// tests/): one line at the end of the file instead of PHASOR_EXPORT_PLUGIN + the CMake line.
 #define PHASOR_REGISTER_PLUGIN(Interface, Class, name)                                           \
     [[maybe_unused]] static const bool PhasorRegistered_##Class = [] {                           \
-        Registry<Interface>::Register({name, &Class::GetSchema, &Class::Create, &PresetsOf<Class>}); \
+        Registry<Interface>::Register({name, &Class::GetSchema, &Class::Create, &PresetsOf<Class>, &ContractCasesOf<Class>}); \
         return true;                                                                             \
     }()
 
