@@ -62,7 +62,7 @@
 #include "core/material.h"
 #include "core/registry.h"
 #include "core/scene.h"
-#include "materials/aperture_integral.h"
+#include "core/numerics/faddeeva.h"
 
 namespace phasor {
 namespace rs {
