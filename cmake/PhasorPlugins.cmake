@@ -1,8 +1,9 @@
 # SPDX-License-Identifier: Apache-2.0
-# phasor_add_plugin(<family> <scene-name> <Class> <file.cpp>)
-#   Adds <file.cpp> to the `phasor` library and <Class> to the generated table of <family>
-#   (spectrum texture material shape light detector integrator). Adding a plug-in is one file
-#   plus this one line. A duplicate scene name in a family is a configure error.
+# phasor_add_plugin(<family> <scene-name> <Class> <file.cpp> [<helper.cpp> …])
+#   Adds <file.cpp> (and the plug-in's own helper files, if it has any) to the `phasor` library
+#   and <Class> to the generated table of <family> (spectrum texture material shape light
+#   detector integrator). Adding a plug-in is one file plus this one line. A duplicate scene
+#   name in a family is a configure error.
 set(PHASOR_PLUGIN_FAMILIES spectrum texture material shape light detector integrator)
 
 function(phasor_add_plugin family name class file)
@@ -15,7 +16,9 @@ function(phasor_add_plugin family name class file)
   endif()
   set_property(GLOBAL APPEND PROPERTY PHASOR_PLUGIN_NAMES_${family} "${name}")
   set_property(GLOBAL APPEND PROPERTY PHASOR_PLUGIN_CLASSES_${family} "${class}")
-  target_sources(phasor PRIVATE "${CMAKE_CURRENT_SOURCE_DIR}/${file}")
+  foreach(_f IN ITEMS ${file} ${ARGN})
+    target_sources(phasor PRIVATE "${CMAKE_CURRENT_SOURCE_DIR}/${_f}")
+  endforeach()
 endfunction()
 
 # Writes <build>/generated/plugins_<family>.inc; called once after every plug-in is added.
