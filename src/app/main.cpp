@@ -48,7 +48,8 @@ extern "C" void OnStopSignal(int sig) {
 // process killed by it (130 for SIGINT, 143 for SIGTERM).
 int StoppedStatus(int sig) { return 128 + sig; }
 
-const char *kUsage =
+// The usage text, in two parts around the list of families (from the registry).
+const char *kUsageHead =
     "usage: phasor <command> [options]\n"
     "\n"
     "commands:\n"
@@ -61,8 +62,8 @@ const char *kUsage =
     "                      (unknown parameters and -D names that match no Define are errors;\n"
     "                      --permissive makes them warnings, --strict makes every warning an error)\n"
     "  format SCENE        print SCENE in canonical form\n"
-    "  list [FAMILY]       list plug-ins (families: spectrum texture material shape light\n"
-    "                      detector integrator)\n"
+    "  list [FAMILY]       list the plug-ins of every family or of FAMILY, one of\n";
+const char *kUsageTail =
     "  describe [FAMILY] NAME print a plug-in's parameters (FAMILY only if NAME is in several)\n"
     "  describe --markdown    print every plug-in's parameters as Markdown (docs/plugins.md)\n"
     "  profile IMAGE.exr [IMAGE.exr ...] [--row N] [--channel NAME] [--csv FILE|-] [--plot FILE.png]\n"
@@ -71,6 +72,12 @@ const char *kUsage =
     "                      each image as CSV (stdout unless --csv/--plot) and/or a line plot; with\n"
     "                      two images also |a - b| and max |a - b| / max(b)\n"
     "  --version, --help\n";
+
+std::string Usage() {
+    std::string families;
+    for (const FamilyInfo &f : AllFamilies()) families += " " + f.family;
+    return kUsageHead + std::string("                     ") + families + "\n" + kUsageTail;
+}
 
 bool Colour() { return isatty(2) && !std::getenv("NO_COLOR"); }
 
@@ -427,7 +434,7 @@ class StdoutCapture {
 
 int RunCommand(const CliOptions &o) {
     switch (o.command) {
-        case Command::Help: std::cout << kUsage; return 0;
+        case Command::Help: std::cout << Usage(); return 0;
         case Command::Version: std::cout << "phasor " << PHASOR_VERSION << "\n"; return 0;
         case Command::Render: return Render(o);
         case Command::Check: return Check(o);
@@ -448,7 +455,7 @@ int main(int argc, char **argv) {
     CliOptions o;
     std::string err;
     if (!ParseCommandLine(argc, argv, o, err)) {
-        std::cerr << "error: " << err << "\n" << kUsage;
+        std::cerr << "error: " << err << "\n" << Usage();
         return 1;
     }
     StdoutCapture out;

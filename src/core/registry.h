@@ -21,18 +21,15 @@
 
 #include "core/diagnostics.h"
 #include "core/params.h"
+#include "core/plugin_families.h"
 #include "core/texture.h"
 
 namespace phasor {
 
-class Spectrum;
+#define PHASOR_DECLARE_INTERFACE(Keyword, family, Interface, Example) class Interface;
+PHASOR_PLUGIN_FAMILIES(PHASOR_DECLARE_INTERFACE)
+#undef PHASOR_DECLARE_INTERFACE
 class ComplexSpectrum;
-class Texture;
-class Material;
-class Shape;
-class Light;
-class Detector;
-class Integrator;
 class BuildContext;
 
 template <typename T>
@@ -88,10 +85,9 @@ struct Registry {
     }
 };
 
-/// Every family: name (as written in scene files: Spectrum, Texture, Material, Shape, Light,
-/// Detector, Integrator) and the schemas of its plug-ins.
+/// Every family of core/plugin_families.h, in its order: names and the schemas of its plug-ins.
 struct FamilyInfo {
-    std::string keyword;  // "Material"
+    std::string keyword;  // as written in scene files: "Material"
     std::string family;   // "material"
     std::vector<const Schema *> schemas;
 };

@@ -5,70 +5,24 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstring>
 #include <optional>
 #include <vector>
 
-// libcerf 1.3 (C99 header): the Faddeeva function, used as the reference implementation.
-extern "C" double _Complex w_of_z(double _Complex z);
+#include "core/numerics/faddeeva.h"
+#include "core/numerics/gauss_legendre.h"
 
 namespace phasor {
 
 namespace {
 
-constexpr double InvSqrtPi = 0.56418958354775628695;  // 1/√π
 constexpr double SqrtPi = 1.77245385090551602730;
 
-// ---- Gauss–Legendre rules ------------------------------------------------------------------------
+// ---- Gauss–Legendre orders ------------------------------------------------------------------------
 
+// The orders a panel may use (the rules themselves: core/numerics/gauss_legendre.h).
 constexpr int MaxOrder = 64;
+static_assert(MaxOrder <= MaxGaussLegendreNodes);
 constexpr int Orders[] = {2, 3, 4, 5, 6, 8, 10, 12, 14, 16, 20, 24, 28, 32, 40, 48, 56, 64};
-constexpr int NumOrders = int(std::size(Orders));
-
-struct GlRule {
-    int n = 0;
-    std::array<double, MaxOrder> x{}, w{};  // nodes on [−1, 1] and weights
-};
-
-// Nodes and weights by Newton's method on the Legendre recurrence (Abramowitz & Stegun 25.4.29).
-GlRule MakeRule(int n) {
-    GlRule r;
-    r.n = n;
-    auto legendre = [n](double x, double *dp) {
-        double p0 = 1, p1 = x;
-        for (int k = 2; k <= n; ++k) {
-            const double p2 = ((2 * k - 1) * x * p1 - (k - 1) * p0) / k;
-            p0 = p1;
-            p1 = p2;
-        }
-        *dp = n * (x * p1 - p0) / (x * x - 1);
-        return p1;
-    };
-    for (int i = 0; i < (n + 1) / 2; ++i) {
-        double x = std::cos(Pi * (i + 0.75) / (n + 0.5)), dp;
-        for (int it = 0; it < 100; ++it) {
-            const double dx = legendre(x, &dp) / dp;
-            x -= dx;
-            if (std::abs(dx) < 1e-16) break;
-        }
-        legendre(x, &dp);
-        const double w = 2 / ((1 - x * x) * dp * dp);
-        r.x[std::size_t(i)] = -x;
-        r.w[std::size_t(i)] = w;
-        r.x[std::size_t(n - 1 - i)] = x;
-        r.w[std::size_t(n - 1 - i)] = w;
-    }
-    return r;
-}
-
-const std::array<GlRule, NumOrders> &Rules() {
-    static const std::array<GlRule, NumOrders> rules = [] {
-        std::array<GlRule, NumOrders> r;
-        for (int i = 0; i < NumOrders; ++i) r[std::size_t(i)] = MakeRule(Orders[i]);
-        return r;
-    }();
-    return rules;
-}
 
 // ---- Quadrature order ------------------------------------------------------------------------------
 //
@@ -89,7 +43,7 @@ struct Term {
 };
 
 struct Plan {
-    const GlRule *rule;
+    const GaussLegendreRule *rule;
     int panels;
 };
 
@@ -154,81 +108,14 @@ int NodesFor(const Term *terms, int nt, double p) {
 constexpr int MaxPanels = 1024;
 
 Plan PlanFor(const Term *terms, int nt) {
-    const auto &rules = Rules();
     int panels = 1, n = NodesFor(terms, nt, 1);
     while (n > MaxOrder && panels < MaxPanels) {
         panels *= 2;
         n = NodesFor(terms, nt, panels);
     }
-    for (const GlRule &r : rules)
-        if (r.n >= n) return {&r, panels};
-    return {&rules.back(), panels};
-}
-
-// ---- Faddeeva function -----------------------------------------------------------------------------
-
-// Weideman (1994): w(z) ≈ 2·p(Z)/(L − iz)² + (1/√π)/(L − iz), Z = (L + iz)/(L − iz), with the
-// coefficients of p from a discrete Fourier transform of e^{−t²}(L² + t²) at t = L·tan(θ/2).
-constexpr int WeidemanN = 28;
-struct Weideman {
-    double L = 0;
-    std::array<double, WeidemanN> a{};  // highest power first (Horner order)
-    Weideman() {
-        const int n = WeidemanN, m = 2 * n, m2 = 2 * m;
-        L = std::sqrt(n / std::sqrt(2.0));
-        std::vector<double> f(static_cast<std::size_t>(m2), 0.0);
-        for (int k = -m + 1; k <= m - 1; ++k) {
-            const double t = L * std::tan(k * Pi / (2 * m));
-            f[std::size_t(k + m)] = std::exp(-t * t) * (L * L + t * t);
-        }
-        // Real part of the DFT of the (shifted) samples.
-        std::vector<double> g(static_cast<std::size_t>(m2));
-        for (int i = 0; i < m2; ++i) g[std::size_t(i)] = f[std::size_t((i + m2 / 2) % m2)];
-        for (int j = 1; j <= n; ++j) {
-            double s = 0;
-            for (int i = 0; i < m2; ++i) s += g[std::size_t(i)] * std::cos(2 * Pi * double(i) * j / m2);
-            a[std::size_t(n - j)] = s / m2;
-        }
-    }
-};
-const Weideman &WeidemanCoefficients() {
-    static const Weideman w;
-    return w;
-}
-
-// w at n points of the closed upper half-plane (structure of arrays, vectorisable).
-void FaddeevaUpperBatch(int n, const double *zr, const double *zi, double *wr, double *wi) {
-    const Weideman &c = WeidemanCoefficients();
-    constexpr int Block = 16;
-    for (int base = 0; base < n; base += Block) {
-        const int m = std::min(Block, n - base);
-        double Zr[Block], Zi[Block], Ur[Block], Ui[Block], Pr[Block], Pi_[Block];
-        for (int i = 0; i < m; ++i) {
-            // den = L − iz = (L + y, −x), num = L + iz = (L − y, x).
-            const double x = zr[base + i], y = zi[base + i];
-            const double dr = c.L + y, di = -x, nr = c.L - y, ni = x;
-            const double inv = 1 / (dr * dr + di * di);
-            Zr[i] = (nr * dr + ni * di) * inv;
-            Zi[i] = (ni * dr - nr * di) * inv;
-            Ur[i] = dr * inv;  // 1/den
-            Ui[i] = -di * inv;
-            Pr[i] = 0;
-            Pi_[i] = 0;
-        }
-        for (int k = 0; k < WeidemanN; ++k) {
-            const double ak = c.a[std::size_t(k)];
-            for (int i = 0; i < m; ++i) {
-                const double r = Pr[i] * Zr[i] - Pi_[i] * Zi[i] + ak;
-                Pi_[i] = Pr[i] * Zi[i] + Pi_[i] * Zr[i];
-                Pr[i] = r;
-            }
-        }
-        for (int i = 0; i < m; ++i) {
-            const double u2r = Ur[i] * Ur[i] - Ui[i] * Ui[i], u2i = 2 * Ur[i] * Ui[i];
-            wr[base + i] = 2 * (Pr[i] * u2r - Pi_[i] * u2i) + InvSqrtPi * Ur[i];
-            wi[base + i] = 2 * (Pr[i] * u2i + Pi_[i] * u2r) + InvSqrtPi * Ui[i];
-        }
-    }
+    for (int order : Orders)
+        if (order >= n) return {&GaussLegendre(order), panels};
+    return {&GaussLegendre(MaxOrder), panels};
 }
 
 inline Complex ExpC(double re, double im) {
@@ -539,8 +426,8 @@ Plan LinearPlan(const Oriented &o, double y0, double y1, double xl, double sl, d
 template <typename Limits>
 Complex IntegrateStrip(const Oriented &o, double s0, double s1, const Plan &plan, const Limits &lim) {
     if (!(s1 > s0)) return 0;
-    const GlRule &rule = *plan.rule;
-    const GlRule &short8 = Rules()[5];  // 8 points, for very short x-intervals
+    const GaussLegendreRule &rule = *plan.rule;
+    const GaussLegendreRule &short8 = GaussLegendre(8);  // for very short x-intervals
     constexpr int MaxEdges = 2 * MaxOrder;
     double sv[MaxOrder], yv[MaxOrder], xlv[MaxOrder], xhv[MaxOrder], jv[MaxOrder];
     double zr[MaxEdges], zi[MaxEdges], er[MaxEdges], ei[MaxEdges], coef[MaxEdges], wr[MaxEdges], wi[MaxEdges],
@@ -597,7 +484,7 @@ Complex IntegrateStrip(const Oriented &o, double s0, double s1, const Plan &plan
                 ++edges;
             }
         }
-        FaddeevaUpperBatch(edges, zr, zi, wr, wi);
+        FaddeevaWUpperBatch(edges, zr, zi, wr, wi);
         SinCosBatch(edges, ei, sn, cs);
         double accR = 0, accI = 0;
         for (int e = 0; e < edges; ++e) {
@@ -786,23 +673,6 @@ Complex RectStrip(const Oriented &o, double xl, double xh, double y0, double y1)
 
 }  // namespace
 
-Complex FaddeevaW(Complex z) {
-    double _Complex c;
-    static_assert(sizeof(c) == sizeof(Complex), "std::complex<double> and double _Complex share a layout");
-    std::memcpy(static_cast<void *>(&c), &z, sizeof c);
-    const double _Complex r = w_of_z(c);
-    Complex out;
-    std::memcpy(static_cast<void *>(&out), &r, sizeof out);
-    return out;
-}
-
-Complex FaddeevaWUpper(Complex z) {
-    const double zr = z.real(), zi = z.imag();
-    double wr, wi;
-    FaddeevaUpperBatch(1, &zr, &zi, &wr, &wi);
-    return {wr, wi};
-}
-
 Complex GaussianSegmentIntegral(Complex alpha, Complex beta, double x0, double x1) {
     if (!(x1 > x0)) return x1 == x0 ? Complex(0) : -GaussianSegmentIntegral(alpha, beta, x1, x0);
     const Complex sa = std::sqrt(alpha);  // principal root: Re > 0
@@ -810,7 +680,7 @@ Complex GaussianSegmentIntegral(Complex alpha, Complex beta, double x0, double x
     const Complex z0 = sa * (x0 - m), z1 = sa * (x1 - m);
     auto logE = [&](double x) { return -alpha * (x * x) + beta * x; };
     if (ShortInterval(z0, z1)) {
-        const GlRule &r = Rules()[5];
+        const GaussLegendreRule &r = GaussLegendre(8);
         const double c = 0.5 * (x0 + x1), h = 0.5 * (x1 - x0);
         Complex s = 0;
         for (int i = 0; i < 8; ++i) s += r.w[std::size_t(i)] * std::exp(logE(c + h * r.x[std::size_t(i)]));

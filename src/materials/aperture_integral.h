@@ -20,17 +20,11 @@
 
 namespace phasor {
 
-/// Faddeeva function w(z) = e^{−z²}·erfc(−iz) for any z (libcerf; the reference, ~1e-14).
-Complex FaddeevaW(Complex z);
-/// w(z) for Im z ≥ 0 by Weideman's rational approximation (SIAM J. Numer. Anal. 31, 1994) with
-/// N = 28 terms: |error| ≤ 2·10⁻¹² over the closed upper half-plane (|w| ≤ 1 there). About 3×
-/// faster than libcerf one at a time and vectorisable in batches; the kernel's fast path.
-Complex FaddeevaWUpper(Complex z);
-
 /// ∫_{x0}^{x1} exp(−αx² + βx) dx for Re α > 0, in a closed form that neither overflows nor
 /// cancels: with m = β/(2α), z(x) = √α(x − m) and E(x) = exp(−αx² + βx), the antiderivative is
 /// F(x) = −(√π/(2√α))·erfc(z)·e^{αm²}, where erfc(z)e^{αm²} = w(iz)·E(x) if Re z ≥ 0 and
-/// 2e^{αm²} − w(−iz)·E(x) otherwise (so w is only needed in the upper half-plane).
+/// 2e^{αm²} − w(−iz)·E(x) otherwise (so w is only needed in the upper half-plane, where the
+/// fast FaddeevaWUpper of core/numerics/faddeeva.h serves).
 Complex GaussianSegmentIntegral(Complex alpha, Complex beta, double x0, double x1);
 
 /// The integrand of one wavelength in plate coordinates relative to the hit point (see above).

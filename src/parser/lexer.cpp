@@ -6,13 +6,16 @@
 #include <iterator>
 #include <memory>
 
+#include "core/plugin_families.h"
+
 namespace phasor::wscene {
 
 namespace {
 
-constexpr std::array<std::string_view, 10> kStatementKeywords = {
-    "wscene", "Include", "Define", "Render", "Spectrum", "Texture", "Material", "Shape", "Light", "Detector"};
-constexpr std::string_view kIntegrator = "Integrator";
+#define PHASOR_FAMILY_KEYWORD(Keyword, family, Interface, Example) #Keyword,
+constexpr std::string_view kStatementKeywords[] = {"wscene", "Include", "Define", "Render",
+                                                   PHASOR_PLUGIN_FAMILIES(PHASOR_FAMILY_KEYWORD)};
+#undef PHASOR_FAMILY_KEYWORD
 constexpr std::array<std::string_view, 5> kWordOperators = {"true", "false", "and", "or", "not"};
 
 bool IsAsciiLetter(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
@@ -661,7 +664,7 @@ TokenStream Tokenize(std::string_view text, int firstLine, int firstCol) {
 bool IsStatementKeyword(std::string_view w) {
     for (std::string_view k : kStatementKeywords)
         if (w == k) return true;
-    return w == kIntegrator;
+    return false;
 }
 
 bool IsReservedWord(std::string_view w) {

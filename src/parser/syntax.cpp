@@ -8,6 +8,7 @@
 #include <functional>
 #include <string_view>
 
+#include "core/plugin_families.h"
 #include "core/units.h"
 #include "parser/ast.h"
 
@@ -15,20 +16,33 @@ namespace phasor::wscene {
 
 namespace {
 
-constexpr std::array<const char *, 7> kFamilyKeywords = {"Spectrum", "Texture",  "Material",  "Shape",
-                                                         "Light",    "Detector", "Integrator"};
+// The statement keyword of each plug-in family and a plug-in of it (for messages).
+struct FamilyKeyword {
+    const char *keyword, *example;
+};
+#define PHASOR_FAMILY_KEYWORD(Keyword, family, Interface, Example) FamilyKeyword{#Keyword, #Example},
+constexpr FamilyKeyword kFamilyKeywords[] = {PHASOR_PLUGIN_FAMILIES(PHASOR_FAMILY_KEYWORD)};
+#undef PHASOR_FAMILY_KEYWORD
 constexpr int kMaxDepth = 256;  // nesting levels of an expression (docs/wscene.md §4)
 
 bool IsFamilyKeyword(std::string_view w) {
-    for (const char *k : kFamilyKeywords)
-        if (w == k) return true;
+    for (const FamilyKeyword &k : kFamilyKeywords)
+        if (w == k.keyword) return true;
     return false;
 }
 
 std::vector<std::string> StatementKeywordList() {
     std::vector<std::string> v = {"Include", "Define", "Render"};
-    for (const char *k : kFamilyKeywords) v.push_back(k);
+    for (const FamilyKeyword &k : kFamilyKeywords) v.push_back(k.keyword);
     return v;
+}
+
+// "Include, Define, Render, Spectrum, … or Integrator".
+std::string StatementKeywordText() {
+    const std::vector<std::string> v = StatementKeywordList();
+    std::string s;
+    for (std::size_t i = 0; i < v.size(); ++i) s += (i == 0 ? "" : i + 1 == v.size() ? " or " : ", ") + v[i];
+    return s;
 }
 
 struct SyntaxError {};  // thrown after the error was reported
@@ -391,21 +405,16 @@ class SyntaxParser {
                             "' outside a block; parameters go inside { } after a block header");
             Fail(t,
                  "unknown statement '" + t.text + "'" +
-                     (sug.empty() ? " (expected Include, Define, Render, Spectrum, Texture, Material, Shape, "
-                                    "Light, Detector or Integrator)"
+                     (sug.empty() ? " (expected " + StatementKeywordText() + ")"
                                   : "; did you mean '" + sug + "'?"));
         }
         EndItem(st.comments);
     }
 
     static std::string ExampleType(const std::string &kw) {
-        if (kw == "Spectrum") return "blackbody";
-        if (kw == "Texture") return "checkerboard";
-        if (kw == "Material") return "dielectric";
-        if (kw == "Shape") return "sphere";
-        if (kw == "Light") return "point";
-        if (kw == "Detector") return "perspective";
-        return "grt";
+        for (const FamilyKeyword &k : kFamilyKeywords)
+            if (kw == k.keyword) return k.example;
+        return "";
     }
 
     void ParseBody(Stmt &st) {

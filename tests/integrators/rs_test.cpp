@@ -12,7 +12,9 @@
 
 #include <tbb/global_control.h>
 
-#include "integrators/rs.h"
+#include "integrators/rs/propagator.h"
+#include "integrators/rs/sensor_quadrature.h"
+#include "integrators/rs/slit_end_error.h"
 #include "parser/parser.h"
 #include "support/scene_builder.h"
 #include "support/stats.h"
@@ -89,19 +91,6 @@ rs::SensorGrid Refined(const rs::SensorGrid &grid, int f) {
         dense.hy = grid.hy / f;
     }
     return dense;
-}
-
-// ---- Hankel functions ---------------------------------------------------------------------------
-
-TEST(Rs, HankelMatchesStdBessel) {
-    for (double x : {0.5, 7.0, 24.9, 25.0, 31.7, 100.0, 1234.5, 62831.9}) {
-        Complex h0, h1;
-        rs::Hankel01(x, &h0, &h1);
-        const Complex r0(std::cyl_bessel_j(0.0, x), std::cyl_neumann(0.0, x));
-        const Complex r1(std::cyl_bessel_j(1.0, x), std::cyl_neumann(1.0, x));
-        EXPECT_LT(std::abs(h0 - r0), 1e-12 * std::abs(r0)) << x;
-        EXPECT_LT(std::abs(h1 - r1), 1e-12 * std::abs(r1)) << x;
-    }
 }
 
 // ---- 2-D mode: the double slit against an independent 2-D RS ------------------------------------

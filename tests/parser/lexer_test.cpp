@@ -2,6 +2,7 @@
 // Token tests for the .wscene lexer (docs/wscene.md §2).
 #include <gtest/gtest.h>
 
+#include "core/plugin_families.h"
 #include "parser/lexer.h"
 
 namespace phasor::wscene {
@@ -209,6 +210,12 @@ TEST(Lexer, SpacingFlags) {
     EXPECT_FALSE(ts.tokens[2].spaceAfter);
     EXPECT_TRUE(ts.tokens[5].spaceBefore);  // '-' of "0 - 2"
     EXPECT_TRUE(ts.tokens[5].spaceAfter);
+}
+
+TEST(Lexer, EveryPluginFamilyKeywordIsAStatementKeyword) {
+#define PHASOR_CHECK_KEYWORD(Keyword, family, Interface, Example) EXPECT_TRUE(IsStatementKeyword(#Keyword));
+    PHASOR_PLUGIN_FAMILIES(PHASOR_CHECK_KEYWORD)
+#undef PHASOR_CHECK_KEYWORD
 }
 
 TEST(Lexer, WordClasses) {

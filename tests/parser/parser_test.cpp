@@ -6,6 +6,7 @@
 #include <map>
 
 #include "core/math.h"
+#include "core/plugin_families.h"
 #include "parser/parser.h"
 
 namespace phasor {
@@ -491,6 +492,24 @@ TEST(Parser, MissingHeader) {
         << v.Errors();
     Parsed comments = Parse("# a comment first is fine\n\nwscene 1\n");
     EXPECT_TRUE(comments.desc) << comments.Errors();
+}
+
+TEST(Parser, MessagesNameEveryFamilyFromTheOneList) {
+    // The keywords and example plug-ins come from core/plugin_families.h: an unknown statement
+    // lists them all, and a block without its type shows the family's example.
+    Parsed p = Parse("wscene 1\nQwertyuiop {}\n");
+    EXPECT_NE(p.Errors().find("2:1: unknown statement 'Qwertyuiop' (expected Include, Define, Render, Spectrum, "
+                              "Texture, Material, Shape, Light, Detector or Integrator)"),
+              std::string::npos)
+        << p.Errors();
+#define PHASOR_CHECK_FAMILY(Keyword, family, Interface, Example)                                        \
+    {                                                                                                 \
+        Parsed b = Parse("wscene 1\n" #Keyword " {}\n");                                            \
+        EXPECT_NE(b.Errors().find("(e.g. " #Keyword " \"" #Example "\" { … })"), std::string::npos) \
+            << b.Errors();                                                                            \
+    }
+    PHASOR_PLUGIN_FAMILIES(PHASOR_CHECK_FAMILY)
+#undef PHASOR_CHECK_FAMILY
 }
 
 TEST(Parser, MisspelledKeywordSuggests) {

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/numerics/bessel.h"
+#include "core/numerics/gauss_legendre.h"
+
 namespace phasor {
 
 GrCovariance GrCovariance::Transformed(const Abcd &t) const {
@@ -165,34 +168,6 @@ double MeasureGaussianBeam(const GenRay &g, const GenRay &beam, double power) {
     return power * Normal2Full(drT.x, dkT.x, c.rr, c.rk, c.kk) * Normal2Full(drT.y, dkT.y, c.rr, c.rk, c.kk);
 }
 
-namespace {
-
-// Exponentially scaled modified Bessel function I₀(x)·e^{−x}, x ≥ 0.
-double BesselI0Scaled(double x) {
-    if (x < 600) return std::cyl_bessel_i(0.0, x) * std::exp(-x);
-    // Asymptotic expansion (Abramowitz & Stegun 9.7.1).
-    const double t = 1 / (8 * x);
-    return (1 + t * (1 + t * (4.5 + t * 37.5))) / std::sqrt(2 * Pi * x);
-}
-
-// ∫_a^b f(x) dx by composite 8-point Gauss–Legendre on `panels` panels.
-template <typename F>
-double GaussLegendre(F &&f, double a, double b, int panels) {
-    static constexpr double X[4] = {0.1834346424956498, 0.5255324099163290, 0.7966664774136267,
-                                    0.9602898564975363};
-    static constexpr double W[4] = {0.3626837833783620, 0.3137066458778873, 0.2223810344533745,
-                                    0.1012285362903763};
-    double sum = 0;
-    const double h = (b - a) / panels;
-    for (int p = 0; p < panels; ++p) {
-        const double m = a + (p + 0.5) * h, r = 0.5 * h;
-        for (int i = 0; i < 4; ++i) sum += W[i] * r * (f(m - r * X[i]) + f(m + r * X[i]));
-    }
-    return sum;
-}
-
-}  // namespace
-
 double DiscGaussianProbability(double offset, double radius, double sigma) {
     if (radius <= 0) return 0;
     if (!(sigma > 0)) return offset <= radius ? 1.0 : 0.0;
@@ -206,11 +181,12 @@ double DiscGaussianProbability(double offset, double radius, double sigma) {
     if (c <= lo) {
         // A disc far out in the tail: negligible unless the disc is small, where [0, c] is smooth
         // and short enough to integrate directly (keeps relative accuracy for tiny sources).
-        return c < 2 ? GaussLegendre(density, 0.0, c, 8) : 0.0;
+        return c < 2 ? IntegrateGaussLegendre(density, 0.0, c, 8, 8) : 0.0;
     }
     // Integrate the shorter side for accuracy near 0 and 1.
-    if (c - lo <= hi - c) return std::min(1.0, GaussLegendre(density, lo, c, 24));
-    return std::max(0.0, 1 - GaussLegendre(density, c, hi, 24));
+    // Composite 8-point Gauss–Legendre on 24 panels.
+    if (c - lo <= hi - c) return std::min(1.0, IntegrateGaussLegendre(density, lo, c, 8, 24));
+    return std::max(0.0, 1 - IntegrateGaussLegendre(density, c, hi, 8, 24));
 }
 
 double RectGaussianProbability(const Vec2 &mu, double sigma, const Vec2 &lo, const Vec2 &hi) {

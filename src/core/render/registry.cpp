@@ -14,93 +14,36 @@
 #include "core/material.h"
 #include "core/shape.h"
 #include "core/spectrum.h"
+#include "plugin_tables.inc"
 
 namespace phasor {
 
 // ---- generated tables ---------------------------------------------------------------------
+// For every family of core/plugin_families.h: the functions PHASOR_EXPORT_PLUGIN defines for
+// each of its plug-ins (listed by the generated PHASOR_PLUGINS_<family>), the family's name and
+// its table.
 
-#define PHASOR_PLUGIN(name, Class)                                                                 \
-    const Schema &PhasorSchema_##Class();                                                          \
-    std::unique_ptr<PHASOR_IFACE> PhasorCreate_##Class(const ParamDict &, BuildContext &);         \
+// clang-format off
+#define PHASOR_DECLARE_PLUGIN(Interface, name, Class)                                           \
+    const Schema &PhasorSchema_##Class();                                                       \
+    std::unique_ptr<Interface> PhasorCreate_##Class(const ParamDict &, BuildContext &);         \
     std::vector<ParamDict> PhasorPresets_##Class();                                              \
     std::optional<std::vector<std::string>> PhasorContractCases_##Class();
-#define PHASOR_IFACE Spectrum
-#include "plugins_spectrum.inc"
-#undef PHASOR_IFACE
-#define PHASOR_IFACE Texture
-#include "plugins_texture.inc"
-#undef PHASOR_IFACE
-#define PHASOR_IFACE Material
-#include "plugins_material.inc"
-#undef PHASOR_IFACE
-#define PHASOR_IFACE Shape
-#include "plugins_shape.inc"
-#undef PHASOR_IFACE
-#define PHASOR_IFACE Light
-#include "plugins_light.inc"
-#undef PHASOR_IFACE
-#define PHASOR_IFACE Detector
-#include "plugins_detector.inc"
-#undef PHASOR_IFACE
-#define PHASOR_IFACE Integrator
-#include "plugins_integrator.inc"
-#undef PHASOR_IFACE
-#undef PHASOR_PLUGIN
-
-#define PHASOR_PLUGIN(name, Class) \
+#define PHASOR_PLUGIN_ENTRY(Interface, name, Class)                                             \
     {name, &PhasorSchema_##Class, &PhasorCreate_##Class, &PhasorPresets_##Class, &PhasorContractCases_##Class},
-// clang-format off
-template <> const char *Registry<Spectrum>::Family() { return "spectrum"; }
-template <> const std::vector<PluginEntry<Spectrum>> &Registry<Spectrum>::Entries() {
-    static std::vector<PluginEntry<Spectrum>> e = {  // not const: Registry::Register appends
-#include "plugins_spectrum.inc"
-    };
-    return e;
-}
-template <> const char *Registry<Texture>::Family() { return "texture"; }
-template <> const std::vector<PluginEntry<Texture>> &Registry<Texture>::Entries() {
-    static std::vector<PluginEntry<Texture>> e = {  // not const: Registry::Register appends
-#include "plugins_texture.inc"
-    };
-    return e;
-}
-template <> const char *Registry<Material>::Family() { return "material"; }
-template <> const std::vector<PluginEntry<Material>> &Registry<Material>::Entries() {
-    static std::vector<PluginEntry<Material>> e = {  // not const: Registry::Register appends
-#include "plugins_material.inc"
-    };
-    return e;
-}
-template <> const char *Registry<Shape>::Family() { return "shape"; }
-template <> const std::vector<PluginEntry<Shape>> &Registry<Shape>::Entries() {
-    static std::vector<PluginEntry<Shape>> e = {  // not const: Registry::Register appends
-#include "plugins_shape.inc"
-    };
-    return e;
-}
-template <> const char *Registry<Light>::Family() { return "light"; }
-template <> const std::vector<PluginEntry<Light>> &Registry<Light>::Entries() {
-    static std::vector<PluginEntry<Light>> e = {  // not const: Registry::Register appends
-#include "plugins_light.inc"
-    };
-    return e;
-}
-template <> const char *Registry<Detector>::Family() { return "detector"; }
-template <> const std::vector<PluginEntry<Detector>> &Registry<Detector>::Entries() {
-    static std::vector<PluginEntry<Detector>> e = {  // not const: Registry::Register appends
-#include "plugins_detector.inc"
-    };
-    return e;
-}
-template <> const char *Registry<Integrator>::Family() { return "integrator"; }
-template <> const std::vector<PluginEntry<Integrator>> &Registry<Integrator>::Entries() {
-    static std::vector<PluginEntry<Integrator>> e = {  // not const: Registry::Register appends
-#include "plugins_integrator.inc"
-    };
-    return e;
-}
+#define PHASOR_FAMILY_TABLE(Keyword, family, Interface, Example)                                \
+    PHASOR_PLUGINS_##family(PHASOR_DECLARE_PLUGIN, Interface)                                   \
+    template <> const char *Registry<Interface>::Family() { return #family; }                   \
+    template <> const std::vector<PluginEntry<Interface>> &Registry<Interface>::Entries() {     \
+        static std::vector<PluginEntry<Interface>> e = { /* not const: Registry::Register */    \
+            PHASOR_PLUGINS_##family(PHASOR_PLUGIN_ENTRY, Interface)};                           \
+        return e;                                                                               \
+    }
+PHASOR_PLUGIN_FAMILIES(PHASOR_FAMILY_TABLE)
+#undef PHASOR_FAMILY_TABLE
+#undef PHASOR_PLUGIN_ENTRY
+#undef PHASOR_DECLARE_PLUGIN
 // clang-format on
-#undef PHASOR_PLUGIN
 
 namespace {
 
@@ -152,10 +95,9 @@ FamilyOps Ops(const char *keyword) {
 }
 
 const std::vector<FamilyOps> &AllOps() {
-    static const std::vector<FamilyOps> ops = {
-        Ops<Spectrum>("Spectrum"), Ops<Texture>("Texture"),   Ops<Material>("Material"),
-        Ops<Shape>("Shape"),       Ops<Light>("Light"),       Ops<Detector>("Detector"),
-        Ops<Integrator>("Integrator")};
+#define PHASOR_FAMILY_OPS(Keyword, family, Interface, Example) Ops<Interface>(#Keyword),
+    static const std::vector<FamilyOps> ops = {PHASOR_PLUGIN_FAMILIES(PHASOR_FAMILY_OPS)};
+#undef PHASOR_FAMILY_OPS
     return ops;
 }
 
@@ -170,9 +112,9 @@ const FamilyOps *FindOps(const std::string &familyOrKeyword) {
 }  // namespace
 
 std::vector<FamilyInfo> AllFamilies() {
-    return {Info<Spectrum>("Spectrum"), Info<Texture>("Texture"),   Info<Material>("Material"),
-            Info<Shape>("Shape"),       Info<Light>("Light"),       Info<Detector>("Detector"),
-            Info<Integrator>("Integrator")};
+#define PHASOR_FAMILY_INFO(Keyword, family, Interface, Example) Info<Interface>(#Keyword),
+    return {PHASOR_PLUGIN_FAMILIES(PHASOR_FAMILY_INFO)};
+#undef PHASOR_FAMILY_INFO
 }
 
 std::string SceneEntity::DisplayName() const { return name.empty() ? AnonymousName(type, loc) : name; }

@@ -1,17 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
-// The numerical core of the forward Rayleigh–Sommerfeld integrator `rs` (rs.cpp): the RS-I field
-// behind one opaque plate with openings, lit by one coherent wave, and its integral over the
-// pixels of a sensor plane. Exposed for the integrator's tests; the quadrature rules are
-// documented in rs.cpp and docs/rs.md.
+// The field of the forward Rayleigh–Sommerfeld integrator `rs` (rs/rs.cpp): the RS-I field behind
+// one opaque plate with openings, lit by one coherent wave (theory §6.2), by Gauss–Legendre
+// panels over the openings (rs/propagator.cpp, docs/rs.md §2). Exposed for the integrator's tests.
 #pragma once
 
-#include <atomic>
-#include <functional>
 #include <memory>
 #include <vector>
 
 #include "core/aperture.h"
-#include "core/detector.h"
 #include "core/light.h"
 #include "core/math.h"
 
@@ -19,7 +15,7 @@ namespace phasor::rs {
 
 struct NodeRule;
 
-/// Tunables of the aperture quadrature (Gauss–Legendre panels, rs.cpp header).
+/// Tunables of the aperture quadrature (Gauss–Legendre panels, rs/propagator.cpp header).
 struct QuadratureRule {
     /// Upper bound of the phase change over one panel [rad] (from |∇φ| bounds × panel length).
     double maxPanelPhase = 6 * Pi;
@@ -82,7 +78,7 @@ class Propagator {
     bool TwoD() const { return twoD_; }
     const PlateFrame &Plate() const { return plate_; }
 
-    struct Local;  // a field point in plate coordinates (rs.cpp)
+    struct Local;  // a field point in plate coordinates (rs/propagator.cpp)
 
   private:
     void Field3D(const Local &p, double acc[4]) const;
@@ -110,51 +106,5 @@ class Propagator {
     double du_ = 0, dv_ = 0;           // plane: direction cosines along e1, e2
     double su_ = 0, sv_ = 0, sz_ = 0;  // spherical: source at (su, sv), distance sz > 0 behind
 };
-
-enum class Quantity { Flux, Intensity };
-
-/// The uniform grid on which the field is evaluated (rs.cpp header, "sensor quadrature"): nodes
-/// xs × ys in sensor-plane coordinates; a collapsed axis has one node of weight 1 (2-D mode,
-/// the field is constant along it).
-struct SensorGrid {
-    std::vector<double> xs, ys;
-    double hx = 0, hy = 0;
-    bool collapseX = false, collapseY = false;
-    std::size_t Nodes() const { return xs.size() * ys.size(); }
-};
-
-/// Chooses the grid for `sensor` and the field of `prop`. In 2-D mode the axis along the slits
-/// is collapsed (it must be parallel to the plate's e2; checked by the caller).
-SensorGrid MakeGrid(const SensorPlaneGeometry &sensor, const Propagator &prop);
-
-/// Pixel values, row-major (j·nx + i), of the quantity integrated against each pixel's
-/// sensitivity [W/m²] (not divided by the reference irradiance). The grid nodes are evaluated in
-/// ProgressUnits(grid) equal batches; `batchDone(batches)` is called from the calling thread after
-/// every batch with the number done so far; returning false cancels. `cancel`, when set, is also
-/// checked before every node, so a stop request ends the current batch early. A cancelled call
-/// returns an empty vector. Parallel over grid nodes (TBB), deterministic.
-std::vector<double> IntegrateSensor(const SensorPlaneGeometry &sensor, const Propagator &prop,
-                                    const SensorGrid &grid, Quantity q,
-                                    const std::function<bool(int)> &batchDone = {},
-                                    const std::atomic<bool> *cancel = nullptr);
-/// Number of progress units (batches of at least 64 grid nodes, at most 1000 batches) that
-/// IntegrateSensor reports for `grid`.
-int ProgressUnits(const SensorGrid &grid);
-
-/// The factor by which a slit's finite length [v0, v1] (plate y axis) multiplies the field of the
-/// infinite slit at plate height y and in-plane distance r [m] (Fresnel approximation along the
-/// slit, where the 3-D field factorises): G = ½[erf(a·s₁) − erf(a·s₀)], s_j = √(k/(πr))·(v_j − y),
-/// a = (√π/2)(1 − i) — the Fresnel integrals C + iS. G → 1 for an infinite slit.
-Complex SlitLengthFactor(double y, double v0, double v1, double k, double r);
-/// Predicted error of the 2-D mode for slits spanning `slits` (plate coordinates: u range × the
-/// common v range) seen by `sensor`, one of whose axes is parallel to the slits: the largest
-/// |∫ w(y − y_p)·(|G(y)|² − 1) dy| over the pixel rows along the slits (w = the pixel's
-/// sensitivity along them), at the smallest and largest in-plane distance between the slits and
-/// the window — relative to the local 2-D intensity, hence ≥ the error relative to the peak.
-double SlitEndError(const PlateFrame &plate, const Bounds2 &slits, const SensorPlaneGeometry &sensor, double k);
-
-/// H₀⁽¹⁾(x) and H₁⁽¹⁾(x) for x > 0 (asymptotic series for x ≥ 25, std::cyl_bessel_j /
-/// cyl_neumann below).
-void Hankel01(double x, Complex *h0, Complex *h1);
 
 }  // namespace phasor::rs

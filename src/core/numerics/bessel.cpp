@@ -1,0 +1,72 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — cylinder functions (bessel.h).
+#include "core/numerics/bessel.h"
+
+#include <array>
+#include <cmath>
+
+namespace phasor {
+
+namespace {
+
+constexpr int HankelTerms = 48;
+
+struct HankelCoefficients {
+    std::array<double, HankelTerms> a0, a1;  // a_m(ν) of DLMF 10.17.1 for ν = 0, 1
+};
+
+const HankelCoefficients &HankelCoeffs() {
+    static const HankelCoefficients c = [] {
+        HankelCoefficients h;
+        h.a0[0] = h.a1[0] = 1;
+        for (int m = 1; m < HankelTerms; ++m) {
+            const double odd = (2.0 * m - 1) * (2.0 * m - 1);
+            h.a0[m] = h.a0[m - 1] * (0 - odd) / (8.0 * m);
+            h.a1[m] = h.a1[m - 1] * (4 - odd) / (8.0 * m);
+        }
+        return h;
+    }();
+    return c;
+}
+
+}  // namespace
+
+void HankelAsymptoticFactors(double x, Complex *p0, Complex *p1) {
+    const HankelCoefficients &c = HankelCoeffs();
+    double r0 = 1, i0 = 0, r1 = 1, i1 = 0, xm = 1;
+    for (int m = 1; m < HankelTerms; ++m) {
+        xm /= x;
+        const double t0 = c.a0[m] * xm, t1 = c.a1[m] * xm;
+        switch (m & 3) {  // i^m
+            case 0: r0 += t0, r1 += t1; break;
+            case 1: i0 += t0, i1 += t1; break;
+            case 2: r0 -= t0, r1 -= t1; break;
+            default: i0 -= t0, i1 -= t1; break;
+        }
+        if (std::abs(t0) < 1e-17 && std::abs(t1) < 1e-17) break;
+    }
+    *p0 = Complex(r0, i0);
+    *p1 = Complex(r1, i1);
+}
+
+void Hankel01(double x, Complex *h0, Complex *h1) {
+    if (x >= HankelAsymptoticMin) {
+        Complex p0, p1;
+        HankelAsymptoticFactors(x, &p0, &p1);
+        const double amp = std::sqrt(2 / (Pi * x));
+        *h0 = amp * std::polar(1.0, x - Pi / 4) * p0;
+        *h1 = amp * std::polar(1.0, x - 3 * Pi / 4) * p1;
+        return;
+    }
+    *h0 = Complex(std::cyl_bessel_j(0.0, x), std::cyl_neumann(0.0, x));
+    *h1 = Complex(std::cyl_bessel_j(1.0, x), std::cyl_neumann(1.0, x));
+}
+
+double BesselI0Scaled(double x) {
+    if (x < 600) return std::cyl_bessel_i(0.0, x) * std::exp(-x);
+    // Asymptotic expansion (Abramowitz & Stegun 9.7.1).
+    const double t = 1 / (8 * x);
+    return (1 + t * (1 + t * (4.5 + t * 37.5))) / std::sqrt(2 * Pi * x);
+}
+
+}  // namespace phasor

@@ -1,0 +1,73 @@
+// SPDX-License-Identifier: Apache-2.0
+// Cylinder functions (core/numerics/bessel.h): Hankel functions against known values, the
+// standard library, their Wronskian and large-argument behaviour; the scaled I₀.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "core/numerics/bessel.h"
+
+namespace phasor {
+namespace {
+
+TEST(Hankel, MatchesKnownValues) {
+    // H₀⁽¹⁾(x), H₁⁽¹⁾(x) to 20 digits (mpmath); x = 25 and 100 use the asymptotic series.
+    struct Known {
+        double x;
+        Complex h0, h1;
+    };
+    const Known known[] = {
+        {1, {0.76519768655796655145, 0.088256964215676957983}, {0.44005058574493351596, -0.78121282130028871655}},
+        {10, {-0.2459357644513483352, 0.055671167283599391424}, {0.04347274616886143667, 0.24901542420695388392}},
+        {25, {0.096266783275958116174, -0.12724943226800613783}, {-0.12535024958028990465, -0.098829964783237410053}},
+        {100, {0.019985850304223122424, -0.077244313365083152254}, {-0.077145352014112158033, -0.020372312002759793305}},
+    };
+    for (const Known &k : known) {
+        Complex h0, h1;
+        Hankel01(k.x, &h0, &h1);
+        EXPECT_LT(std::abs(h0 - k.h0), 1e-14 * std::abs(k.h0)) << k.x;
+        EXPECT_LT(std::abs(h1 - k.h1), 1e-14 * std::abs(k.h1)) << k.x;
+    }
+}
+
+TEST(Hankel, MatchesStdBessel) {
+    // Both sides of the switch to the asymptotic series (x = 25) and far beyond it.
+    for (double x : {0.5, 7.0, 24.9, 25.0, 31.7, 100.0, 1234.5, 62831.9}) {
+        Complex h0, h1;
+        Hankel01(x, &h0, &h1);
+        const Complex r0(std::cyl_bessel_j(0.0, x), std::cyl_neumann(0.0, x));
+        const Complex r1(std::cyl_bessel_j(1.0, x), std::cyl_neumann(1.0, x));
+        EXPECT_LT(std::abs(h0 - r0), 1e-12 * std::abs(r0)) << x;
+        EXPECT_LT(std::abs(h1 - r1), 1e-12 * std::abs(r1)) << x;
+    }
+}
+
+TEST(Hankel, ObeysTheWronskianAndTheAsymptoticAmplitude) {
+    // J₁Y₀ − J₀Y₁ = 2/(πx) (DLMF 10.5.2), i.e. Im(conj(H₀)·H₁) = −2/(πx), at any x — a check of
+    // the asymptotic branch independent of std::cyl_neumann. And |H_ν|²·πx/2 = |P_ν|² → 1 with
+    // |P_ν|² − 1 = O(1/x²) (DLMF 10.17.5: P = 1 + i·a₁/x − a₂/x² …, |a₁|² − 2a₂ = O(1)).
+    for (double x : {0.3, 3.0, 24.99, 25.0, 80.0, 1e3, 1e5, 1e7}) {
+        Complex h0, h1;
+        Hankel01(x, &h0, &h1);
+        const double wronskian = -2 / (Pi * x);
+        EXPECT_NEAR(std::imag(std::conj(h0) * h1) / wronskian, 1.0, 1e-13) << x;
+        if (x >= HankelAsymptoticMin) {
+            EXPECT_NEAR(std::norm(h0) * Pi * x / 2, 1.0, 1.0 / (x * x)) << x;
+            EXPECT_NEAR(std::norm(h1) * Pi * x / 2, 1.0, 1.0 / (x * x)) << x;
+        }
+    }
+}
+
+TEST(BesselI0Scaled, MatchesStdAndIsContinuousAtTheAsymptoticSwitch) {
+    // I₀(0) = 1; I₀(1)e^{−1} = 0.46575960759364043 (A&S Table 9.8); the four-term expansion
+    // above x = 600 errs by the fifth term, 459/(8x)⁴ < 1e-12 relative there.
+    EXPECT_EQ(BesselI0Scaled(0), 1.0);
+    EXPECT_NEAR(BesselI0Scaled(1), 0.46575960759364043, 1e-15);
+    const double below = BesselI0Scaled(std::nextafter(600.0, 0.0)), above = BesselI0Scaled(600);
+    EXPECT_NEAR(above / below, 1.0, 1e-12);
+    // Far out: √(2πx)·I₀(x)e^{−x} = 1 + 1/(8x) + 4.5/(8x)² + … (the last term is 7e-10 at 1e4).
+    EXPECT_NEAR(BesselI0Scaled(1e4) * std::sqrt(2 * Pi * 1e4), 1 + 1 / 8e4, 1e-9);
+}
+
+}  // namespace
+}  // namespace phasor
