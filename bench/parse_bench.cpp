@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "core/registry.h"
+#include "core/render/registry.h"
 #include "parser/parser.h"
 
 namespace phasor {

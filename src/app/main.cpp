@@ -16,9 +16,9 @@
 
 #include "app/cli.h"
 #include "app/profile.h"
-#include "core/image_io.h"
-#include "core/registry.h"
-#include "core/scene.h"
+#include "core/image/image_io.h"
+#include "core/render/registry.h"
+#include "core/render/scene.h"
 #include "parser/parser.h"
 
 using namespace phasor;
@@ -245,7 +245,7 @@ int Render(const CliOptions &o) {
         std::snprintf(buf, sizeof buf, "%.17g", sp->pitchX);
         img.metadata["phasor:pitch_m"] = buf;
     }
-    // The EXR and the PNG are written all or nothing (core/output_file.h): if either fails,
+    // The EXR and the PNG are written all or nothing (core/image/output_file.h): if either fails,
     // neither appears (and earlier files of those names are left as they were).
     try {
         OutputFiles files;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — `phasor profile` (profile.h). Reads every input first and checks everything (channel,
 // row, widths, pixel positions) before writing anything; the CSV and the plot are written all or
-// nothing (core/output_file.h), so an error leaves no output behind.
+// nothing (core/image/output_file.h), so an error leaves no output behind.
 
 #include "app/profile.h"
 
@@ -17,8 +17,8 @@
 #include <vector>
 
 #include "core/diagnostics.h"
-#include "core/image_io.h"
-#include "core/plot.h"
+#include "core/image/image_io.h"
+#include "core/image/plot.h"
 
 namespace phasor {
 namespace {
@@ -295,7 +295,7 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
         plot.yLabel = p.channel;
     }
 
-    // Write the CSV and the plot all or nothing (core/output_file.h).
+    // Write the CSV and the plot all or nothing (core/image/output_file.h).
     try {
         OutputFiles own;
         OutputFiles &files = into ? *into : own;

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/params.h"
 
-#include "core/named_ior.h"
+#include "core/spectrum/named_ior.h"
 
 #include <cmath>
 #include <limits>

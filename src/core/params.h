@@ -75,7 +75,7 @@ enum class ParamKind {
     /// dimensionless scalar texture (read with BuildContext::GetSpectrumTexture).
     SpectrumTexture,
     ComplexSpectrum,  // n + iκ(λ): number, n+ik, named material ("Au"), spectrum call/@ref, nk(n=…, k=…)
-                      // (core/complex_spectrum.h; read with BuildContext::GetComplexSpectrum)
+                      // (core/spectrum/complex_spectrum.h; read with BuildContext::GetComplexSpectrum)
     RecordList,  // list of calls to the record `record->name`, e.g. [layer(ior = 1.5, thickness = 80nm), …],
                  // each validated against the sub-schema `record` (read with ParamDict::GetRecords)
 };
@@ -147,7 +147,7 @@ ParamSpec Ref(std::string name, std::string family, std::string doc);
 ParamSpec RefList(std::string name, std::string family, std::string doc);
 ParamSpec FloatTexture(std::string name, std::string doc, Dim dim = Dim::None());
 ParamSpec SpectrumTexture(std::string name, std::string doc);
-/// A complex index n + iκ(λ); the named materials of core/named_ior.h are its choices.
+/// A complex index n + iκ(λ); the named materials of core/spectrum/named_ior.h are its choices.
 ParamSpec ComplexSpectrum(std::string name, std::string doc);
 /// A list of `recordName(field = …, …)` records with the given fields (positional arguments bind to
 /// the fields in order). A single record is accepted as a list of one.

@@ -33,8 +33,8 @@
 // Simplifications (documented in docs/generalized_rays.md): the footprint is isotropic (D1); the
 // anamorphic stretch on oblique/curved interfaces is ignored (theory §1.6, as in the paper); area
 // emitters are measured by the mean ray (no footprint fraction at silhouettes).
-#include "core/path_common.h"
-#include "core/registry.h"
+#include "core/render/path_common.h"
+#include "core/render/registry.h"
 
 namespace phasor {
 

@@ -3,9 +3,9 @@
 // queried in their ray-optics limit (ScatterQuery::rayOptics): near-delta lobes are true deltas.
 // Next-event estimation to one uniformly chosen light per vertex, multiple importance sampling
 // (power heuristic) between light and kernel sampling for area and infinite lights, Russian
-// roulette on the throughput after `rr_depth` bounces. Shared pieces live in core/path_common.h.
-#include "core/path_common.h"
-#include "core/registry.h"
+// roulette on the throughput after `rr_depth` bounces. Shared pieces live in core/render/path_common.h.
+#include "core/render/path_common.h"
+#include "core/render/registry.h"
 
 namespace phasor {
 

@@ -33,13 +33,13 @@
 #include <memory>
 #include <sstream>
 
-#include "core/aperture.h"
+#include "core/render/aperture.h"
 #include "core/diagnostics.h"
-#include "core/genray.h"
-#include "core/material.h"
-#include "core/registry.h"
-#include "core/sampling.h"
-#include "core/shape.h"
+#include "core/render/genray.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
+#include "core/render/sampling.h"
+#include "core/render/shape.h"
 #include "materials/aperture_integral.h"
 
 namespace phasor {

@@ -8,14 +8,14 @@
 //     A = C · ∫∫ t(x, y) · exp(−(axx x² + 2 axy x y + ayy y²) + i (bx x + by y)) dx dy,
 //
 // restricted to the locality window |x| ≤ hx, |y| ≤ hy (theory §0 D13). Re[[axx, axy], [axy, ayy]]
-// is positive definite. Over each mask piece (core/aperture.h: a trapezoid with linear limits or a
+// is positive definite. Over each mask piece (core/render/aperture.h: a trapezoid with linear limits or a
 // clipped disc) one axis is integrated in closed form with the Faddeeva function w and the other
 // with Gauss–Legendre quadrature whose order follows from the integrand's variation over the
 // interval (see IntegratePiece). docs/aperture.md describes the whole chain.
 #pragma once
 
-#include "core/aperture.h"
-#include "core/genray.h"
+#include "core/render/aperture.h"
+#include "core/render/genray.h"
 #include "core/math.h"
 
 namespace phasor {
@@ -76,7 +76,7 @@ PlateGaussian MakePlateGaussian(const Vec3 &d, const Vec3 &s, const Vec3 &e1, co
                                 double k, double beta2, double rho, double dist, double window);
 
 /// Replaces g's incident plane wave (direction s of MakePlateGaussian) by the Gaussian beam `b`
-/// (core/genray.h) at wavenumber g.k; `hit` is the hit point (world), (e1, e2) the plate axes. The
+/// (core/render/genray.h) at wavenumber g.k; `hit` is the hit point (world), (e1, e2) the plate axes. The
 /// integral is then per unit on-axis amplitude of the beam at the hit's axial position.
 void AddIncidentBeam(PlateGaussian *g, const GaussianBeamGeometry &b, const Vec3 &hit, const Vec3 &e1,
                      const Vec3 &e2);

@@ -11,17 +11,17 @@
 // flipped normals). Never transmits; the rest (1 − R) is absorbed. The lobe is listed
 // (ListNearDelta, id 0), so integrators measure delta sources through it in closed form (D14).
 //
-// Index: `ior`, a complex spectrum (core/complex_spectrum.h): a named material (tabulated: Al from
-// Rakić et al. 1998, Ag/Au/Cu from Johnson & Christy 1972; see core/named_ior.h), a constant
+// Index: `ior`, a complex spectrum (core/spectrum/complex_spectrum.h): a named material (tabulated: Al from
+// Rakić et al. 1998, Ag/Au/Cu from Johnson & Christy 1972; see core/spectrum/named_ior.h), a constant
 // n + iκ, or nk(n = …, k = …) spectra. The index is relative to the medium outside
 // (ScatterQuery::etaOutside).
 #include <memory>
 #include <sstream>
 
-#include "core/complex_spectrum.h"
+#include "core/spectrum/complex_spectrum.h"
 #include "core/diagnostics.h"
-#include "core/material.h"
-#include "core/registry.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
 #include "materials/fresnel.h"
 
 namespace phasor {

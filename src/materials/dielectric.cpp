@@ -15,16 +15,16 @@
 // generalized ray both lobes are listed (ListNearDelta: ids 0 reflection, 1 refraction) and
 // measured in closed form by the integrator (D14).
 //
-// Dispersion: `ior` is a complex spectrum (core/complex_spectrum.h) with κ = 0: a constant, a named
-// glass ("BK7", "fused_silica", "water", …; core/named_ior.h) or any spectrum; `cauchy_b` adds
+// Dispersion: `ior` is a complex spectrum (core/spectrum/complex_spectrum.h) with κ = 0: a constant, a named
+// glass ("BK7", "fused_silica", "water", …; core/spectrum/named_ior.h) or any spectrum; `cauchy_b` adds
 // Cauchy's term, η(λ) = ior(λ) + B/λ² (Cauchy 1836; e.g. BK7 ≈ 1.5046 + 4.20e-3 µm²/λ²).
 #include <memory>
 #include <sstream>
 
-#include "core/complex_spectrum.h"
+#include "core/spectrum/complex_spectrum.h"
 #include "core/diagnostics.h"
-#include "core/material.h"
-#include "core/registry.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
 #include "materials/fresnel.h"
 
 namespace phasor {

@@ -13,9 +13,9 @@
 #include <sstream>
 
 #include "core/diagnostics.h"
-#include "core/material.h"
-#include "core/registry.h"
-#include "core/sampling.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
+#include "core/render/sampling.h"
 
 namespace phasor {
 

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/diagnostics.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
 
 int main(int argc, char **argv) {
     using namespace phasor;

@@ -5,8 +5,8 @@
 // `ray` on a Cornell box are cases of the integrator contract suite (integrator_contract_test.cpp).
 #include <gtest/gtest.h>
 
-#include "core/genray.h"
-#include "core/pixel_integrator.h"
+#include "core/render/genray.h"
+#include "core/render/pixel_integrator.h"
 #include "materials/fresnel.h"
 #include "parser/parser.h"
 #include "support/replicas.h"

@@ -26,7 +26,7 @@
 #include <map>
 #include <sstream>
 
-#include "core/integrator.h"
+#include "core/render/integrator.h"
 #include "parser/parser.h"
 #include "support/replicas.h"
 #include "support/stats.h"

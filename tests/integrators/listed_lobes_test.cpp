@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // `grt` measures delta and small sources through *every* listed near-delta lobe at a vertex
-// (core/material.h ListNearDelta, theory §0 D14), not only through the lobe it follows: a kernel
+// (core/render/material.h ListNearDelta, theory §0 D14), not only through the lobe it follows: a kernel
 // with two lobes lit by a tiny sun shows both glints, each at its closed-form value, in one
 // sample per pixel. The kernel is a test kernel registered here (PHASOR_REGISTER_PLUGIN): a mirror
 // lobe (id 0, weight a₀) and one "order" (id 1, weight a₁) that adds a tangential wave vector
@@ -9,8 +9,8 @@
 
 #include <sstream>
 
-#include "core/pixel_integrator.h"
-#include "core/registry.h"
+#include "core/render/pixel_integrator.h"
+#include "core/render/registry.h"
 #include "materials/material_test_util.h"
 #include "parser/parser.h"
 #include "support/scene_builder.h"
@@ -60,19 +60,7 @@ class TwoLobeTestMaterial final : public Material {
     std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const override {
         NearDeltaLobes lobes;
         ListNearDelta(q, lobes);
-        double c = 0;
-        for (const NearDeltaLobe &l : lobes) {
-            c += l.prob;
-            if (u0 >= c && &l + 1 != lobes.end()) continue;
-            ScatterSample s;
-            s.wo = l.wo[0];
-            s.weight = l.weight / l.prob;
-            s.pdf = l.prob;
-            s.lobe = l.id;
-            s.flags = l.flags;
-            return s;
-        }
-        return std::nullopt;
+        return SampleListedLobe(lobes, u0);
     }
 
   private:
@@ -84,8 +72,9 @@ PHASOR_REGISTER_PLUGIN(Material, TwoLobeTestMaterial, "two_lobe_test");
 namespace test {
 namespace {
 
-// The sun-glint scene with the plate's conductor replaced by the two-lobe kernel.
-std::unique_ptr<Scene> TwoLobeScene(double a0, double a1) {
+// The sun-glint scene with the plate's conductor replaced by the two-lobe kernel; with `laser`
+// the 1 µrad sun is replaced by a plane wave of the same direction, irradiance and line.
+std::unique_ptr<Scene> TwoLobeScene(double a0, double a1, bool laser) {
     Diagnostics diag;
     auto desc = ParseSceneFile(std::string(PHASOR_SOURCE_DIR) + "/scenes/validation/grt_sun_glint.wscene",
                                {{"profile", "gaussian"}, {"radius", "1 urad"}, {"res", "9"}}, diag);
@@ -96,6 +85,13 @@ std::unique_ptr<Scene> TwoLobeScene(double a0, double a1) {
             e.type = "two_lobe_test";
             e.params = ParamDict(e.loc);
             e.params.Set("a0", Value::Number(a0)).Set("a1", Value::Number(a1));
+        } else if (e.keyword == "Light" && laser) {
+            ParamDict p(e.loc);
+            p.Set("direction", e.params.GetValue("direction"))
+                .Set("irradiance", e.params.GetValue("irradiance"))
+                .Set("spectrum", e.params.GetValue("spectrum"));
+            e.type = "plane_wave";
+            e.params = p;
         }
     auto scene = Scene::Build(*desc, diag);
     std::ostringstream os;
@@ -122,8 +118,8 @@ double OneSample(const Scene &scene, int x, int y) {
 // D14 in closed form for every lobe: Σ_j a_j·E·N₂(s⊥; 0, σ_θ² + α²/4) with s⊥ the sun's direction
 // transverse to lobe j's outgoing direction (the same formula as grt_test's GlintExpected, with
 // the mirror direction replaced by each listed lobe's).
-double Expected(const Scene &scene, int x, int y) {
-    const double elevation = Radians(50), offset = 0.15e-3, E = 1000, alpha = 1e-6;
+double Expected(const Scene &scene, int x, int y, bool laser) {
+    const double elevation = Radians(50), offset = 0.15e-3, E = 1000, alpha = laser ? 0 : 1e-6;
     const Vec3 s(std::cos(elevation + offset), 0, -std::sin(elevation + offset));
     const double sigmaTheta = std::tan(0.5e-3) / std::sqrt(12.0), var = sigmaTheta * sigmaTheta + alpha * alpha / 4;
     auto ds = scene.GetDetector().Generate(Vec2(x + 0.5, y + 0.5), Vec2(0.5, 0.5));
@@ -144,28 +140,31 @@ double Expected(const Scene &scene, int x, int y) {
 }
 
 TEST(GrtListedLobes, BothGlintsAtTheirClosedFormValuesInOneSample) {
-    auto scene = TwoLobeScene(0.6, 0.3);
+  for (bool laser : {true, false}) {
+    SCOPED_TRACE(laser ? "plane wave (laser)" : "1 urad distant source");
+    auto scene = TwoLobeScene(0.6, 0.3, laser);
     ASSERT_TRUE(scene);
     const int n = scene->GetDetector().Width();
     double peak = 0;
     for (int y = 0; y < n; ++y)
-        for (int x = 0; x < n; ++x) peak = std::max(peak, Expected(*scene, x, y));
+        for (int x = 0; x < n; ++x) peak = std::max(peak, Expected(*scene, x, y, laser));
     ASSERT_GT(peak, 1e8);
     // Both glints are in the image: the brightest pixel of each lobe alone.
     int glints = 0;
     for (double a0 : {1.0, 0.0}) {
-        auto single = TwoLobeScene(a0, 1 - a0);
+        auto single = TwoLobeScene(a0, 1 - a0, laser);
         double best = 0;
         for (int y = 0; y < n; ++y)
-            for (int x = 0; x < n; ++x) best = std::max(best, Expected(*single, x, y));
+            for (int x = 0; x < n; ++x) best = std::max(best, Expected(*single, x, y, laser));
         glints += best > 1e-2 * peak;
     }
     ASSERT_EQ(glints, 2) << "each lobe's glint must fall on a pixel centre of the image";
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
-            const double e = Expected(*scene, x, y);
+            const double e = Expected(*scene, x, y, laser);
             EXPECT_NEAR(OneSample(*scene, x, y), e, 1e-6 * e + 1e-9 * peak) << "pixel " << x << " " << y;
         }
+  }
 }
 
 }  // namespace

@@ -11,11 +11,11 @@
 #include <functional>
 #include <sstream>
 
-#include "core/aperture.h"
-#include "core/image_io.h"
-#include "core/genray.h"
+#include "core/render/aperture.h"
+#include "core/image/image_io.h"
+#include "core/render/genray.h"
 #include "core/numerics/gauss_legendre.h"
-#include "core/shape.h"
+#include "core/render/shape.h"
 #include "material_test_util.h"
 #include "materials/aperture_integral.h"
 

@@ -4,7 +4,7 @@
 
 #include "material_test_util.h"
 #include "materials/fresnel.h"
-#include "core/named_ior.h"
+#include "core/spectrum/named_ior.h"
 
 namespace phasor::test {
 namespace {

@@ -146,7 +146,7 @@ TEST(Dielectric, RejectsNonPositiveOrAbsorbingIndex) {
 }
 
 TEST(Dielectric, NamedGlassIsDispersive) {
-    // ior = "BK7" (Sellmeier, core/named_ior.h): the kernel sees the glass's index per wavelength.
+    // ior = "BK7" (Sellmeier, core/spectrum/named_ior.h): the kernel sees the glass's index per wavelength.
     ParamDict d;
     d.Set("ior", Value::String("BK7"));
     Diagnostics diag;

@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// fresnel.h and core/named_ior.h: textbook identities and published values.
+// fresnel.h and core/spectrum/named_ior.h: textbook identities and published values.
 #include "materials/fresnel.h"
 
 #include <gtest/gtest.h>
 #include <limits>
 #include <vector>
 
-#include "core/named_ior.h"
+#include "core/spectrum/named_ior.h"
 
 namespace phasor {
 namespace {

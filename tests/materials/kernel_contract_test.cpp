@@ -4,7 +4,7 @@
 // oblique, two grazing, two from below the shading normal). A new kernel is covered as soon as it
 // is registered and declares presets; presets may reference the fixtures of material_test_util.h.
 //
-// Conventions checked (core/material.h): local frame, wi and wo point away from the surface;
+// Conventions checked (core/render/material.h): local frame, wi and wo point away from the surface;
 // continuous samples have weight = Eval·|cosθo|/Pdf and report pdf = Pdf(wo); near-delta samples
 // are one of the lobes ListNearDelta lists (same id, direction, probability and weight a_j/p_j),
 // each listed lobe obeys the vector grating equation with its own tangential shift (the law of
@@ -27,8 +27,8 @@
 #include <map>
 #include <sstream>
 
-#include "core/genray.h"
-#include "core/shape.h"
+#include "core/render/genray.h"
+#include "core/render/shape.h"
 #include "material_test_util.h"
 #include "support/stats.h"
 

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "core/diagnostics.h"
-#include "core/material.h"
-#include "core/registry.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
 
 namespace phasor::test {
 

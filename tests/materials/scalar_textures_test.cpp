@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// Textures with dimensions (src/core/texture.h, src/core/textures): `constant` by value kind,
+// Textures with dimensions (src/core/render/texture.h, src/core/textures): `constant` by value kind,
 // `gradient`, `noise`, `scale`, `mix`; the constant-or-texture accessors
 // BuildContext::GetFloatTexture / GetSpectrumTexture and their dimension and range checks; the
 // angle → tangent rule; diffuse's reflectance driven by a scalar texture.

@@ -10,8 +10,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "core/material.h"
-#include "core/registry.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
 
 namespace phasor {
 
@@ -105,21 +105,7 @@ class ToyGratingMaterial final : public Material {
     std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const override {
         NearDeltaLobes lobes;
         ListNearDelta(q, lobes);
-        double c = 0;
-        for (const NearDeltaLobe &l : lobes) {
-            c += l.prob;
-            if (u0 >= c && &l + 1 != lobes.end()) continue;
-            if (!(l.prob > 0)) return std::nullopt;
-            ScatterSample s;
-            s.wo = l.wo[0];
-            s.weight = l.weight / l.prob;
-            s.pdf = l.prob;
-            s.lobe = l.id;
-            s.flags = l.flags;
-            s.eta = 1;
-            return s;
-        }
-        return std::nullopt;
+        return SampleListedLobe(lobes, u0);
     }
 
   private:

@@ -9,8 +9,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "core/registry.h"
-#include "core/scene.h"
+#include "core/render/registry.h"
+#include "core/render/scene.h"
 #include "parser/parser.h"
 
 namespace phasor {

@@ -6,9 +6,9 @@
 #include <sstream>
 #include <string>
 
-#include "core/film.h"
-#include "core/registry.h"
-#include "core/scene.h"
+#include "core/image/film.h"
+#include "core/render/registry.h"
+#include "core/render/scene.h"
 
 namespace phasor::test {
 

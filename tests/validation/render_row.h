@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "core/scene.h"
+#include "core/render/scene.h"
 #include "parser/parser.h"
 #include "support/replicas.h"
 #include "support/scene_builder.h"

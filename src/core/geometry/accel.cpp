@@ -6,7 +6,7 @@
 // triangle against the caller's double ray, analytic shapes (Embree user geometry) by calling
 // Shape::Intersect with the caller's double ray, which reaches the callbacks through an extended
 // RTCIntersectContext. Float only decides *which* primitive is nearest.
-#include "core/accel.h"
+#include "core/geometry/accel.h"
 
 #include <embree3/rtcore.h>
 

@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — analytic shapes (sphere, disk), intersected in double precision. The shape plug-ins
-// in src/core/shapes/ wrap these with a schema; the accelerator hands them to Embree as user
+// in src/shapes/ wrap these with a schema; the accelerator hands them to Embree as user
 // geometry.
 #pragma once
 
 #include <optional>
 #include <string>
 
-#include "core/shape.h"
+#include "core/render/shape.h"
 
 namespace phasor {
 

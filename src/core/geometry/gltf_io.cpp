@@ -10,7 +10,7 @@
 #include <functional>
 
 #include "core/diagnostics.h"
-#include "core/mesh_io.h"
+#include "core/geometry/mesh_io.h"
 
 namespace phasor {
 

@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "core/math.h"
-#include "core/shape.h"
+#include "core/render/shape.h"
 
 namespace phasor {
 

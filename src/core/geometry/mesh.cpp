@@ -7,7 +7,7 @@
 
 #include "core/diagnostics.h"
 #include "core/geometry/intersect.h"
-#include "core/shape.h"
+#include "core/render/shape.h"
 
 namespace phasor {
 

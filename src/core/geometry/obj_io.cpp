@@ -9,7 +9,7 @@
 #include <unordered_map>
 
 #include "core/diagnostics.h"
-#include "core/mesh_io.h"
+#include "core/geometry/mesh_io.h"
 
 namespace phasor {
 

@@ -11,7 +11,7 @@
 #include <mutex>
 
 #include "core/diagnostics.h"
-#include "core/mesh_io.h"
+#include "core/geometry/mesh_io.h"
 
 namespace phasor {
 

@@ -18,7 +18,7 @@
 
 #include "core/diagnostics.h"
 #include "core/image/color.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
 
 namespace OCIO = OCIO_NAMESPACE;
 

@@ -2,7 +2,7 @@
 // phasor — the film (film.h): per-pixel running means of the sensor channels and of the
 // monochrome intensity, and the variance of the intensity mean.
 
-#include "core/film.h"
+#include "core/image/film.h"
 
 #include <algorithm>
 #include <cassert>

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/film.h"
+#include "core/image/film.h"
 
 namespace phasor {
 

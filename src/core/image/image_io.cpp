@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — image files through OpenImageIO (image_io.h): float EXR with named channels and
 // string metadata, 8-bit PNG through the OCIO display transform (color.cpp), false-colour dB
-// PNGs. Images are encoded in memory and written through OutputFiles (core/output_file.h):
+// PNGs. Images are encoded in memory and written through OutputFiles (core/image/output_file.h):
 // checked writes to a temporary file in the target directory, renamed into place.
 
 #include <algorithm>
@@ -20,8 +20,8 @@
 #include "core/diagnostics.h"
 #include "core/image/color.h"
 #include "core/image/oiio_write.h"
-#include "core/image_io.h"
-#include "core/plot.h"
+#include "core/image/image_io.h"
+#include "core/image/plot.h"
 
 namespace phasor {
 namespace {

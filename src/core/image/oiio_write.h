@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — internal to phasor_image: encoding through OpenImageIO into memory, then writing through
-// the all-or-nothing OutputFiles (core/output_file.h); shared by image_io.cpp and plot.cpp. OIIO
+// the all-or-nothing OutputFiles (core/image/output_file.h); shared by image_io.cpp and plot.cpp. OIIO
 // types are allowed here (this header is only included inside src/core/image/).
 #pragma once
 
@@ -8,7 +8,7 @@
 
 #include <OpenImageIO/imageio.h>
 
-#include "core/output_file.h"
+#include "core/image/output_file.h"
 
 namespace phasor::detail {
 

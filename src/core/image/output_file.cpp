@@ -2,7 +2,7 @@
 // phasor — all-or-nothing output files (output_file.h): checked write(2), fsync(2), close(2), then
 // rename(2) into place.
 
-#include "core/output_file.h"
+#include "core/image/output_file.h"
 
 #include <fcntl.h>
 #include <unistd.h>

@@ -20,7 +20,7 @@
 
 #include "core/diagnostics.h"
 #include "core/image/oiio_write.h"
-#include "core/plot.h"
+#include "core/image/plot.h"
 
 namespace phasor {
 namespace {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — cylinder functions: the Hankel functions H₀⁽¹⁾, H₁⁽¹⁾ of the 2-D Rayleigh–Sommerfeld
 // kernel (theory §6.2, `rs`) and the scaled modified Bessel function I₀ of the GR disc
-// measurement (core/genray.h).
+// measurement (core/render/genray.h).
 #pragma once
 
 #include "core/math.h"

@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — openings of an opaque plate (core/aperture.h): decomposition of (openings ∩ box) into
+// phasor — openings of an opaque plate (core/render/aperture.h): decomposition of (openings ∩ box) into
 // pieces with linear or circular u-limits, transmission lookup, bitmap masks and the plate frame.
-#include "core/aperture.h"
+#include "core/render/aperture.h"
 
 #include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "core/diagnostics.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
 
 namespace phasor {
 

@@ -1,11 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/detector.h"
+#include "core/render/detector.h"
 
 #include <cmath>
 
-#include "core/aperture.h"
-#include "core/material.h"
-#include "core/registry.h"
+#include "core/render/aperture.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
 
 namespace phasor {
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — generalized-ray maths (genray.h; theory §1–§2).
-#include "core/genray.h"
+#include "core/render/genray.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/light.h"
+#include "core/render/light.h"
 
 namespace phasor {
 

@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — the non-virtual part of the kernel interface (core/material.h): the lobe mask is
+// phasor — the non-virtual part of the kernel interface (core/render/material.h): the lobe mask is
 // applied here, once, for every kernel.
-#include "core/material.h"
+#include "core/render/material.h"
 
 #include "core/diagnostics.h"
-#include "core/genray.h"
+#include "core/render/genray.h"
 
 namespace phasor {
 
@@ -49,6 +49,24 @@ bool Material::IsFootprintAware() const {
     q.rayOptics = false;
     q.gr = &gr;
     return (Capabilities(q) & CapFootprintAware) != 0;
+}
+
+std::optional<ScatterSample> SampleListedLobe(const NearDeltaLobes &lobes, double u0) {
+    double c = 0;
+    for (const NearDeltaLobe &l : lobes) {
+        c += l.prob;
+        if (u0 >= c && &l + 1 != lobes.end()) continue;  // the last lobe takes rounding's remainder
+        if (!(l.prob > 0)) return std::nullopt;
+        ScatterSample s;
+        s.wo = l.wo[0];
+        s.weight = l.weight / l.prob;
+        s.pdf = l.prob;
+        s.lobe = l.id;
+        s.flags = l.flags;
+        s.eta = l.Eta(0);
+        return s;
+    }
+    return std::nullopt;
 }
 
 bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda,

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/pixel_integrator.h"
+#include "core/render/pixel_integrator.h"
 
 #include <algorithm>
 #include <chrono>

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — the named render-time counters (core/integrator.h, RenderEvent): one table of keys
+// phasor — the named render-time counters (core/render/integrator.h, RenderEvent): one table of keys
 // and messages.
-#include "core/integrator.h"
+#include "core/render/integrator.h"
 
 namespace phasor {
 

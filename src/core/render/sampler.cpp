@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/sampler.h"
+#include "core/render/sampler.h"
 
 namespace phasor {
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-#include "core/scene.h"
+#include "core/render/scene.h"
 
 namespace phasor {
 

@@ -6,9 +6,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "core/aperture.h"
-#include "core/integrator.h"
-#include "core/scene.h"
+#include "core/render/aperture.h"
+#include "core/render/integrator.h"
+#include "core/render/scene.h"
 
 namespace phasor {
 

@@ -5,7 +5,7 @@
 #include <array>
 #include <cmath>
 
-#include "core/spectrum.h"
+#include "core/spectrum/spectrum.h"
 #include "core/diagnostics.h"
 #include "core/spectrum/cie_tables.h"
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — complex spectra (complex_spectrum.h): scene-file text of each kind.
-#include "core/complex_spectrum.h"
+#include "core/spectrum/complex_spectrum.h"
 
 #include <cstdio>
 

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — sampled wavelengths, spectrum evaluation at them, and Planck's law (spectrum.h).
-#include "core/spectrum.h"
+#include "core/spectrum/spectrum.h"
 
 #include <cmath>
 #include <cstdio>

@@ -29,7 +29,7 @@
 #include <cmath>
 #include <tuple>
 
-#include "core/spectrum.h"
+#include "core/spectrum/spectrum.h"
 
 namespace phasor {
 

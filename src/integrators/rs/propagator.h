@@ -7,8 +7,8 @@
 #include <memory>
 #include <vector>
 
-#include "core/aperture.h"
-#include "core/light.h"
+#include "core/render/aperture.h"
+#include "core/render/light.h"
 #include "core/math.h"
 
 namespace phasor::rs {

@@ -36,10 +36,10 @@
 
 #include <tbb/global_control.h>
 
-#include "core/integrator.h"
-#include "core/material.h"
-#include "core/registry.h"
-#include "core/scene.h"
+#include "core/render/integrator.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
+#include "core/render/scene.h"
 #include "integrators/rs/propagator.h"
 #include "integrators/rs/sensor_quadrature.h"
 #include "integrators/rs/slit_end_error.h"

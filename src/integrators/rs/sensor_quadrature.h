@@ -7,7 +7,7 @@
 #include <functional>
 #include <vector>
 
-#include "core/detector.h"
+#include "core/render/detector.h"
 #include "integrators/rs/propagator.h"
 
 namespace phasor::rs {

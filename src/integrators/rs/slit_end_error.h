@@ -3,8 +3,8 @@
 // selection"): how much the finite length of slits changes the pixels of the infinite-slit field.
 #pragma once
 
-#include "core/aperture.h"
-#include "core/detector.h"
+#include "core/render/aperture.h"
+#include "core/render/detector.h"
 #include "core/math.h"
 
 namespace phasor::rs {

@@ -2,7 +2,7 @@
 // The Embree accelerator: hits recomputed in double precision must match long-double references
 // for spheres, disks and triangles; Occluded must agree with Intersect; spawned rays must not
 // re-hit their own surface at real scale; queries are thread-safe.
-#include "core/accel.h"
+#include "core/geometry/accel.h"
 
 #include <gtest/gtest.h>
 
@@ -12,7 +12,7 @@
 
 #include "core/diagnostics.h"
 #include "core/geometry/analytic.h"
-#include "core/mesh_io.h"
+#include "core/geometry/mesh_io.h"
 #include "geometry_test_util.h"
 #include "support/stats.h"
 

@@ -10,8 +10,8 @@
 #include <functional>
 
 #include "core/geometry/analytic.h"
-#include "core/mesh_io.h"
-#include "core/shape.h"
+#include "core/geometry/mesh_io.h"
+#include "core/render/shape.h"
 #include "support/stats.h"
 
 namespace phasor {

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // OBJ and glTF import: exact content of small known files, .gltf/.glb equivalence, the demo
 // asset, and errors (naming the file) for corrupt, missing and malformed input.
-#include "core/mesh_io.h"
+#include "core/geometry/mesh_io.h"
 
 #include <gtest/gtest.h>
 

@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "core/diagnostics.h"
-#include "core/mesh_io.h"
+#include "core/geometry/mesh_io.h"
 #include "geometry_test_util.h"
 
 namespace phasor {

@@ -16,7 +16,7 @@
 #include <gtest/gtest.h>
 
 #include "core/diagnostics.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
 
 namespace phasor {
 namespace {

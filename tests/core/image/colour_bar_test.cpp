@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/image_io.h"
-#include "core/plot.h"
+#include "core/image/image_io.h"
+#include "core/image/plot.h"
 #include "support/temp_dir.h"
 
 namespace phasor {

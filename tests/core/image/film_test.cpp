@@ -11,7 +11,7 @@
 #include <gtest/gtest.h>
 
 #include "core/diagnostics.h"
-#include "core/film.h"
+#include "core/image/film.h"
 #include "support/stats.h"
 
 namespace phasor {

@@ -18,7 +18,7 @@
 #include <gtest/gtest.h>
 
 #include "core/diagnostics.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
 #include "support/stats.h"
 #include "support/temp_dir.h"
 
@@ -236,7 +236,7 @@ TEST_F(ImageIoTest, FalseColourMapsTheDbRangeOntoViridis) {
     WriteFalseColorPng(path, img, "intensity", rangeDb);
     Image back = ReadImage(path);
     // The map sits at the top left below a 32 px title band, enlarged to 256 px tall (a whole
-    // factor, core/plot.h WriteImageWithColourBarPng), with its colour bar to the right.
+    // factor, core/image/plot.h WriteImageWithColourBarPng), with its colour bar to the right.
     const int scale = 256, top = 32;
     ASSERT_GT(back.width, img.width * scale);
     ASSERT_EQ(back.channels.size(), 3u);

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// All-or-nothing output files (core/output_file.h): exact bytes on success; on a failed write —
+// All-or-nothing output files (core/image/output_file.h): exact bytes on success; on a failed write —
 // simulated with a file-size limit (RLIMIT_FSIZE makes write(2) fail with EFBIG exactly where a
 // full disk fails with ENOSPC) — an error naming the file and nothing left behind, for raw files
 // and for every image writer (EXR, PNG, false-colour PNG, plot).
@@ -15,9 +15,9 @@
 #include <gtest/gtest.h>
 
 #include "core/diagnostics.h"
-#include "core/image_io.h"
-#include "core/output_file.h"
-#include "core/plot.h"
+#include "core/image/image_io.h"
+#include "core/image/output_file.h"
+#include "core/image/plot.h"
 #include "support/stats.h"
 #include "support/temp_dir.h"
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The line-plot rasteriser (core/plot.h): strokes land on the pixels the layout maps the data to,
+// The line-plot rasteriser (core/image/plot.h): strokes land on the pixels the layout maps the data to,
 // dashes have gaps, non-finite points break a line, axes and ticks are drawn, nice tick values,
 // text with the default font and a text-less plot without one, atomic writes.
 
@@ -13,8 +13,8 @@
 #include <gtest/gtest.h>
 
 #include "core/diagnostics.h"
-#include "core/image_io.h"
-#include "core/plot.h"
+#include "core/image/image_io.h"
+#include "core/image/plot.h"
 #include "support/temp_dir.h"
 
 namespace phasor {

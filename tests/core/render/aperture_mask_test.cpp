@@ -1,13 +1,13 @@
 // SPDX-License-Identifier: Apache-2.0
-// Aperture openings (core/aperture.h): pieces tile (openings ∩ box) exactly, transmission lookup,
+// Aperture openings (core/render/aperture.h): pieces tile (openings ∩ box) exactly, transmission lookup,
 // polygon validation, bitmap masks, the plate frame.
 #include <gtest/gtest.h>
 
 #include <filesystem>
 
-#include "core/aperture.h"
+#include "core/render/aperture.h"
 #include "core/diagnostics.h"
-#include "core/image_io.h"
+#include "core/image/image_io.h"
 
 namespace phasor {
 namespace {

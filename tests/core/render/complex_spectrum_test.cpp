@@ -1,10 +1,10 @@
 // SPDX-License-Identifier: Apache-2.0
-// Complex spectra (core/complex_spectrum.h, core/named_ior.h) read through
+// Complex spectra (core/spectrum/complex_spectrum.h, core/spectrum/named_ior.h) read through
 // BuildContext::GetComplexSpectrum, as a kernel reads its `ior`, including a field of a record.
 #include <gtest/gtest.h>
 
-#include "core/complex_spectrum.h"
-#include "core/registry.h"
+#include "core/spectrum/complex_spectrum.h"
+#include "core/render/registry.h"
 
 namespace phasor {
 namespace {

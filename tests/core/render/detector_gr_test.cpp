@@ -5,7 +5,7 @@
 
 #include <set>
 
-#include "core/detector.h"
+#include "core/render/detector.h"
 #include "support/scene_builder.h"
 
 namespace phasor::test {

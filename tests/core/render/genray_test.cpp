@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// The generalized ray (core/genray.h) against theory §1–§2: moments, minimum uncertainty, the S6.3
+// The generalized ray (core/render/genray.h) against theory §1–§2: moments, minimum uncertainty, the S6.3
 // free-space law, ABCD composition, thin lens / mirror, time reversal, the wave function ↔
 // phase-space density (WDF) pair, the oblique cut's norm, and the Eq. 24 closed forms against
 // direct quadrature of their defining integrals.
@@ -7,7 +7,7 @@
 
 #include <functional>
 
-#include "core/genray.h"
+#include "core/render/genray.h"
 
 namespace phasor {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/plugin_families.h"
-#include "core/registry.h"
+#include "core/render/registry.h"
 
 namespace phasor {
 namespace {

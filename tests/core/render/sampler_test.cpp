@@ -3,7 +3,7 @@
 
 #include <set>
 
-#include "core/sampler.h"
+#include "core/render/sampler.h"
 #include "support/stats.h"
 
 namespace phasor {

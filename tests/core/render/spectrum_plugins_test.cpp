@@ -1,12 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
-// The spectrum plug-ins (src/core/spectra/): schemas, values, and errors, created through the
+// The spectrum plug-ins (src/spectra/): schemas, values, and errors, created through the
 // registry as a scene would.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-#include "core/registry.h"
-#include "core/spectrum.h"
+#include "core/render/registry.h"
+#include "core/spectrum/spectrum.h"
 #include "support/stats.h"
 
 namespace phasor {

@@ -2,7 +2,7 @@
 // SampledWavelengths, Spectrum::Sample, EvalEmission (line vs continuum), ConstantSpectrum.
 #include <gtest/gtest.h>
 
-#include "core/spectrum.h"
+#include "core/spectrum/spectrum.h"
 #include "core/spectrum/test_spectra.h"
 
 namespace phasor {

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "core/spectrum.h"
+#include "core/spectrum/spectrum.h"
 
 namespace phasor::test {
 

@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <functional>
 
-#include "core/spectrum.h"
+#include "core/spectrum/spectrum.h"
 #include "core/spectrum/test_spectra.h"
 #include "support/stats.h"
 

@@ -1,0 +1,203 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the generalized ray (GR): a mean ray plus an isotropic Gaussian phase-space footprint
+// (β², ρ) per transverse axis (theory §1, §0 D1), its ABCD evolution (§1.6, D3), its wave function
+// on a plane (§1.3, §6.3 oblique cut) and the closed-form phase-space overlaps with source WDFs
+// (Eq. 24, theory §2.4). Everything is double precision; lengths in metres, k in rad/m.
+//
+// Conventions (docs/generalized_rays.md):
+//   * (r, k) transverse coordinates in the GR's own frame (⊥ to its mean direction d); per axis the
+//     covariance is Σ = ½[[β², ρ], [ρ, (1+ρ²)/β²]] (det Σ = ¼, a pure state).
+//   * ρ > 0 means diverging along d. A backward tracer propagates along its tracing direction
+//     (ρ grows); the *physical* field is the time reverse (d → −d, ρ → −ρ, ψ → ψ*), D3.
+//   * Measurements (Eq. 24) take the physical GR: d is the direction in which light flows.
+#pragma once
+
+#include <array>
+
+#include "core/math.h"
+#include "core/render/shape.h"
+#include "core/spectrum/spectrum.h"
+
+namespace phasor {
+
+/// A ray-transfer matrix acting on one transverse axis in (r, k) coordinates (theory §1.6):
+/// (r, k) ← (A r + B k, C r + D k). det = 1 for every lossless element.
+struct Abcd {
+    double a = 1, b = 0, c = 0, d = 1;
+    /// Free space over a distance z [m] in a medium of wavenumber k: B = z̄ = z/k (S6.3).
+    static Abcd FreeSpace(double z, double k) { return {1, z / k, 0, 1}; }
+    /// Thin lens of focal length f [m] (f > 0 converging): C = −k/f.
+    static Abcd ThinLens(double f, double k) { return {1, 0, -k / f, 1}; }
+    /// Spherical mirror of radius R [m] (R > 0 concave, focusing): a thin lens with f = R/2.
+    static Abcd CurvedMirror(double radius, double k) { return ThinLens(0.5 * radius, k); }
+    /// Spherical refracting interface of radius R [m] (R > 0: centre of curvature on the far side)
+    /// from wavenumber k1 to k2. In (r, θ) it is [[1, 0], [(n₁−n₂)/(R n₂), n₁/n₂]]; with k⊥ = kθ
+    /// this is [[1, 0], [(k₁−k₂)/R, 1]] (transverse wavevector conserved plus a lens term).
+    static Abcd CurvedInterface(double radius, double k1, double k2) { return {1, 0, (k1 - k2) / radius, 1}; }
+    /// Matrix product: (this * o) applies o first.
+    Abcd operator*(const Abcd &o) const {
+        return {a * o.a + b * o.c, a * o.b + b * o.d, c * o.a + d * o.c, c * o.b + d * o.d};
+    }
+    double Det() const { return a * d - b * c; }
+};
+
+/// Per-axis covariance of a GR in (r, k): rr = Var r, rk = Cov(r, k), kk = Var k (theory §1.2).
+struct GrCovariance {
+    double rr = 0, rk = 0, kk = 0;
+    /// Σ = ½[[β², ρ], [ρ, (1+ρ²)/β²]].
+    static GrCovariance FromBetaRho(double beta2, double rho) {
+        return {0.5 * beta2, 0.5 * rho, 0.5 * (1 + rho * rho) / beta2};
+    }
+    double Beta2() const { return 2 * rr; }
+    double Rho() const { return 2 * rk; }
+    double Det() const { return rr * kk - rk * rk; }
+    /// Σ ← T Σ Tᵀ.
+    GrCovariance Transformed(const Abcd &t) const;
+    GrCovariance operator+(const GrCovariance &o) const { return {rr + o.rr, rk + o.rk, kk + o.kk}; }
+};
+
+/// One generalized ray at one wavelength (theory §1.7).
+struct GenRay {
+    Vec3 o;            // mean position r0 [m]
+    Vec3 d{0, 0, 1};   // unit mean direction; k0 = k·d
+    double k = 0;      // wavenumber in the current medium, 2πη/λ [rad/m]
+    double beta2 = 0;  // β² [m²]
+    double rho = 0;    // correlation (curvature) parameter, dimensionless
+
+    /// σ_r² = β²/2 per transverse axis [m²] (theory §1.2).
+    double SigmaR2() const { return 0.5 * beta2; }
+    /// σ_k² = (1+ρ²)/(2β²) per transverse axis [rad²/m²]; invariant in free space.
+    double SigmaK2() const { return 0.5 * (1 + rho * rho) / beta2; }
+    /// Angular variance of the propagation direction per axis, σ_k²/k² [rad²].
+    double AngularVariance() const { return SigmaK2() / (k * k); }
+    GrCovariance Covariance() const { return GrCovariance::FromBetaRho(beta2, rho); }
+    Ray MeanRay() const { return Ray{o, d}; }
+    /// The GR's own transverse frame: (s, t) span the plane ⊥ d, n = d.
+    Frame TransverseFrame() const { return Frame::FromNormal(d); }
+
+    /// Free-space propagation by z [m] along d (supplement S6.3, theory §1.6):
+    /// β² ← β² + z̄(2ρ + z̄(1+ρ²)/β²), ρ ← ρ + z̄(1+ρ²)/β², z̄ = z/k; r0 ← r0 + z d.
+    void Propagate(double z);
+    /// Applies a transfer matrix to the footprint (Σ ← TΣTᵀ); the mean ray is unchanged.
+    void Apply(const Abcd &t);
+    /// Reflection/refraction at a smooth flat interface (S6.4): new mean direction and wavenumber,
+    /// β and ρ kept.
+    void Redirect(const Vec3 &newDirection, double newK) {
+        d = newDirection;
+        k = newK;
+    }
+    /// Time reversal (D3): d → −d, ρ → −ρ (the complex-conjugate wave function). An involution.
+    GenRay TimeReversed() const { return GenRay{o, -d, k, beta2, -rho}; }
+
+    /// Wave function ψ (theory §1.3) at a point x near the transverse plane through o:
+    /// (πβ²)^{-1/2}·e^{ik d·Δ}·e^{−(1−iρ)|Δ⊥|²/(2β²)}, Δ = x − o (paraxial: no evolution along d).
+    /// Unit norm over the transverse plane.
+    Complex WaveFunction(const Vec3 &x) const;
+    /// ψ on the plane through o with unit normal n (the oblique cut, theory §6.3 step 3): the
+    /// transverse profile at the projected offset, the carrier e^{ik d·Δ}, and √|d·n| so that
+    /// ∫_plane |ψ|² dA = 1. Zero if d ∥ plane.
+    Complex OnPlane(const Vec3 &x, const Vec3 &n) const;
+    /// The physical field on the plane: the time reverse of the traced GR, i.e. conj(OnPlane).
+    Complex PhysicalOnPlane(const Vec3 &x, const Vec3 &n) const { return std::conj(OnPlane(x, n)); }
+
+    /// The phase-space density g(r, k) (theory §1.2) at transverse offsets (Δr, Δk) in the own
+    /// frame: π⁻²·exp(−|Δr|²/β² − |βΔk − (ρ/β)Δr|²). Integrates to 1 over d²r d²k.
+    double PhaseSpaceDensity(const Vec2 &dr, const Vec2 &dk) const;
+};
+
+/// The wavelengths a path carries share one mean ray; each has its own footprint (for a camera
+/// β ∝ λ, for a sensor plane σ_k/k ∝ λ). Used by the `grt` integrator.
+struct SpectralGenRay {
+    Vec3 o, d;
+    int count = 1;  // wavelengths in use (SampledWavelengths::Count())
+    std::array<double, NumWavelengths> k{}, beta2{}, rho{};
+
+    GenRay At(int i) const { return GenRay{o, d, k[i], beta2[i], rho[i]}; }
+    Ray MeanRay() const { return Ray{o, d}; }
+    void Propagate(double z);
+    /// New mean direction; every wavenumber scaled by etaRatio (= η_new/η_old; 1 on reflection).
+    void Redirect(const Vec3 &newDirection, double etaRatio);
+    SpectralGenRay TimeReversed() const;
+};
+
+// ---- Coherent TEM₀₀ Gaussian beams (the `gaussian_beam` light, theory §2.2) ---------------------
+
+/// A Gaussian beam by its geometry: waist centre, unit axis (direction of travel) and β_s² of the
+/// waist [m²] (w₀ = √2·β_s, the 1/e² intensity radius). For wavenumber k, with z = axis·(p − waist),
+/// r = the distance of p from the axis, z_R = kβ_s² and q = z − i·z_R, the field of a beam of unit
+/// power is (paraxial; Siegman, "Lasers", §17.1, in the GR convention of theory §1.3)
+///     ψ(p) = (πβ_s²)^{−1/2}·(q(0)/q(z))·exp(ik z + ik r²/(2q(z))),
+/// so |ψ|² = exp(−r²/β²(z))/(πβ²(z)), β²(z) = β_s²(1 + (z/z_R)²), and the wavefront diverges for
+/// z > 0 (e^{ikr} convention of a spherical wave).
+struct GaussianBeamGeometry {
+    Vec3 waist;
+    Vec3 axis{0, 0, 1};
+    double beta2 = 0;  // β_s² [m²]
+
+    /// z = axis·(p − waist) [m].
+    double Axial(const Vec3 &p) const { return Dot(p - waist, axis); }
+    /// q(z) = z − i·kβ_s² [m].
+    Complex Q(double z, double k) const { return Complex(z, -k * beta2); }
+    /// β²(z) = β_s²(1 + (z/z_R)²) [m²].
+    double Beta2At(double z, double k) const;
+    /// ψ(p) of a unit-power beam [1/m] (above), with the phase k·zRef removed (only relative phases
+    /// matter; keeps the argument small far from the waist).
+    Complex Field(const Vec3 &p, double k, double zRef = 0) const;
+};
+
+// ---- Closed-form measurements (Eq. 24, theory §2.4) ------------------------------------------
+// `g` is always the *physical* GR (d = direction of light flow, ρ > 0 diverging along it). The
+// returned M is the phase-space overlap ∫∫ 𝒲_s g in the source's units times m² (M = L/k² for a
+// thermal emitter); multiply by k² for the camera's radiance units (theory §0 D4).
+
+/// Density of the isotropic bivariate normal N₂(x; 0, var·I) at |x|² = r2.
+inline double Normal2(double r2, double var) { return std::exp(-0.5 * r2 / var) / (2 * Pi * var); }
+/// Transverse part of k·s in g's own frame (|·| = k sin∠(s, d)); zero vector if s·d ≤ 0.
+Vec2 TransverseWavevector(const GenRay &g, const Vec3 &s);
+/// Item 2: a coherent plane wave of irradiance E (normal to its direction s):
+/// M = E·β²/(π(1+ρ²))·exp(−β²|k_s⊥|²/(1+ρ²)). 0 if s points against g.
+double MeasurePlaneWave(const GenRay &g, const Vec3 &s, double irradiance);
+/// Item 3: a distant source with a Gaussian angular profile of covariance omega·I [rad²]:
+/// M = E·N₂(k_s⊥; 0, σ_k²I + k²Ω).
+double MeasureDistantGaussian(const GenRay &g, const Vec3 &s, double irradiance, double omega);
+/// A distant source of uniform radiance over a cone of half-angle alpha (a disc, e.g. the sun):
+/// 𝒲_s = E/(πk²sin²α) on the disc |k⊥ − k_s⊥| < k sinα, so M = E/(πk²sin²α)·P(disc) with P the
+/// mass of N₂(0, σ_k²I) in that disc (Rice distribution). alpha = 0 gives the plane wave.
+double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double alpha);
+/// Item 5: an isotropic point source of intensity I [W/sr] at p (coherent spherical wave):
+/// M = (I/R²)·exp(−β²|κ|²/(1+a²β²))/(π(β⁻²+a²)), κ = k(r0−p)⊥/R, a = βk/R − ρ/β.
+double MeasurePointSource(const GenRay &g, const Vec3 &p, double intensity);
+/// A Gaussian (Schell-model) beam source: power P, its own GR-like state `beam` (mean ray along
+/// the light flow, footprint at beam.o). Item 1 per axis in g's frame:
+/// M = P·Π_axes N₂(Δu; 0, Σ_g + Σ_s), evaluated in the plane ⊥ g.d through g.o (the beam is
+/// propagated to that plane along its axis; paraxial, axes nearly parallel).
+double MeasureGaussianBeam(const GenRay &g, const GenRay &beam, double power);
+
+// ---- What closed-form sources deliver to a GR (used by lights, detectors and `grt`) ------------
+
+/// Eq. 24 for one physical GR (per carried wavelength) in radiance units, k²·M (theory §0 D4), and
+/// where the source is seen from the GR's origin (for the visibility test).
+struct GrMeasurement {
+    SampledSpectrum value;   // k²·M [W/m²/sr per spectral unit of the light's spectrum]
+    Vec3 wi;                 // unit direction from the GR's origin towards the source
+    double dist = Infinity;  // distance to the source (Infinity for sources at infinity)
+};
+
+/// D4a: a closed-form source integrated over every direction of a GR at its waist,
+/// ∫d²k⊥ M[g(k⊥)] in the GR's own transverse frame (≈ the irradiance normal to wi, smoothed by the
+/// GR's spatial footprint where the source varies in space). A sensor multiplies by cosθ and by
+/// the fraction of the directions that its acceptance cone keeps.
+struct GrIncidence {
+    SampledSpectrum irradiance;  // [W/m² per spectral unit]
+    Vec3 wi;                     // unit mean direction towards the source
+    double dist = Infinity;
+    double angularVariance = 0;  // per-axis variance of the arrival direction about wi [rad²]
+};
+
+/// P(|X| ≤ radius) for X ~ N₂(μ, σ²I) with |μ| = offset (the Rice CDF, i.e. 1 − Marcum Q₁);
+/// accurate to ~1e-12 absolute. sigma = 0 gives the indicator.
+double DiscGaussianProbability(double offset, double radius, double sigma);
+/// P(X ∈ [lo.x, hi.x] × [lo.y, hi.y]) for X ~ N₂(μ, σ²I).
+double RectGaussianProbability(const Vec2 &mu, double sigma, const Vec2 &lo, const Vec2 &hi);
+
+}  // namespace phasor

@@ -1,0 +1,115 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — pieces shared by the path-tracing integrators (`ray`, `grt`): multiple importance
+// sampling, next-event estimation to one uniformly chosen light, emission met by a path (area and
+// infinite lights, MIS-weighted against NEE) and Russian roulette. Radiance units throughout
+// (camera-normalised; theory §2.4 item 4).
+#pragma once
+
+#include <functional>
+
+#include "core/render/pixel_integrator.h"
+#include "core/render/scene.h"
+
+namespace phasor::path {
+
+/// Power heuristic with β = 2 (Veach 1997); f = ∞ marks a delta strategy.
+inline double PowerHeuristic(double f, double g) {
+    if (std::isinf(f)) return 1;
+    double f2 = f * f, g2 = g * g;
+    return f2 + g2 > 0 ? f2 / (f2 + g2) : 0;
+}
+
+/// The MIS state of a path: whether the last scattering was a (near-)delta lobe or the detector
+/// (then emission found by the path is counted in full), else the kernel's solid-angle pdf of the
+/// last direction and the vertex it was sampled at.
+struct MisState {
+    bool deltaBounce = true;
+    double prevPdf = 0;
+    LightSampleContext prevCtx;
+};
+
+/// Probability of choosing one particular light in SampleDirectLight.
+inline double LightSelectPdf(const Scene &scene) {
+    return scene.Lights().empty() ? 0 : 1.0 / double(scene.Lights().size());
+}
+
+/// Next-event estimation at a surface vertex (pbrt-style): one light chosen uniformly with
+/// uLight, sampled with uPos; the kernel is evaluated with the query as given (so the caller
+/// decides which lobes Eval reports). Delta lights get f·|cosθ|·E; area and infinite lights are
+/// MIS-weighted (power heuristic) against kernel sampling. Returns the contribution without the
+/// path throughput; counts the shadow ray in stats.
+inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceInteraction &si,
+                                         const Material &mat, const ScatterQuery &q, double uLight,
+                                         const Vec2 &uPos, const SampledWavelengths &wl, PathStats &stats) {
+    const auto &lights = scene.Lights();
+    if (lights.empty()) return SampledSpectrum(0.0);
+    const double selectPdf = LightSelectPdf(scene);
+    const std::size_t li = std::min(lights.size() - 1, std::size_t(uLight * lights.size()));
+    const Light *light = lights[li];
+    const LightSampleContext ctx{si.p, si.n};
+    auto ls = light->SampleLi(ctx, uPos, wl);
+    if (!ls || !(ls->pdf > 0) || (ls->L.IsZero() && !ls->beam)) return SampledSpectrum(0.0);
+    const Vec3 wo = si.shading.ToLocal(ls->wi);
+    // A footprint-aware kernel integrates a Gaussian beam's own field over the GR's footprint and
+    // answers per unit on-axis irradiance (IncidentWave); every other kernel sees the local
+    // irradiance at the hit.
+    const bool beamField = ls->beam && (mat.Capabilities(q) & CapFootprintAware) && q.gr && !q.rayOptics;
+    const IncidentWave wave{ls->dist, beamField ? &*ls->beam : nullptr};
+    const SampledSpectrum &incident = beamField ? ls->beamAxisIrradiance : ls->L;
+    const SampledSpectrum f = mat.EvalFrom(q, wo, wave) * std::abs(wo.z);
+    if (f.IsZero() || incident.IsZero()) return SampledSpectrum(0.0);
+    ++stats.rays;
+    const bool blocked = std::isinf(ls->dist) ? scene.OccludedDirection(si, ls->wi)
+                                              : scene.Occluded(si, si.p + ls->wi * ls->dist);
+    if (blocked) return SampledSpectrum(0.0);
+    if (ls->delta) return f * incident / selectPdf;
+    const double pl = ls->pdf * selectPdf;
+    return f * incident * (PowerHeuristic(pl, mat.Pdf(q, wo)) / pl);
+}
+
+/// Radiance emitted by the area light at si towards the path (direction of travel rayDir),
+/// MIS-weighted against NEE unless the path arrived through a delta lobe.
+inline SampledSpectrum HitEmission(const Scene &scene, const SurfaceInteraction &si, const Vec3 &rayDir,
+                                   const SampledWavelengths &wl, const MisState &mis) {
+    if (!si.areaLight) return SampledSpectrum(0.0);
+    const SampledSpectrum le = si.areaLight->L(si.p, si.n, -rayDir, wl);
+    if (le.IsZero() || mis.deltaBounce) return le;
+    const double lightPdf = si.areaLight->PdfLi(mis.prevCtx, rayDir, si.p, si.n) * LightSelectPdf(scene);
+    return le * PowerHeuristic(mis.prevPdf, lightPdf);
+}
+
+/// Radiance of the infinite lights along an escaping direction d, MIS-weighted against NEE unless
+/// the path arrived through a delta lobe. Lights for which skip(light) is true are left out (the
+/// `grt` integrator has measured them in closed form already).
+inline SampledSpectrum EscapedEmission(const Scene &scene, const Vec3 &d, const SampledWavelengths &wl,
+                                       const MisState &mis,
+                                       const std::function<bool(const Light *)> &skip = {}) {
+    SampledSpectrum sum(0.0);
+    for (const Light *l : scene.InfiniteLights()) {
+        if (skip && skip(l)) continue;
+        const SampledSpectrum le = l->Le(d, wl);
+        if (le.IsZero()) continue;
+        if (mis.deltaBounce)
+            sum += le;
+        else {
+            const double lightPdf = l->PdfLi(mis.prevCtx, d, Vec3(), Vec3()) * LightSelectPdf(scene);
+            sum += le * PowerHeuristic(mis.prevPdf, lightPdf);
+        }
+    }
+    return sum;
+}
+
+/// Russian roulette on the throughput: survive with probability max(0.05, max_λ beta) when that
+/// is below 1 (and rescale). Returns false if the path ends.
+inline bool RussianRoulette(SampledSpectrum &beta, double u) {
+    const double m = beta.Max();
+    if (!(m > 0)) return false;
+    if (m < 1) {
+        const double survive = std::max(0.05, m);
+        if (u >= survive) return false;
+        beta /= survive;
+    }
+    return true;
+}
+
+}  // namespace phasor::path

@@ -1,0 +1,89 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the built scene: shapes with their kernels, lights, detector, integrator and render
+// settings, plus the Embree accelerator and the wavelength sampler.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/geometry/accel.h"
+#include "core/render/detector.h"
+#include "core/render/integrator.h"
+#include "core/render/light.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
+#include "core/spectrum/spectrum.h"
+
+namespace phasor {
+
+/// Settings of the `Render` block (all optional; the CLI may override them).
+struct RenderSettings {
+    int spp = 16;
+    uint64_t seed = 0;
+    std::string output;          // "" → derived from the scene file name
+    std::string sampler = "sobol";
+    FileLoc loc;
+};
+
+/// The schema of the `Render` block (documented with the plug-ins: `phasor describe Render`).
+const Schema &RenderSchema();
+
+class Scene {
+  public:
+    /// Builds a scene from a description: creates every entity through the registry, checks the
+    /// whole thing (exactly one detector unless `Render.detector` picks one, …). Returns nullptr
+    /// after reporting errors to `diag`. `integratorOverride` picks an integrator by @name or by
+    /// plug-in type (created with default parameters when the scene has none of that type).
+    static std::unique_ptr<Scene> Build(const SceneDesc &desc, Diagnostics &diag,
+                                        const std::string &integratorOverride = "");
+    ~Scene();
+
+    const Accel &GetAccel() const { return *accel_; }
+    const std::vector<const Light *> &Lights() const { return lights_; }
+    const std::vector<std::shared_ptr<Shape>> &Shapes() const { return shapes_; }
+    /// Where a plug-in object (light, shape, detector, …) was defined, for errors found at render
+    /// time; unknown for objects the scene did not create from a description.
+    FileLoc Where(const void *object) const;
+    const std::vector<const Light *> &InfiniteLights() const { return infiniteLights_; }
+    const Detector &GetDetector() const { return *detector_; }
+    const Integrator &GetIntegrator() const { return *integrator_; }
+    const WavelengthSampler &Wavelengths() const { return *wavelengths_; }
+    /// After a render whose image is black: the likely cause and its fix, from cheap checks
+    /// (lights' spectra vs the detector's response, aperture plates with no open area, a camera
+    /// inside closed geometry, lights reaching a sensor plane only from behind). scene_checks.cpp.
+    std::string DarkImageCause() const;
+    const RenderSettings &Settings() const { return settings_; }
+    RenderSettings &Settings() { return settings_; }
+    Bounds3 Bounds() const { return accel_->Bounds(); }
+
+    std::optional<SurfaceInteraction> Intersect(const Ray &ray, double tMax = Infinity) const {
+        if (rayLog_) rayLog_->push_back(ray);
+        return accel_->IntersectSurface(ray, 0, tMax);
+    }
+    /// Benchmarks only: appends every ray the scene is asked to trace (intersection and shadow
+    /// rays) to `log`; single-threaded renders only. nullptr stops recording.
+    void RecordRays(std::vector<Ray> *log) { rayLog_ = log; }
+    /// True if the segment from `from` (a surface point) to `to` is blocked.
+    bool Occluded(const SurfaceInteraction &from, const Vec3 &to) const;
+    bool OccludedDirection(const SurfaceInteraction &from, const Vec3 &dir) const;
+
+  private:
+    Scene() = default;
+    /// A sensor plane against the aperture plates: an error if it lies in or crosses a plate's
+    /// plane; without `aim`, aims it at the plate all light must pass (or warns). scene_checks.cpp.
+    void CheckSensorPlane(Diagnostics &diag);
+    std::unique_ptr<BuildContext> ctx_;  // owns every plug-in object
+    std::unique_ptr<Accel> accel_;
+    std::vector<std::shared_ptr<Shape>> shapes_;
+    std::vector<const Light *> lights_, infiniteLights_;
+    std::shared_ptr<Detector> detector_;
+    std::shared_ptr<Integrator> integrator_;
+    std::unique_ptr<WavelengthSampler> wavelengths_;
+    RenderSettings settings_;
+    std::unique_ptr<SceneDesc> ownedDesc_;
+    std::vector<Ray> *rayLog_ = nullptr;
+};
+
+}  // namespace phasor

@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: Apache-2.0
+// `plane_wave`: a fully coherent plane wave (theory §2.2: 𝒲_s = E·δ(k⊥ − k_s⊥)), e.g. a collimated
+// laser much wider than the scene. `irradiance` is the total irradiance [W/m²] measured on a plane
+// normal to `direction` (the direction of travel); `spectrum` only gives the spectral shape (it is
+// normalised to unit integral; a line carries all of it). Delta direction: classical rays never
+// hit it (the `ray` integrator sees it only through next-event estimation); generalized rays
+// measure it in closed form (theory §2.4 item 2, §0 D4a/D14). Coherence: Ω = 0.
+#include "core/render/light.h"
+#include "lights/closed_form.h"
+#include "core/render/registry.h"
+
+namespace phasor {
+
+class PlaneWaveLight final : public Light {
+  public:
+    PlaneWaveLight(Vec3 dir, double e, std::shared_ptr<const Spectrum> s)
+        : dir_(Normalize(dir)), irradiance_(e), spectrum_(std::move(s)) {
+        scale_ = TotalScale(*spectrum_, irradiance_);
+    }
+
+    static const Schema &GetSchema() {
+        static const Schema s{
+            "light",
+            "plane_wave",
+            "Coherent plane wave (delta direction); irradiance is the total, spectrum the shape.",
+            {P::Vector("direction", "direction in which the wave travels").Default(Value::Vector({0, 0, -1})),
+             P::Number("irradiance", "total irradiance on a plane normal to the direction", Dim::Irradiance())
+                 .Default(Value::Number(1, Dim::Irradiance()))
+                 .Min(0)
+                 .Max(MaxLightStrength),
+             P::Spectrum("spectrum", "spectral shape (normalised to unit integral)")
+                 .Default(Value::Number(1))}};
+        return s;
+    }
+    static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
+        Vec3 dir = DirectionParam(d, "direction");
+        auto spectrum = ShapeSpectrumParam(d, ctx, "plane_wave");
+        return std::make_unique<PlaneWaveLight>(dir, d.GetNumber("irradiance"), spectrum);
+    }
+
+    SampledSpectrum Emission(const SampledWavelengths &wl) const {
+        return EvalEmission(*spectrum_, wl) * scale_;
+    }
+    std::optional<LightSample> SampleLi(const LightSampleContext &, const Vec2 &,
+                                        const SampledWavelengths &wl) const override {
+        return LightSample{Emission(wl), -dir_, Infinity, 1.0, true};
+    }
+    double PdfLi(const LightSampleContext &, const Vec3 &, const Vec3 &, const Vec3 &) const override {
+        return 0;
+    }
+    bool IsDelta() const override { return true; }
+    bool IsInfinite() const override { return true; }
+    bool MeasuredInClosedForm() const override { return true; }
+    std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
+                                           const SampledWavelengths &wl) const override {
+        return MeasureDistantGR(g, dir_, Emission(wl), false, 0, 0);
+    }
+    std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
+                                             const SampledWavelengths &wl) const override {
+        return DistantIncidence(g, dir_, Emission(wl), 0);
+    }
+    LightCoherence Coherence(const Vec3 &) const override { return LightCoherence{-dir_, 0}; }
+    /// The `rs` field: only a line spectrum is monochromatic (the line carries all the irradiance).
+    std::optional<CoherentWave> CoherentField() const override {
+        const auto line = spectrum_->LineWavelength();
+        if (!line) return std::nullopt;
+        CoherentWave w;
+        w.kind = CoherentWave::Kind::Plane;
+        w.dir = dir_;
+        w.strength = scale_ * spectrum_->Eval(*line);  // = irradiance
+        w.lambda = *line;
+        return w;
+    }
+    void Preprocess(const Bounds3 &b) override { sceneArea_ = SceneCrossSection(b); }
+    const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
+    double PowerScale() const override { return scale_ * sceneArea_; }
+    std::string ToString() const override {
+        return "plane_wave { direction = " + phasor::ToString(dir_) +
+               ", irradiance = " + std::to_string(irradiance_) + " }";
+    }
+
+  private:
+    Vec3 dir_;
+    double irradiance_, scale_ = 0;
+    std::shared_ptr<const Spectrum> spectrum_;
+    double sceneArea_ = 1;
+};
+
+PHASOR_EXPORT_PLUGIN(Light, PlaneWaveLight)
+
+}  // namespace phasor

@@ -1,0 +1,91 @@
+// SPDX-License-Identifier: Apache-2.0
+// Shared implementation of the point-like lights (`point`, `spot`): a delta-position source of
+// spectral intensity I(λ)·Falloff(direction). Next-event estimation is the inverse-square law;
+// generalized rays measure it in closed form as a coherent spherical wave (theory §2.4 item 5,
+// §0 D4a/D14): the overlap depends on how well the GR's curvature matches the wave's.
+#pragma once
+
+#include <memory>
+
+#include "core/render/light.h"
+#include "lights/closed_form.h"
+
+namespace phasor {
+
+class PointLikeLight : public Light {
+  public:
+    PointLikeLight(Vec3 p, double intensity, std::shared_ptr<const Spectrum> s)
+        : p_(p), intensity_(intensity), spectrum_(std::move(s)) {}
+
+    /// Relative intensity towards unit direction `w` (pointing away from the light), in [0, 1].
+    virtual double Falloff(const Vec3 &w) const = 0;
+
+    std::optional<LightSample> SampleLi(const LightSampleContext &ctx, const Vec2 &,
+                                        const SampledWavelengths &wl) const override {
+        Vec3 d = p_ - ctx.p;
+        double r2 = LengthSquared(d);
+        if (!(r2 > 0)) return std::nullopt;
+        double r = std::sqrt(r2);
+        Vec3 wi = d / r;
+        double f = Falloff(-wi);
+        if (f == 0) return std::nullopt;
+        return LightSample{EvalEmission(*spectrum_, wl) * (intensity_ * f / r2), wi, r, 1.0, true};
+    }
+    double PdfLi(const LightSampleContext &, const Vec3 &, const Vec3 &, const Vec3 &) const override { return 0; }
+    bool IsDelta() const override { return true; }
+    bool MeasuredInClosedForm() const override { return true; }
+    std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
+                                           const SampledWavelengths &wl) const override {
+        const Vec3 toLight = p_ - g.o;
+        const double r = Length(toLight);
+        if (!(r > 0)) return std::nullopt;
+        const double f = Falloff(-toLight / r);
+        if (f == 0) return std::nullopt;
+        GrMeasurement m;
+        m.value = MeasurePerWavelength(g, EvalEmission(*spectrum_, wl) * (intensity_ * f),
+                                       [&](const GenRay &gi) { return MeasurePointSource(gi, p_, 1.0); });
+        m.wi = toLight / r;
+        m.dist = r;
+        return m;
+    }
+    std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
+                                             const SampledWavelengths &wl) const override {
+        // ∫d²k⊥ of theory §2.4 item 5 is exactly I/R² for any (β, ρ); the arrival directions
+        // spread with variance (1 + a²β²)/(2β²k²), a = βk/R − ρ/β.
+        const Vec3 toLight = p_ - g.o;
+        const double r2 = LengthSquared(toLight), r = std::sqrt(r2);
+        if (!(r > 0)) return std::nullopt;
+        const double f = Falloff(-toLight / r);
+        if (f == 0) return std::nullopt;
+        GrIncidence inc;
+        inc.irradiance = EvalEmission(*spectrum_, wl) * (intensity_ * f / r2);
+        inc.wi = toLight / r;
+        inc.dist = r;
+        const GenRay g0 = g.At(0);
+        const double beta = std::sqrt(g0.beta2), a = beta * g0.k / r - g0.rho / beta;
+        inc.angularVariance = (1 + a * a * g0.beta2) / (2 * g0.beta2 * g0.k * g0.k);
+        return inc;
+    }
+    LightCoherence Coherence(const Vec3 &p) const override { return LightCoherence{Normalize(p_ - p), 0}; }
+    /// True if Falloff is 1 in every direction (`point`; a spherical wave for `rs`).
+    virtual bool IsIsotropic() const { return false; }
+    /// The `rs` field: isotropic lights with a line spectrum only; I = intensity × line strength.
+    std::optional<CoherentWave> CoherentField() const override {
+        const auto line = spectrum_->LineWavelength();
+        if (!line || !IsIsotropic()) return std::nullopt;
+        CoherentWave w;
+        w.kind = CoherentWave::Kind::Spherical;
+        w.pos = p_;
+        w.strength = intensity_ * spectrum_->Eval(*line);
+        w.lambda = *line;
+        return w;
+    }
+    const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
+
+  protected:
+    Vec3 p_;
+    double intensity_;
+    std::shared_ptr<const Spectrum> spectrum_;
+};
+
+}  // namespace phasor

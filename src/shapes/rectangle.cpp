@@ -1,0 +1,48 @@
+// SPDX-License-Identifier: Apache-2.0
+// `rectangle`: the quad [−w/2, w/2] × [−h/2, h/2] in the object-space plane z = 0 (normal +z;
+// by default w = h = 2 m, i.e. [−1, 1]²), mapped by `to_world`. Two triangles with uvs
+// (0,0) … (1,1) from the −x−y corner.
+#include "shapes/shape_common.h"
+
+namespace phasor {
+
+class RectangleShape final : public MeshShape {
+  public:
+    using MeshShape::MeshShape;
+
+    static const Schema &GetSchema() {
+        static const Schema s{"shape",
+                              "rectangle",
+                              "Rectangle in the object-space plane z = 0, normal +z (two triangles).",
+                              {P::Length("width", "extent along object-space x")
+                                   .Default(Value::Number(2, Dim::Length()))
+                                   .Min(0, true),
+                               P::Length("height", "extent along object-space y")
+                                   .Default(Value::Number(2, Dim::Length()))
+                                   .Min(0, true),
+                               shape_common::ToWorldParam(), shape_common::MaterialParam()}};
+        return s;
+    }
+    static std::unique_ptr<Shape> Create(const ParamDict &d, BuildContext &ctx) {
+        double hw = 0.5 * d.GetNumber("width"), hh = 0.5 * d.GetNumber("height");
+        TriangleMesh m;
+        m.positions = {{-hw, -hh, 0}, {hw, -hh, 0}, {hw, hh, 0}, {-hw, hh, 0}};
+        m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        m.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from +z
+        m.Transform(ctx.GetTransform(d, "to_world"));
+        auto shape = shape_common::AtParam(d, "to_world",
+                                           [&] { return std::make_unique<RectangleShape>(std::move(m)); });
+        return shape_common::Finish(std::move(shape), d, ctx);
+    }
+    static std::vector<ParamDict> TestPresets() {
+        return {ParamDict(), ParamDict()
+                                 .Set("width", Value::Number(0.5, Dim::Length()))
+                                 .Set("height", Value::Number(0.125, Dim::Length()))};
+    }
+    std::string ToString() const override { return "rectangle " + MeshShape::ToString(); }
+    bool IsPlanar() const override { return true; }
+};
+
+PHASOR_EXPORT_PLUGIN(Shape, RectangleShape)
+
+}  // namespace phasor
