@@ -34,7 +34,7 @@ sanitize: deps
 	  ctest --output-on-failure -j $(JOBS) -L unit --timeout 1800
 
 bench: build
-	@$(BUILD)/bench/run_benchmarks.sh $(BUILD)
+	@bash $(BUILD)/bench/run_benchmarks.sh $(BUILD)
 
 # Regenerates docs/plugins.md from the plug-ins' schemas.
 docs: build
