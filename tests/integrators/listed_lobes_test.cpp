@@ -56,13 +56,6 @@ class TwoLobeTestMaterial final : public Material {
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &, int, const Vec3 &) const override { return std::nullopt; }
     std::string ToString() const override { return "TwoLobeTestMaterial"; }
 
-  protected:
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const override {
-        NearDeltaLobes lobes;
-        ListNearDelta(q, lobes);
-        return SampleListedLobe(lobes, u0);
-    }
-
   private:
     double a_[2], period_;
 };

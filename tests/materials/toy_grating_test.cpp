@@ -101,13 +101,6 @@ class ToyGratingMaterial final : public Material {
         return os.str();
     }
 
-  protected:
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const override {
-        NearDeltaLobes lobes;
-        ListNearDelta(q, lobes);
-        return SampleListedLobe(lobes, u0);
-    }
-
   private:
     // m = k·h·cosθ_i (theory §4.2, D6); h is peak-to-peak, the phase amplitude is k·h·cosθ_i.
     double Modulation(const ScatterQuery &q, double lambda) const {

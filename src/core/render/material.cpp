@@ -51,6 +51,12 @@ bool Material::IsFootprintAware() const {
     return (Capabilities(q) & CapFootprintAware) != 0;
 }
 
+std::optional<ScatterSample> Material::SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const {
+    NearDeltaLobes lobes;
+    ListNearDelta(q, lobes);
+    return SampleListedLobe(lobes, u0);
+}
+
 std::optional<ScatterSample> SampleListedLobe(const NearDeltaLobes &lobes, double u0) {
     double c = 0;
     for (const NearDeltaLobe &l : lobes) {

@@ -229,8 +229,9 @@ class Material {
     virtual std::string ToString() const = 0;
 
   protected:
-    /// Sample over all lobes (the wrapper applies the mask).
-    virtual std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const = 0;
+    /// Sample over all lobes (the wrapper applies the mask). The default serves kernels whose lobes
+    /// are all listed: it picks one of ListNearDelta's lobes with its `prob` (SampleListedLobe).
+    virtual std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const;
     /// The continuous lobes' value [1/sr] (Eval without the mask); 0 for delta-only kernels.
     virtual SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const {
         (void)q;
