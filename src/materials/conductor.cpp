@@ -23,12 +23,13 @@
 #include "core/render/material.h"
 #include "core/render/registry.h"
 #include "materials/fresnel.h"
+#include "materials/smooth_surface.h"
 
 namespace phasor {
 
 class ConductorMaterial final : public Material {
   public:
-    explicit ConductorMaterial(std::shared_ptr<const ComplexSpectrum> ior) : ior_(std::move(ior)) {}
+    explicit ConductorMaterial(std::shared_ptr<const ComplexSpectrum> ior) : ior_(ior), surface_(ior, 0, nullptr) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -86,6 +87,8 @@ class ConductorMaterial final : public Material {
         return r;
     }
 
+    const SmoothSurface *Surface() const override { return &surface_; }
+
     std::string ToString() const override {
         std::ostringstream os;
         os << "ConductorMaterial[ ior = " << ior_->ToString() << " ]";
@@ -115,6 +118,7 @@ class ConductorMaterial final : public Material {
     }
 
     std::shared_ptr<const ComplexSpectrum> ior_;  // n + iκ of the metal, relative to the outside
+    SmoothSurface surface_;                       // the same interface, for kernels that name it `substrate`
 };
 
 PHASOR_EXPORT_PLUGIN(Material, ConductorMaterial)

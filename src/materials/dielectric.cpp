@@ -26,13 +26,14 @@
 #include "core/render/material.h"
 #include "core/render/registry.h"
 #include "materials/fresnel.h"
+#include "materials/smooth_surface.h"
 
 namespace phasor {
 
 class DielectricMaterial final : public Material {
   public:
     DielectricMaterial(std::shared_ptr<const ComplexSpectrum> ior, double cauchyB)
-        : ior_(std::move(ior)), cauchyB_(cauchyB) {
+        : ior_(ior), cauchyB_(cauchyB), surface_(ior, cauchyB, nullptr) {
         // Dispersive if η varies over the band a path may carry (checked on a fine grid).
         const double eta0 = Index(550e-9);
         for (double l = 200e-9; l <= 3000e-9; l *= 1.005)
@@ -146,6 +147,8 @@ class DielectricMaterial final : public Material {
         return r;
     }
 
+    const SmoothSurface *Surface() const override { return &surface_; }
+
     std::string ToString() const override {
         std::ostringstream os;
         os << "DielectricMaterial[ ior = " << ior_->ToString() << ", cauchy_b = " << cauchyB_
@@ -209,6 +212,7 @@ class DielectricMaterial final : public Material {
 
     std::shared_ptr<const ComplexSpectrum> ior_;  // κ = 0 (checked in Create)
     double cauchyB_ = 0;  // Cauchy B [m²]
+    SmoothSurface surface_;  // the same interface, for kernels that name it `substrate`
     bool dispersive_ = false;
 };
 

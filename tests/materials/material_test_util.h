@@ -20,7 +20,19 @@ inline constexpr const char *UnderTestName = "under_test";
 /// that needs another object names one of these):
 ///   @contract_checker  texture  checkerboard(color0 = 0.1, color1 = 0.9, scale = 4)
 ///   @contract_half     texture  constant(value = 0.5)
+///   @contract_gold     material conductor(ior = "Au")
+///   @contract_glass    material dielectric(ior = 1.5)
 inline void AddFixtures(SceneDesc &desc) {
+    auto add = [&](const char *keyword, const char *type, const char *name, const ParamDict &params) {
+        SceneEntity e;
+        e.keyword = keyword;
+        e.type = type;
+        e.name = name;
+        e.params = params;
+        desc.entities.push_back(e);
+    };
+    add("Material", "conductor", "contract_gold", ParamDict().Set("ior", Value::String("Au")));
+    add("Material", "dielectric", "contract_glass", ParamDict().Set("ior", Value::Number(1.5)));
     SceneEntity checker;
     checker.keyword = "Texture";
     checker.type = "checkerboard";

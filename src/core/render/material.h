@@ -6,6 +6,7 @@
 // direction the tracer came from (towards the camera in a backward tracer).
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,6 +23,8 @@ struct SurfaceInteraction;
 struct GaussianBeamGeometry;
 class Shape;
 class ApertureMask;
+class SmoothSurface;
+struct Coating;
 
 /// Lobe flags returned by Sample() and ListNearDelta().
 enum ScatterFlags : unsigned {
@@ -226,6 +229,13 @@ class Material {
     /// Aperture kernels: the plate's openings in plate coordinates (core/render/aperture.h); nullptr for
     /// every other kernel. The forward `rs` integrator reads them.
     virtual const ApertureMask *Openings() const { return nullptr; }
+    /// Smooth kernels (conductor, dielectric, thin_film, multilayer): their plane-wave optics, a
+    /// coating over a substrate (materials/smooth_surface.h) — what `grating` and `harvey_shack`
+    /// multiply their lobes by when they name this kernel as `substrate`; nullptr otherwise.
+    virtual const SmoothSurface *Surface() const { return nullptr; }
+    /// Coating definitions (thin_film, multilayer): their layers, which `coating = @name` puts on
+    /// another kernel's substrate; nullptr for kernels that cannot serve as a coating.
+    virtual std::shared_ptr<const Coating> AsCoating() const { return nullptr; }
     virtual std::string ToString() const = 0;
 
   protected:
