@@ -2,6 +2,7 @@
 // phasor — cylinder functions (bessel.h).
 #include "core/numerics/bessel.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -67,6 +68,41 @@ double BesselI0Scaled(double x) {
     // Asymptotic expansion (Abramowitz & Stegun 9.7.1).
     const double t = 1 / (8 * x);
     return (1 + t * (1 + t * (4.5 + t * 37.5))) / std::sqrt(2 * Pi * x);
+}
+
+void BesselJSequence(double x, int nMax, double *out) {
+    if (nMax < 0) return;
+    if (!(x >= 1e-8)) {
+        // J_n(x) = (x/2)^n/n!·(1 − (x/2)²/(n+1) + …): the next term is below 1e-32 relative.
+        const double h = std::max(0.0, x) / 2;
+        double t = 1;
+        for (int n = 0; n <= nMax; ++n) {
+            out[n] = t * (1 - h * h / (n + 1));
+            t *= h / (n + 1);
+        }
+        return;
+    }
+    // Start above both nMax and x with a margin that covers the transition region n ≈ x
+    // (width ~x^{1/3}) and the decay to 1e-17 relative (Numerical Recipes' bessj uses √(40n)).
+    const double top = std::max(double(nMax), x);
+    int start = int(top + 20 + std::sqrt(40 * top));
+    start += start & 1;  // even, so the normalisation sum pairs up
+    double next = 0, cur = 1e-30, norm = 0;  // J_{n+1}, J_n up to a common factor
+    for (int n = start; n > 0; --n) {
+        const double prev = 2 * n / x * cur - next;  // J_{n−1}
+        next = cur;
+        cur = prev;
+        if (n - 1 <= nMax) out[n - 1] = cur;
+        if ((n - 1) % 2 == 0 && n - 1 > 0) norm += 2 * cur;
+        if (std::abs(cur) > 1e250) {  // rescale everything kept so far
+            cur *= 1e-250;
+            next *= 1e-250;
+            norm *= 1e-250;
+            for (int k = n - 1; k <= nMax; ++k) out[k] *= 1e-250;
+        }
+    }
+    norm += cur;  // + J_0
+    for (int k = 0; k <= nMax; ++k) out[k] /= norm;
 }
 
 }  // namespace phasor
