@@ -82,14 +82,18 @@ void BesselJSequence(double x, int nMax, double *out) {
         }
         return;
     }
-    // Start above both nMax and x with a margin that covers the transition region n ≈ x
-    // (width ~x^{1/3}) and the decay to 1e-17 relative (Numerical Recipes' bessj uses √(40n)).
+    // Start above both nMax and x with a margin d that makes the contamination by the dominant
+    // solution Y negligible at n ≤ max(nMax, x): its relative size there is ~J_N/Y_N, which falls
+    // like exp(−(2/3)(2d)^{3/2}/√x) past the transition n ≈ x (DLMF 10.19.8), below 1e-16 for
+    // d ≳ 0.3·x^{1/3}·… — d = 6 + √(24·max(nMax, x)) covers it with room (x = 250 needs d ≈ 46,
+    // this gives 83; for x ≲ nMax the factor (x/2)^{2d}·(nMax!/N!)² is < 1e-20 already at d = 6).
     const double top = std::max(double(nMax), x);
-    int start = int(top + 20 + std::sqrt(40 * top));
+    int start = int(top + 6 + std::sqrt(24 * top));
     start += start & 1;  // even, so the normalisation sum pairs up
     double next = 0, cur = 1e-30, norm = 0;  // J_{n+1}, J_n up to a common factor
+    const double twoOverX = 2 / x;            // a multiplication in the loop, not a division
     for (int n = start; n > 0; --n) {
-        const double prev = 2 * n / x * cur - next;  // J_{n−1}
+        const double prev = n * twoOverX * cur - next;  // J_{n−1}
         next = cur;
         cur = prev;
         if (n - 1 <= nMax) out[n - 1] = cur;
