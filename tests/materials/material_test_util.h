@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/diagnostics.h"
 #include "core/render/material.h"
@@ -64,12 +65,14 @@ inline void AddFixtures(SceneDesc &desc) {
 }
 
 /// Builds one object of family T (keyword "Material", "Texture", …) from `params` in a scene that
-/// also holds the fixtures. Returns nullptr if building failed; `diag` receives every diagnostic.
+/// also holds the fixtures and `extra` entities (objects the parameters may reference). Returns
+/// nullptr if building failed; `diag` receives every diagnostic.
 template <typename T>
 std::shared_ptr<T> BuildObject(const std::string &keyword, const std::string &type, const ParamDict &params,
-                               Diagnostics &diag) {
+                               Diagnostics &diag, const std::vector<SceneEntity> &extra = {}) {
     SceneDesc desc;
     AddFixtures(desc);
+    desc.entities.insert(desc.entities.end(), extra.begin(), extra.end());
     SceneEntity e;
     e.keyword = keyword;
     e.type = type;
@@ -86,8 +89,19 @@ std::shared_ptr<T> BuildObject(const std::string &keyword, const std::string &ty
 }
 
 inline std::shared_ptr<Material> BuildMaterial(const std::string &type, const ParamDict &params,
-                                               Diagnostics &diag) {
-    return BuildObject<Material>("Material", type, params, diag);
+                                               Diagnostics &diag, const std::vector<SceneEntity> &extra = {}) {
+    return BuildObject<Material>("Material", type, params, diag, extra);
+}
+
+/// A named entity for BuildObject's `extra` (e.g. Entity("Material", "conductor", "metal", params)).
+inline SceneEntity Entity(const std::string &keyword, const std::string &type, const std::string &name,
+                          const ParamDict &params) {
+    SceneEntity e;
+    e.keyword = keyword;
+    e.type = type;
+    e.name = name;
+    e.params = params;
+    return e;
 }
 
 /// Hero `lambda` [m] plus three companions spaced by 85 nm and wrapped into 380–720 nm (the
