@@ -399,14 +399,17 @@ TEST(Grating, RayOpticsLimitIsTheSmoothSubstrate) {
             .Set("transmission", Value::Bool(c.transmission))
             .Set("period", Len(1 * Um));
         auto grating = MakeGrating(ParamDict(p).Set("height", Len(0.2 * Um)));
+        auto plain = MakeGrating(ParamDict(p).Set("height", Len(0.2 * Um)).Set("renormalize", Value::Bool(false)));
         auto flat = MakeGrating(ParamDict(p).Set("height", Len(0)));
-        ASSERT_TRUE(grating && flat);
+        ASSERT_TRUE(grating && plain && flat);
         for (double theta : {10 * Deg, 60 * Deg, 170 * Deg}) {
             ScatterQuery ray = Wave(theta, 0.5, wl);
             ray.rayOptics = true;
             NearDeltaLobes expected;
             smooth->ListNearDelta(ray, expected);
-            for (const auto &[name, m, q] : {std::tuple{"ray limit", grating, ray}, std::tuple{"h = 0", flat, Wave(theta, 0.5, wl)}}) {
+            // (renormalize = false: F, not J_0(m)²·F — the grooves are not resolved at all.)
+            for (const auto &[name, m, q] : {std::tuple{"ray limit", grating, ray}, std::tuple{"ray limit, plain", plain, ray},
+                                             std::tuple{"h = 0", flat, Wave(theta, 0.5, wl)}}) {
                 NearDeltaLobes got;
                 m->ListNearDelta(q, got);
                 ASSERT_EQ(got.count, expected.count) << name << ", " << c.substrate << ", θ = " << theta / Deg;
