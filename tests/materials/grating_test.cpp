@@ -530,5 +530,31 @@ TEST(Grating, AnOrderEvanescentAtTheHeroIsListedForItsCompanions) {
     EXPECT_NEAR(hero, 1, 1e-12);
 }
 
+TEST(Grating, FarOutsideTheThinPhaseRegimeStaysFinite) {
+    // h = Λ = 50 µm (m ≈ 785 at 400 nm), grazing and normal incidence, transmission: the kernel is
+    // meaningless there but must list finite weights that sum to at most F (renormalised: exactly).
+    auto grating = MakeGrating(ParamDict()
+                                   .Set("substrate", Value::Ref("contract_glass"))
+                                   .Set("transmission", Value::Bool(true))
+                                   .Set("period", Len(50 * Um))
+                                   .Set("height", Len(50 * Um))
+                                   .Set("max_order", Value::Integer(15)));
+    ASSERT_TRUE(grating);
+    const SampledWavelengths wl = TestWavelengths(400 * Nm);
+    for (double theta : {0.0, 89.9 * Deg, 90.1 * Deg, 180 * Deg}) {
+        const ScatterQuery q = Wave(theta, 0.3, wl);
+        NearDeltaLobes lobes;
+        grating->ListNearDelta(q, lobes);
+        ASSERT_GT(lobes.count, 0);
+        std::vector<double> energy(std::size_t(wl.Count()), 0.0);
+        for (const NearDeltaLobe &l : lobes)
+            for (int i = 0; i < wl.Count(); ++i) {
+                ASSERT_TRUE(std::isfinite(l.weight[i]) && l.weight[i] >= 0);
+                energy[std::size_t(i)] += l.weight[i] * ((l.flags & ScatterTransmission) ? l.Eta(i) * l.Eta(i) : 1);
+            }
+        for (double e : energy) EXPECT_NEAR(e, 1, 1e-9) << "θ = " << theta / Deg;
+    }
+}
+
 }  // namespace
 }  // namespace phasor::test
