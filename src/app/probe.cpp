@@ -86,6 +86,7 @@ struct ProbeResult {
     bool continuous = false;  // the kernel has a continuous lobe for this query (Monte Carlo ran)
     double discreteR = 0, discreteT = 0;
     double contR = 0, contT = 0, seR = 0, seT = 0;  // continuous part, standard errors of the mean
+    long long nonFinite = 0;                        // samples with a NaN/Inf weight (a kernel bug)
     std::vector<ProbeLobe> lobes;
     double R() const { return discreteR + contR; }
     double T() const { return discreteT + contT; }
@@ -120,8 +121,9 @@ ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64
     for (long long n = 1; n <= samples; ++n) {
         const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
         double xr = 0, xt = 0;
-        if (auto s = m.Sample(q, u0, Vec2(u1, u2)); s && std::isfinite(s->weight[0])) {
-            if (s->wo.z * q.wi.z > 0) xr = s->weight[0];
+        if (auto s = m.Sample(q, u0, Vec2(u1, u2))) {
+            if (!std::isfinite(s->weight[0]) || !std::isfinite(s->eta)) ++r.nonFinite;  // counted as 0
+            else if (s->wo.z * q.wi.z > 0) xr = s->weight[0];
             else xt = s->weight[0] * s->eta * s->eta;
         }
         const double dr = xr - meanR, dt = xt - meanT;
@@ -175,6 +177,9 @@ std::string ReportText(const std::string &material, const std::string &type, con
     };
     total("R", r.R(), r.discreteR, r.contR, r.seR);
     total("T", r.T(), r.discreteT, r.contT, r.seT);
+    if (r.nonFinite > 0)
+        os << "  warning: " << r.nonFinite << " of " << o.probe.samples
+           << " samples had a NaN or infinite weight (counted as 0): the kernel has a bug\n";
     if (r.lobes.empty()) {
         os << "  no near-delta lobe\n";
         return os.str();
