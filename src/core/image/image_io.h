@@ -37,6 +37,10 @@ Vec3 ApplyDisplayTransform(const Vec3 &linearRgb, const DisplayOptions &opt = {}
 /// Name of the OCIO config in use ("$OCIO: <path>" or "built-in").
 std::string ColorConfigDescription();
 
+/// The false-colour PNGs' colour map (viridis, 8-bit) at t ∈ [0, 1] (clamped) as a display-referred
+/// sRGB colour in [0, 1] — e.g. for WriteImageWithColourBarPng (core/image/plot.h).
+Vec3 ViridisDisplay(double t);
+
 /// Writes a one-channel false-colour PNG (dB scale over `rangeDb` below the max, viridis-like
 /// colour map) — for sensor-plane images.
 void WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
