@@ -13,42 +13,6 @@
 namespace phasor::test {
 namespace {
 
-// A scene of a few entities, built at once; keeps the diagnostics.
-struct MiniScene {
-    SceneDesc desc;
-    Diagnostics diag;
-    MiniScene &Add(const std::string &keyword, const std::string &type, const std::string &name, ParamDict p) {
-        SceneEntity e;
-        e.keyword = keyword;
-        e.type = type;
-        e.name = name;
-        e.params = std::move(p);
-        desc.entities.push_back(std::move(e));
-        return *this;
-    }
-    /// Builds everything; returns the object named `name` (nullptr if it failed).
-    template <typename T>
-    std::shared_ptr<T> Build(const std::string &name) {
-        BuildContext ctx(desc, diag);
-        ctx.BuildAll();
-        for (const auto &o : ctx.All<T>())
-            if (const SceneEntity *e = ctx.EntityOf(o.get()); e && e->name == name) return o;
-        return nullptr;
-    }
-    /// The first error's message ("" if none).
-    std::string FirstError() const {
-        for (const Diagnostic &d : diag.All())
-            if (d.severity == Severity::Error) return d.message;
-        return "";
-    }
-    /// The latest error's message ("" if none).
-    std::string LastError() const {
-        for (auto it = diag.All().rbegin(); it != diag.All().rend(); ++it)
-            if (it->severity == Severity::Error) return it->message;
-        return "";
-    }
-};
-
 std::shared_ptr<const ScalarTexture> Scalar(const std::shared_ptr<Texture> &t) {
     return std::dynamic_pointer_cast<const ScalarTexture>(t);
 }
