@@ -3,9 +3,10 @@
 // the mirrored query, mirrored back (listing, sampling, Eval, EvalLobe); the mirror's change of
 // the s/p basis on a Jones matrix with off-diagonal terms; refused transmitting children; bad input.
 //
-// Registers a test kernel, `test_rotating_mirror` (also run through the contract suite): a
-// mirror of grey reflectance R whose Jones matrix √R·[[cos α, −sin α], [sin α, cos α]] rotates
-// the polarisation by α — not a physical surface, only a response with off-diagonal Jones terms.
+// Registers a test kernel, `test_rotator` (also run through the contract suite): another kernel's
+// lobes with the polarisation rotated by α after reflection — Jones R(α)·J, R(α) = [[cos α,
+// −sin α], [sin α, cos α]], which leaves every weight unchanged. Not a physical surface, only a
+// response with off-diagonal Jones terms.
 #include <gtest/gtest.h>
 
 #include <sstream>
@@ -16,61 +17,56 @@
 
 namespace phasor {
 
-class RotatingMirrorMaterial final : public Material {
+class RotatorMaterial final : public Material {
   public:
-    RotatingMirrorMaterial(double reflectance, double angle) : r_(reflectance), angle_(angle) {}
+    RotatorMaterial(std::shared_ptr<const Material> child, double angle) : child_(std::move(child)), angle_(angle) {}
     static const Schema &GetSchema() {
         static const Schema s{"material",
-                              "test_rotating_mirror",
-                              "test kernel: a grey mirror that rotates the polarisation",
-                              {P::Number("reflectance", "R").Default(Value::Number(0.8)).Min(0).Max(1),
+                              "test_rotator",
+                              "test kernel: a near-delta kernel's lobes with the polarisation rotated by 'angle'",
+                              {P::Ref("material", "material", "the kernel whose lobes are rotated").Required(),
                                P::Angle("angle", "rotation α").Default(Value::Number(0.3, Dim::Angle()))}};
         return s;
     }
-    static std::unique_ptr<Material> Create(const ParamDict &d, BuildContext &) {
-        return std::make_unique<RotatingMirrorMaterial>(d.GetNumber("reflectance"), d.GetNumber("angle"));
+    static std::unique_ptr<Material> Create(const ParamDict &d, BuildContext &ctx) {
+        return std::make_unique<RotatorMaterial>(ctx.GetRef<Material>(d, "material"), d.GetNumber("angle"));
     }
     static std::vector<ParamDict> TestPresets() {
         std::vector<ParamDict> p(2);
-        p[1].Set("reflectance", Value::Number(1)).Set("angle", Value::Number(1.2, Dim::Angle()));
+        p[0].Set("material", Value::Ref("contract_gold"));
+        p[1].Set("material", Value::Ref("contract_aluminium")).Set("angle", Value::Number(1.2, Dim::Angle()));
         return p;
     }
-    unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
-        if (q.wi.z == 0 || r_ == 0) return;
-        NearDeltaLobe &l = out.Add();
-        l.flags = ScatterReflection | ScatterNearDelta;
-        l.wo.fill(ReflectLocal(q.wi));
-        l.weight = SampledSpectrum(r_);
-        l.nIn.fill(q.etaOutside);
-        l.nOut.fill(q.etaOutside);
-        l.prob = 1;
-    }
+    unsigned Capabilities(const ScatterQuery &q) const override { return child_->Capabilities(q); }
+    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override { child_->ListNearDelta(q, out); }
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        if (lobe != 0 || q.wi.z == 0 || !SameDirection(wo, ReflectLocal(q.wi))) return std::nullopt;
-        LobeResponse r;
-        r.hasJones = true;
-        const double a = std::sqrt(r_), c = std::cos(angle_), s = std::sin(angle_);
+        std::optional<LobeResponse> r = child_->EvalLobe(q, lobe, wo);
+        if (!r || !r->hasJones) return r;
+        Jones rot;
+        rot.m[0][0] = rot.m[1][1] = std::cos(angle_);
+        rot.m[0][1] = -std::sin(angle_);
+        rot.m[1][0] = std::sin(angle_);
         for (int i = 0; i < q.wl->Count(); ++i) {
-            r.jones[i].m[0][0] = a * c;
-            r.jones[i].m[0][1] = -a * s;
-            r.jones[i].m[1][0] = a * s;
-            r.jones[i].m[1][1] = a * c;
-            r.mueller[i] = Mueller::FromJones(r.jones[i]);
+            r->jones[i] = rot * r->jones[i];
+            r->mueller[i] = Mueller::FromJones(r->jones[i]);
         }
         return r;
     }
     std::string ToString() const override {
         std::ostringstream os;
-        os << "RotatingMirrorMaterial[ reflectance = " << r_ << ", angle = " << angle_ << " ]";
+        os << "RotatorMaterial[ material = " << child_->ToString() << ", angle = " << angle_ << " ]";
         return os.str();
     }
 
   private:
-    double r_, angle_;
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
+        return child_->Sample(q, u0, u);
+    }
+    std::shared_ptr<const Material> child_;
+    double angle_;
 };
 
-PHASOR_REGISTER_PLUGIN(Material, RotatingMirrorMaterial, "test_rotating_mirror");
+PHASOR_REGISTER_PLUGIN(Material, RotatorMaterial, "test_rotator");
 
 namespace test {
 namespace {
@@ -179,32 +175,34 @@ TEST(TwoSided, FrontAndBackAreDifferentKernels) {
 }
 
 // The mirror reverses handedness: in the s/p basis p̂ = k̂ × ŝ maps to minus its mirror image, so
-// from below the back's Jones matrix J is seen as D·J·D, D = diag(1, −1) — a rotation by α
-// becomes a rotation by −α, and the Mueller matrix stays FromJones of the Jones matrix.
+// from below the back's Jones matrix J is seen as D·J·D, D = diag(1, −1). For the rotated gold
+// mirror J = R(α)·diag(r_s, r_p), so from below it is R(−α)·diag(r_s, r_p); the Mueller matrix
+// stays FromJones of the Jones matrix.
 TEST(TwoSided, MirrorChangesTheSignOfOffDiagonalJonesTerms) {
     MiniScene s;
-    s.Add("Material", "test_rotating_mirror", "rot", ParamDict().Set("angle", Value::Number(0.4, Dim::Angle())))
+    s.Add("Material", "conductor", "gold", ParamDict().Set("ior", Value::ComplexNumber(Complex(0.2, 3.0))))
+        .Add("Material", "test_rotator", "rot", ParamDict().Set("material", Value::Ref("gold")).Set("angle", Value::Number(0.4, Dim::Angle())))
         .Add("Material", "two_sided", "t", ParamDict().Set("material", Value::Ref("rot")));
     auto t = Get(s, "t");
     ASSERT_TRUE(t);
     const SampledWavelengths wl = TestWavelengths(550e-9);
     ScatterQuery q;
     q.wl = &wl;
-    const double a = std::sqrt(0.8), c = std::cos(0.4), sn = std::sin(0.4);
+    const double c = std::cos(0.4), sn = std::sin(0.4);
     for (const bool below : {false, true}) {
         q.wi = DirectionFromCosTheta(below ? -0.7 : 0.7, 0.9);
         auto r = t->EvalLobe(q, 0, ReflectLocal(q.wi));
         ASSERT_TRUE(r && r->hasJones);
+        const FresnelCoefficients f = FresnelAmplitudes(0.7, 1.0, Complex(0.2, 3.0));
         const double sign = below ? -1 : 1;  // rotation by ±α
-        EXPECT_NEAR(std::abs(r->jones[0].m[0][0] - a * c), 0, 1e-15);
-        EXPECT_NEAR(std::abs(r->jones[0].m[0][1] + sign * a * sn), 0, 1e-15);
-        EXPECT_NEAR(std::abs(r->jones[0].m[1][0] - sign * a * sn), 0, 1e-15);
-        EXPECT_NEAR(std::abs(r->jones[0].m[1][1] - a * c), 0, 1e-15);
+        EXPECT_LT(std::abs(r->jones[0].m[0][0] - c * f.rs), 1e-15);
+        EXPECT_LT(std::abs(r->jones[0].m[0][1] + sign * sn * f.rp), 1e-15);
+        EXPECT_LT(std::abs(r->jones[0].m[1][0] - sign * sn * f.rs), 1e-15);
+        EXPECT_LT(std::abs(r->jones[0].m[1][1] - c * f.rp), 1e-15);
         const Mueller m = Mueller::FromJones(r->jones[0]);
         for (int i = 0; i < 4; ++i)
             for (int j = 0; j < 4; ++j) EXPECT_NEAR(r->mueller[0].m[i][j], m.m[i][j], 1e-15) << i << j;
-        // A rotator's Mueller matrix has ±sin 2α in its (S1, S2) block; the sign follows α.
-        EXPECT_NEAR(r->mueller[0].m[2][1], sign * 0.8 * std::sin(0.8), 1e-14);
+        EXPECT_NEAR(r->mueller[0].m[0][0], FresnelConductor(0.7, Complex(0.2, 3.0)), 1e-15);
     }
 }
 
