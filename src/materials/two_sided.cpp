@@ -125,9 +125,9 @@ class TwoSidedMaterial final : public Material {
             std::shared_ptr<const Material> m = ctx.GetRef<Material>(d, name);
             const std::string why = FindTransmission(*m);
             if (!why.empty())
-                throw Error(d.Loc(name), std::string("'") + name + "' transmits (" + why + ": " + m->ToString() +
-                                             "); two_sided takes reflecting kernels only, as a sheet whose faces "
-                                             "are seen from their own sides");
+                throw Error(d.Loc(name), std::string("'") + name + "' transmits: " + why + " (" + m->ToString() +
+                                             "); two_sided takes reflecting kernels only (a sheet whose faces are "
+                                             "seen from their own sides)");
             return m;
         };
         if (one) {
