@@ -823,7 +823,7 @@ TEST(MaterialRegistry, EveryKernelHasTwoToFivePresets) {
 }
 
 TEST(MaterialRegistry, ExpectedKernelsAreRegistered) {
-    for (const char *name : {"diffuse", "conductor", "dielectric", "aperture"})
+    for (const char *name : {"diffuse", "conductor", "dielectric", "aperture", "mix", "two_sided"})
         EXPECT_NE(Registry<Material>::Find(name), nullptr) << name;
 }
 

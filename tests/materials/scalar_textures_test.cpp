@@ -26,7 +26,7 @@ TextureEvalContext AtP(const Vec3 &p) {
 }
 
 TEST(ScalarTextures, AreRegistered) {
-    for (const char *n : {"constant", "checkerboard", "gradient", "noise", "scale", "mix"})
+    for (const char *n : {"constant", "checkerboard", "gradient", "uv_ramp", "noise", "scale", "mix", "bitmap"})
         EXPECT_NE(Registry<Texture>::Find(n), nullptr) << n;
 }
 
