@@ -14,7 +14,7 @@
 //     (wi, wo pointing away from the surface; the mirror direction has ζ = 0), where V is the PSD
 //     mass inside the visible disc (V = 0.96 / 0.88 / 0.49 at θ_i = 0 / 45 / 80° for α_r = 0.1):
 //     without 1/V the evanescent part of the PSD would be lost. V is tabulated per γ over
-//     (cosθ_i, ln k²T) (k_correlation_psd.h, error ≤ 1e-4).
+//     (cosθ_i, ln k²T) (k_correlation_psd.h, error ≤ 2e-4, ≤ 2e-5 away from grazing).
 // So the kernel reflects exactly ∫(specular + scatter) = α_spec·F + (1 − α_spec)·F = F(θ_i) (D7):
 // the white furnace of a lossless substrate is exact. F is the substrate's unpolarised (coated)
 // reflectance R = (R_s + R_p)/2 at θ_i (materials/smooth_surface.h), so this holds per

@@ -57,7 +57,7 @@ class KCorrelationPsd {
 /// V(s, t) tabulated over x = √cosθ_i ∈ [0, 1] (nodes dense towards grazing, where V changes
 /// over cosθ_i ~ t^{−1/4}) and ln t ∈ [ln TableTMin, ln TableTMax], interpolated bicubically
 /// (Catmull–Rom); outside that t range it falls back to the direct quadrature. Interpolation
-/// error (absolute; V ≤ 1) ≤ 1e-4 everywhere and ≤ 2e-5 for cosθ_i ≥ 0.05, measured against
+/// error (absolute; V ≤ 1) ≤ 2e-4 everywhere and ≤ 2e-5 for cosθ_i ≥ 0.05 (γ ≤ 8), measured against
 /// VisibleMass at random points in tests/materials/harvey_shack_test.cpp (the worst case is near
 /// grazing at t ~ 1e8). Built once per γ (~0.2 s) and shared (For).
 class VisibleMassTable {
