@@ -35,7 +35,7 @@ double Psd(double gamma, double t, double r2) { return (gamma - 1) * t / (2 * Pi
 double BruteVisibleMass(double gamma, double t, double s) {
     const double w = 1 / std::sqrt(t);
     std::vector<double> edges = {0};
-    for (double r = 1e-3 * std::min(w, 1.0); r < 1 + s; r *= 1.02) edges.push_back(r);
+    for (double r = 1e-3 * std::min(w, 1.0); r < 1 + s; r *= 1.03) edges.push_back(r);
     edges.push_back(1 + s);
     constexpr int NPhi = 4096;
     double v = 0;
@@ -189,9 +189,9 @@ TEST(KCorrelationPsd, VisibleMassOfDecisionD7) {
 }
 
 TEST(KCorrelationPsd, VisibleMassDirectVsBruteForce) {
-    for (double gamma : {1.3, 3.0, 8.0})
-        for (double t : {0.01, 1.0, 100.0, 1e6})
-            for (double theta : {0.0, 30.0, 70.0, 89.0}) {
+    for (double gamma : {1.3, 8.0})
+        for (double t : {0.01, 100.0, 1e6})
+            for (double theta : {0.0, 70.0, 89.0}) {
                 const double s = std::sin(Radians(theta));
                 KCorrelationPsd psd(gamma);
                 EXPECT_NEAR(psd.VisibleMass(s, t), BruteVisibleMass(gamma, t, s), 2e-5)
@@ -323,7 +323,7 @@ TEST(HarveyShack, SampledWeightsAverageF) {
                 ScatterQuery q = Query(wl, theta, 2.0, below);
                 const double F = SmoothReflectance(*c.smooth, q);
                 std::vector<double> w;
-                for (int i = 0; i < 100000; ++i) {
+                for (int i = 0; i < 50000; ++i) {
                     auto s = hs->Sample(q, rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
                     w.push_back(s ? s->weight[0] : 0.0);
                 }
