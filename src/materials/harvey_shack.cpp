@@ -260,21 +260,23 @@ class HarveyShackMaterial final : public Material {
         return surface_->Response(q.wl->lambda[i], q.etaOutside, std::max(cosTheta, 1e-300), l.inside, q.tex);
     }
 
-    /// False if wi is grazing (cosθ_i = 0: nothing arrives).
-    bool Prepare(const ScatterQuery &q, Local *l) const {
+    /// False if wi is grazing (cosθ_i = 0: nothing arrives). With pdfOnly, only what ScatterPdf
+    /// reads (the hero's k²T and the lobe probability), not F and V (Pdf is called ~10× as often).
+    bool Prepare(const ScatterQuery &q, Local *l, bool pdfOnly = false) const {
         if (!(q.wi.z != 0)) return false;
         l->flip = q.wi.z < 0;
         l->inside = l->flip && transparent_;
         l->wi = l->ToUpper(q.wi);
         l->cosI = std::min(1.0, l->wi.z);
         l->s = std::min(1.0, std::hypot(l->wi.x, l->wi.y));
-        l->count = q.wl->Count();
+        l->count = pdfOnly ? 1 : q.wl->Count();
         for (int i = 0; i < l->count; ++i) {
             const double lambda = q.wl->lambda[i];
             l->n[i] = l->inside ? surface_->SubstrateIndex(lambda).real() : q.etaOutside;
             const double k = 2 * Pi * l->n[i] / lambda;
             l->t[i] = k * k * corrT_;
             l->alpha[i] = std::exp(-Sqr(2 * k * sigma_ * l->cosI));  // theory §4.3 Debye–Waller
+            if (pdfOnly) continue;
             l->F[i] = Response(q, *l, i, l->cosI).R();
             l->V[i] = sigma_ > 0 ? std::max(table_->Eval(l->cosI, l->t[i]), 1e-300) : 1;
         }
@@ -365,7 +367,7 @@ class HarveyShackMaterial final : public Material {
 
     double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
         Local l;
-        if (!(sigma_ > 0) || !Prepare(q, &l)) return 0;
+        if (!(sigma_ > 0) || !Prepare(q, &l, true)) return 0;
         return ScatterPdf(l, l.ToUpper(wo));
     }
 
