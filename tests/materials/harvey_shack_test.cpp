@@ -164,7 +164,9 @@ TEST(KCorrelationPsd, CdfDensityAndInverseAgree) {
                     EXPECT_NEAR(d, 2 * Pi * r * Psd(gamma, t, r * r), 1e-6 * d + 1e-12) << gamma << " " << t << " " << r;
                 }
                 EXPECT_NEAR(psd.Density(t, r * r), Psd(gamma, t, r * r), 1e-12 * Psd(gamma, t, r * r));
-                if (1 - c > 1e-6) EXPECT_NEAR(psd.InverseRadialCdf(t, c), r, 1e-8 * (1 + r) / (1 - c));
+                if (1 - c > 1e-6) {
+                    EXPECT_NEAR(psd.InverseRadialCdf(t, c), r, 1e-8 * (1 + r) / (1 - c));
+                }
             }
         }
 }
