@@ -22,17 +22,17 @@ const Complex MetalIndex(0.2, 3.4);  // the "metal" substrate below
 Value Len(double m) { return Value::Number(m, Dim::Length()); }
 Value Ang(double rad) { return Value::Number(rad, Dim::Angle()); }
 
-// A conductor of index MetalIndex named "metal", for gratings whose F the test computes itself.
-SceneEntity Metal() {
-    return Entity("Material", "conductor", "metal", ParamDict().Set("ior", Value::ComplexNumber(MetalIndex)));
-}
-
+// A grating in a scene with the fixtures and a conductor of index MetalIndex named "metal" (for
+// gratings whose F the test computes itself).
 std::shared_ptr<GratingMaterial> MakeGrating(const ParamDict &p) {
-    Diagnostics diag;
-    auto m = BuildMaterial("grating", p, diag, {Metal()});
+    MiniScene scene;
+    scene.WithFixtures()
+        .Add("Material", "conductor", "metal", ParamDict().Set("ior", Value::ComplexNumber(MetalIndex)))
+        .Add("Material", "grating", "under_test", p);
+    auto m = scene.Build<Material>("under_test");
     std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(m && diag.All().empty()) << os.str();
+    scene.diag.Print(os);
+    EXPECT_TRUE(m && scene.diag.All().empty()) << os.str();
     auto g = std::dynamic_pointer_cast<GratingMaterial>(m);
     EXPECT_TRUE(g) << "the registry's 'grating' is not a GratingMaterial";
     return g;
