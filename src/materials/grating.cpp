@@ -70,7 +70,9 @@
 #include "materials/grating.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "core/diagnostics.h"
@@ -89,6 +91,12 @@ double SignedBessel(const double *jAbs, int j, double a) {
     return flip ? -jAbs[n] : jAbs[n];
 }
 
+/// A unique id per kernel instance (the listing cache's key: an address may be reused).
+std::uint64_t NextInstanceId() {
+    static std::atomic<std::uint64_t> next{1};
+    return next++;
+}
+
 }  // namespace
 
 GratingMaterial::GratingMaterial(FloatTexture period, double height, FloatTexture angle,
@@ -101,7 +109,8 @@ GratingMaterial::GratingMaterial(FloatTexture period, double height, FloatTextur
       surface_(substrate_->Surface()),
       maxOrder_(maxOrder),
       transmission_(transmission),
-      renormalize_(renormalize) {
+      renormalize_(renormalize),
+      id_(NextInstanceId()) {
     // Dispersive if the substrate's index varies over the band a path may carry (as dielectric.cpp).
     const double n0 = surface_->SubstrateIndex(550e-9).real();
     for (double l = 200e-9; l <= 3000e-9; l *= 1.005)
@@ -235,12 +244,15 @@ Vec3 GratingMaterial::GratingVector(const ScatterQuery &q) const {
 
 GratingOrders GratingMaterial::Orders(const ScatterQuery &q, int i) const {
     GratingOrders o;
-    FillOrders(q, i, period_.Eval(q.tex), GratingVector(q), &o);
+    FillOrders(q, i, period_.Eval(q.tex), GratingVector(q), SideReflected | SideTransmitted, &o);
     return o;
 }
 
-void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, const Vec3 &g, GratingOrders *out) const {
-    GratingOrders &o = *out;
+void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, const Vec3 &g, unsigned sides,
+                                 GratingOrders *out) const {
+    GratingOrders &o = *out;  // may hold an earlier call's orders: every field read below is set
+    o.reflected.present = o.transmitted.present = false;
+    o.reflected.maxOrder = o.transmitted.maxOrder = 0;
     const double lambda = q.wl->lambda[i];
     o.period = period;
     o.vector = Vec2(g.x, g.y);
@@ -259,6 +271,7 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, co
     const Vec2 unitShift = o.vector * (2 * Pi / o.period);
     auto fill = [&](GratingSide &s, bool transmitted, double a, double f) {
         s.present = true;
+        s.propagatingSum = s.evanescent = 0;
         s.modulation = a;
         s.substrate = f;
         // Orders whose efficiency is below 1e-20 are not considered (they count as truncated):
@@ -283,8 +296,8 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, co
         s.scale = !renormalize_ ? 1.0 : (s.propagatingSum > 0 ? 1 / s.propagatingSum : 0.0);
     };
     // Reflection: the phase 2·k·z·cosθ_i of the double pass, a = −k₀·n_i·h·cosθ_i (D6).
-    fill(o.reflected, false, -k0 * nI * h * cosI, o.surface.R());
-    if (transmission_) {
+    if (sides & SideReflected) fill(o.reflected, false, -k0 * nI * h * cosI, o.surface.R());
+    if (transmission_ && (sides & SideTransmitted)) {
         // Transmission: a = k₀·(h/2)·(n_t cosθ_t − n_i cosθ_i) with the zeroth order's θ_t.
         const double sin2T = (nI / nT) * (nI / nT) * (1 - cosI * cosI);
         const double t = o.surface.T();
@@ -294,44 +307,103 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, co
 
 namespace {
 
-/// The orders of every carried wavelength of a query.
-using OrdersPerWavelength = std::array<GratingOrders, NumWavelengths>;
+/// The last listing of each thread (ListNearDelta): grt lists a vertex's lobes and then samples
+/// one (Sample lists them again), sample_solve evaluates them (EvalLobe); each listing evaluates
+/// the orders of every lobe's source direction. The key is everything a listing reads.
+struct ListingCache {
+    std::uint64_t owner = 0;  // GratingMaterial instance id; 0 = empty
+    Vec3 wi;
+    double etaOutside = 0;
+    bool rayOptics = false;
+    int count = 0;
+    std::array<double, NumWavelengths> lambda{};
+    TextureEvalContext tex;
+    NearDeltaLobes lobes;
+
+    bool Matches(std::uint64_t id, const ScatterQuery &q) const {
+        if (owner != id || !(wi == q.wi) || etaOutside != q.etaOutside || rayOptics != q.rayOptics ||
+            count != q.wl->Count())
+            return false;
+        for (int i = 0; i < count; ++i)
+            if (lambda[std::size_t(i)] != q.wl->lambda[i]) return false;
+        const TextureEvalContext &t = q.tex;
+        return tex.uv == t.uv && tex.p == t.p && tex.dpdu == t.dpdu && tex.dpdv == t.dpdv && tex.n == t.n &&
+               tex.beta == t.beta;
+    }
+    void Store(std::uint64_t id, const ScatterQuery &q, const NearDeltaLobes &from, int first) {
+        owner = id;
+        wi = q.wi;
+        etaOutside = q.etaOutside;
+        rayOptics = q.rayOptics;
+        count = q.wl->Count();
+        for (int i = 0; i < count; ++i) lambda[std::size_t(i)] = q.wl->lambda[i];
+        tex = q.tex;
+        lobes.count = 0;
+        for (int k = first; k < from.count; ++k) lobes.Add() = from.lobe[std::size_t(k)];
+    }
+};
+thread_local ListingCache listingCache;
 
 }  // namespace
 
+double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec3 &source,
+                                         bool transmitted, int j, GratingOrders *orders) const {
+    ScatterQuery from = q;
+    from.wi = source;  // the light arrives from `source`: its order j is the lobe's weight towards q.wi
+    FillOrders(from, i, period, g, transmitted ? SideTransmitted : SideReflected, orders);
+    return (transmitted ? orders->transmitted : orders->reflected).Energy(j);
+}
+
 void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const {
     if (q.wi.z == 0) return;
+    if (listingCache.Matches(id_, q)) {
+        for (const NearDeltaLobe &l : listingCache.lobes) out.Add() = l;
+        return;
+    }
+    const int first = out.count;
     const int count = q.wl->Count();
-    OrdersPerWavelength o;
     const double period = period_.Eval(q.tex);
     const Vec3 g = GratingVector(q);
-    for (int i = 0; i < count; ++i) FillOrders(q, i, period, g, &o[std::size_t(i)]);
-    const int first = out.count;
+    const Vec2 unitShift = Vec2(g.x, g.y) * (2 * Pi / period);
+    const int maxOrder = q.rayOptics ? 0 : maxOrder_;
+    // Indices of wi's medium and of the far side (the substrate, or the outside when wi is inside).
+    const bool inside = transmission_ && q.wi.z < 0;
+    std::array<double, NumWavelengths> nWi{}, nFar{};
+    for (int i = 0; i < count; ++i) {
+        const double nSub = surface_->SubstrateIndex(q.wl->lambda[i]).real();
+        nWi[std::size_t(i)] = inside ? nSub : q.etaOutside;
+        nFar[std::size_t(i)] = inside ? q.etaOutside : nSub;
+    }
+    GratingOrders scratch;
     for (const bool transmitted : {false, true}) {
-        auto side = [&](int i) -> const GratingSide & {
-            return transmitted ? o[std::size_t(i)].transmitted : o[std::size_t(i)].reflected;
-        };
-        int reach = 0;  // the highest order any wavelength considered
-        for (int i = 0; i < count; ++i) reach = std::max(reach, side(i).maxOrder);
-        for (int j = -reach; j <= reach; ++j) {
-            const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
-            int lit = -1;  // the first wavelength where order j carries light
-            for (int i = 0; i < count && lit < 0; ++i)
-                if (side(i).Energy(j) > 0) lit = i;
+        if (transmitted && !transmission_) break;
+        for (int j = -maxOrder; j <= maxOrder; ++j) {
+            // Lobe j's direction per wavelength (vector grating equation from wi) and its weight:
+            // the efficiency of order j for light arriving from that direction (see the file comment).
+            std::array<Vec3, NumWavelengths> wo{};
+            std::array<double, NumWavelengths> energy{};
+            int lit = -1;  // the first wavelength where the lobe carries light
+            for (int i = 0; i < count; ++i) {
+                const std::size_t s = std::size_t(i);
+                const double nOut = transmitted ? nFar[s] : nWi[s];
+                if (!NearDeltaDirection(q.wi, nWi[s], nOut, unitShift * double(j), q.wl->lambda[i], transmitted, &wo[s]))
+                    continue;
+                energy[s] = SourceEfficiency(q, i, period, g, wo[s], transmitted, j, &scratch);
+                if (energy[s] > 0 && lit < 0) lit = i;
+            }
             if (lit < 0) continue;
             NearDeltaLobe &l = out.Add();
             l.id = (transmitted ? TransmittedId : 0) + j;
             l.flags = ScatterNearDelta | (transmitted ? ScatterTransmission : ScatterReflection) |
                       (j != 0 || (transmitted && dispersive_) ? ScatterDispersive : 0u);
-            l.shift = o[0].vector * (2 * Pi * j / o[0].period);
+            l.shift = unitShift * double(j);
             for (int i = 0; i < count; ++i) {
-                const GratingSide &s = side(i);
-                l.nIn[std::size_t(i)] = s.nIn;
-                l.nOut[std::size_t(i)] = s.nOut;
-                const double e = s.Energy(j);
-                const double eta = s.nOut / s.nIn;
-                l.weight[i] = transmitted ? e / (eta * eta) : e;  // (η_i/η_t)²: radiance on refraction
-                l.wo[std::size_t(i)] = e > 0 ? s.wo[k] : side(lit).wo[k];
+                const std::size_t s = std::size_t(i);
+                l.nIn[s] = nWi[s];
+                l.nOut[s] = transmitted ? nFar[s] : nWi[s];
+                const double ratio = l.nIn[s] / l.nOut[s];
+                l.weight[i] = transmitted ? energy[s] * ratio * ratio : energy[s];  // (η_i/η_t)²: radiance
+                l.wo[s] = energy[s] > 0 ? wo[s] : wo[std::size_t(lit)];
             }
         }
     }
@@ -350,6 +422,7 @@ void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) 
             for (int i = 0; i < count; ++i) w += l.weight[i];
         l.prob = hero > 0 ? w / hero : w / all;
     }
+    listingCache.Store(id_, q, out, first);
 }
 
 std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const {
@@ -361,25 +434,30 @@ std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int
     if (!l || !SameDirection(wo, l->wo[0])) return std::nullopt;
     const bool transmitted = (l->flags & ScatterTransmission) != 0;
     const int j = transmitted ? lobe - TransmittedId : lobe;
+    const double period = period_.Eval(q.tex);
+    const Vec3 g = GratingVector(q);
     LobeResponse r;
     r.hasJones = true;
     for (int i = 0; i < q.wl->Count(); ++i) {
-        const GratingOrders o = Orders(q, i);
+        if (l->weight[i] == 0) continue;  // evanescent at this wavelength: no response
+        // The orders of the light arriving along the lobe (its source direction at this wavelength).
+        GratingOrders o;
+        SourceEfficiency(q, i, period, g, l->wo[std::size_t(i)], transmitted, j, &o);
         const GratingSide &s = transmitted ? o.transmitted : o.reflected;
         const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
-        // Order j's field amplitude relative to the substrate's: J_j(a)·√scale (0 where evanescent).
-        const double amp = s.Energy(j) > 0 ? s.amplitude[k] * std::sqrt(s.scale) : 0.0;
+        // Order j's field relative to the substrate's: J_j(a)·√scale.
+        const double amp = s.amplitude[k] * std::sqrt(s.scale);
         Jones base;
         if (!transmitted) {
             base = Jones::Diagonal(o.surface.rs, o.surface.rp);
         } else {
             // diag(t_s, t_p) with each component's power factor (|t'|² = T_s, T_p) and the
-            // radiance factor η_i/η_t, as dielectric.cpp.
+            // radiance factor n_exit/n_source (the light leaves into wi's medium), as dielectric.cpp.
             auto powered = [](Complex t, double power) {
                 return std::abs(t) > 0 ? t * (std::sqrt(power) / std::abs(t)) : Complex(0, 0);
             };
             base = Jones::Diagonal(powered(o.surface.ts, o.surface.Ts), powered(o.surface.tp, o.surface.Tp)) *
-                   Complex(s.nIn / s.nOut, 0);
+                   Complex(s.nOut / s.nIn, 0);
         }
         r.jones[i] = base * Complex(amp, 0);
         r.mueller[i] = Mueller::FromJones(r.jones[i]);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -92,9 +93,11 @@ class GratingMaterial final : public Material {
     static std::unique_ptr<Material> Create(const ParamDict &dict, BuildContext &ctx);
     static std::vector<ParamDict> TestPresets();
 
-    /// The orders at carried wavelength slot i of q (q.wl->lambda[i]), what ListNearDelta lists:
-    /// plain thin-phase efficiencies, which orders propagate, the renormalisation and the dropped
-    /// share per side. In the ray-optics limit (q.rayOptics) the zeroth orders only, with J_0 = 1.
+    /// The orders of a plane wave arriving from q.wi (physical incidence) at carried wavelength
+    /// slot i (q.wl->lambda[i]): their directions, plain thin-phase amplitudes, which propagate,
+    /// the renormalisation and the dropped share per side. Order j's energy (GratingSide::Energy)
+    /// is what lobe j of a query at that order's direction lists towards q.wi. In the ray-optics
+    /// limit (q.rayOptics) the zeroth orders only, with J_0 = 1.
     GratingOrders Orders(const ScatterQuery &q, int i) const;
     /// The unit grating vector ĝ at the query's hit (local frame, z = 0): the direction in which
     /// order +1 shifts the tangential wave vector, by 2π/Λ.
@@ -103,14 +106,24 @@ class GratingMaterial final : public Material {
     unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
     void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override;
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override;
-    /// Not reciprocal: m = k·h·cosθ_i depends on the incident direction only (D6), and the
-    /// renormalisation on the incident direction's set of propagating orders.
+    /// Not reciprocal: m = k·h·cosθ_i depends on the light's incident direction only (D6), and the
+    /// renormalisation on that direction's set of propagating orders.
     bool IsReciprocal() const override { return false; }
+    /// The orders of light arriving from one direction carry F (+ T): energy is conserved per
+    /// incident direction, not per query (see grating.cpp).
+    bool ConservesEnergyPerIncidentDirection() const override { return true; }
     std::string ToString() const override;
 
   private:
-    /// Orders() into *o, with the period Λ [m] and the unit grating vector ĝ at the hit given.
-    void FillOrders(const ScatterQuery &q, int i, double period, const Vec3 &g, GratingOrders *o) const;
+    static constexpr unsigned SideReflected = 1, SideTransmitted = 2;
+    /// Orders() into *o for the sides asked for, with the period Λ [m] and the unit grating vector
+    /// ĝ at the hit given.
+    void FillOrders(const ScatterQuery &q, int i, double period, const Vec3 &g, unsigned sides, GratingOrders *o) const;
+    /// The energy efficiency of order j (reflected or transmitted) at wavelength slot i for light
+    /// arriving from `source` (a lobe's direction): what that lobe of the query at q.wi carries.
+    /// The source's orders are left in *orders.
+    double SourceEfficiency(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec3 &source,
+                            bool transmitted, int j, GratingOrders *orders) const;
 
     FloatTexture period_;  // Λ [m], > 0
     double height_ = 0;    // h, peak-to-peak [m]
@@ -120,6 +133,7 @@ class GratingMaterial final : public Material {
     int maxOrder_ = 0;
     bool transmission_ = false, renormalize_ = true;
     bool dispersive_ = false;  // the substrate's index varies with λ (the transmitted zeroth order disperses)
+    std::uint64_t id_ = 0;     // unique per instance (the listing cache's key)
 };
 
 }  // namespace phasor
