@@ -25,17 +25,29 @@
 // `transmission` the grating is an opaque two-sided reflector, like `conductor`: wi.z < 0 is
 // reflected on that side, and a dielectric substrate's transmitted share is absorbed.
 //
+// Whose incidence. The efficiencies belong to the light's incident direction: a lobe of a query
+// at wi, pointing at wo (where the light comes from in a backward tracer), carries the efficiency
+// of the order that takes light arriving from wo into wi — m, F and the renormalisation at wo's
+// angle, not wi's (the order index is the same both ways: the tangential wave vector out is the one
+// in plus j·2π/Λ·ĝ). So a pixel, camera or sensor, that sees a laser or the sun through order j
+// receives exactly J_j(k·h·cosθ_source)²·F/Σ. The model is not reciprocal (m depends on the
+// incidence only), so the lobes of one query need not sum to at most 1 (the light they gather comes
+// from different directions); energy is conserved per incident direction: the orders of the light
+// from one direction carry F (+ T) — ConservesEnergyPerIncidentDirection(), which the contract suite
+// checks. (harvey_shack normalises the other way, per query; see docs/kernels.md.)
+//
 // Validity. Thin-phase theory needs a shallow profile (h ≪ Λ, slopes πh/Λ ≪ 1) and is scalar.
 // Against a rigorous FDTD reference of a sinusoidal metal grating, J_j(k·h·cosθ_i)² is within
 // ≈ 2e-3 of the unpolarised efficiencies up to h/λ ≈ 0.18 at normal incidence and within
 // ≈ 2.5e-2 up to h/λ ≈ 0.27 at 20° incidence; there the unrenormalised thin-phase sum over the
 // propagating orders is 0.994 whereas the rigorous one is 1 (hence `renormalize`). Beyond
 // h/λ ≈ 0.3, or for Λ ≲ λ (one or two propagating orders, resonances, Wood anomalies) and for
-// polarisation-resolved work, use a rigorous method (RCWA, FDTD). The model is not reciprocal
-// (m depends on θ_i only; the exact thin-phase argument is ½kh(cosθ_i + cosθ_o)).
+// polarisation-resolved work, use a rigorous method (RCWA, FDTD). Not reciprocal (m depends on θ_i
+// only; the exact thin-phase argument is ½kh(cosθ_i + cosθ_o), which D6 trades for Σ_j J_j² = 1).
 //
 // Polarisation (EvalLobe): order j's Jones matrix is J_j(a)·√scale times the substrate's
-// diag(r_s, r_p) at θ_i (diag(t_s, t_p)·√(power factor)·(η_i/η_t) when transmitted), so M00 = a_j.
+// diag(r_s, r_p) at the source's θ (diag(t_s, t_p)·√(power factor)·(n_exit/n_source) when
+// transmitted), so M00 = a_j.
 // The rotation between the incident and the diffracted planes of incidence of conical orders is
 // not modelled (the thin-phase screen is scalar). No coherence terms (LobeCoherence::any =
 // false): a partially coherent field is an incoherent mixture of plane waves, each diffracted with
@@ -50,7 +62,9 @@
 // (renormalised) reflects and `phasor compare` shows only what diffraction redistributes.
 //
 // Lobes (all listed near-delta lobes; Sample picks one ∝ its radiance weight at the hero
-// wavelength, SampleListedLobe): reflected order j has id j, transmitted order j id 1000 + j
+// wavelength, SampleListedLobe; each thread keeps its last listing, since grt lists a vertex's lobes
+// and then samples them, and a listing evaluates the orders of every lobe's source direction):
+// reflected order j has id j, transmitted order j id 1000 + j
 // (GratingMaterial::TransmittedId). Orders j ≠ 0 are ScatterDispersive (their direction depends
 // on λ); the zeroth reflected order is not, the zeroth transmitted order is when the substrate
 // disperses. An order is listed if it propagates with non-zero weight at some carried wavelength;
