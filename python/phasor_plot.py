@@ -1,0 +1,343 @@
+#!/usr/bin/env python3
+# SPDX-License-Identifier: Apache-2.0
+"""phasor_plot — every plot phasor draws, through matplotlib.
+
+The phasor program (src/app/plot.cpp) writes the data as CSV and runs
+
+    python3 phasor_plot.py COMMAND --data FILE.csv --out FILE [--format png|svg|pdf] [options]
+
+Commands (each reads CSV only; none reads images):
+
+  profile      line plot of image rows/columns (`phasor profile`, a one-row render, `compare
+               --row/--column`). CSV: first column x_m (metres), x_px or y_px (pixels), then one
+               column per series, optionally abs_diff (drawn dotted, magnified by --diff-scale).
+  convergence  error against samples per pixel and against time, one curve per run (`compare`).
+               CSV: run,spp,seconds,rmse[,...]
+  disc-map     a value over the projected hemisphere (sinθcosφ, sinθsinφ) on the unit disc, colour
+               scale in dB/log/linear with a colour bar, labelled markers (`phasor probe`).
+               CSV: u,v,value on a regular grid; --points CSV: u,v,label.
+
+Exit status: 0 drawn; 1 an error (one line "error: reason" on stderr; for a file that cannot be
+written the reason is the system's, e.g. "File too large"); 2 bad arguments; 3 matplotlib or
+numpy is not installed for this interpreter (the caller may try another one).
+"""
+
+import argparse
+import csv
+import math
+import os
+import sys
+
+MISSING_LIBRARY = 3
+
+try:
+    import numpy as np
+    import matplotlib
+
+    matplotlib.use("Agg")  # no display; must precede pyplot
+    import matplotlib.pyplot as plt
+    from matplotlib import colors as mcolors
+    from matplotlib import patheffects
+except ImportError as e:  # the caller tells the user how to install it
+    print(f"error: {e.name or 'matplotlib'} is not installed for {sys.executable}", file=sys.stderr)
+    sys.exit(MISSING_LIBRARY)
+
+
+class PlotError(Exception):
+    """An error about the input, reported as one line."""
+
+
+# The colours of the paper's Fig. S6 (first series blue and solid, second green and dashed), then
+# more series in further colours.
+PALETTE = ["#1a59d9", "#1a9e33", "#d92626", "#f28c0d", "#8c40b3", "#737373"]
+
+
+def read_csv(path):
+    """Header and rows (lists of strings) of a CSV file."""
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            rows = list(csv.reader(f))
+    except OSError as e:
+        raise PlotError(f"cannot read '{path}': {e.strerror}")
+    if not rows:
+        raise PlotError(f"'{path}' is empty")
+    return rows[0], rows[1:]
+
+
+def number(text, path, line):
+    try:
+        v = float(text)
+    except ValueError:
+        raise PlotError(f"{path}:{line}: '{text}' is not a number")
+    return v if math.isfinite(v) else math.nan  # NaN/Inf break a line instead of stretching the axes
+
+
+def numeric_columns(path, header, rows, first=0):
+    """Columns first.. of rows as float arrays (NaN for non-finite values)."""
+    cols = [[] for _ in header[first:]]
+    for i, row in enumerate(rows):
+        if len(row) != len(header):
+            raise PlotError(f"{path}:{i + 2}: {len(row)} fields, the header has {len(header)}")
+        for k, text in enumerate(row[first:]):
+            cols[k].append(number(text, path, i + 2))
+    return [np.array(c, dtype=float) for c in cols]
+
+
+def length_unit(max_abs):
+    """A display unit for lengths in metres: (factor, name)."""
+    if max_abs >= 1:
+        return 1.0, "m"
+    if max_abs >= 1e-3:
+        return 1e3, "mm"
+    if max_abs >= 1e-6:
+        return 1e6, "µm"
+    return 1e9, "nm"
+
+
+def save(fig, args):
+    fmt = args.format or os.path.splitext(args.out)[1].lstrip(".").lower() or "png"
+    if fmt not in ("png", "svg", "pdf"):
+        fmt = "png"
+    metadata = {"Title": args.title} if args.title and fmt in ("png", "pdf") else None
+    fig.savefig(args.out, format=fmt, metadata=metadata)
+    plt.close(fig)
+
+
+# ---- profile ------------------------------------------------------------------------------------
+
+
+def plot_profile(args):
+    header, rows = read_csv(args.data)
+    if len(header) < 2:
+        raise PlotError(f"'{args.data}' has no data column (header: {','.join(header)})")
+    if not rows:
+        raise PlotError(f"'{args.data}' has no rows")
+    x, *cols = numeric_columns(args.data, header, rows)
+    names = header[1:]
+    kind = header[0]
+    if kind == "x_m":
+        scale, unit = length_unit(np.nanmax(np.abs(x)) if np.isfinite(x).any() else 1.0)
+        xlabel = f"x ({unit})"
+    elif kind in ("x_px", "y_px"):
+        scale, unit = 1.0, "pixel"
+        xlabel = f"{kind[0]} (pixel)"
+    else:
+        raise PlotError(f"'{args.data}': the first column must be x_m, x_px or y_px, not '{kind}'")
+    xs = x * scale
+    # One pixel: the spacing of the samples (pixel centres).
+    pitch = abs(xs[1] - xs[0]) if len(xs) > 1 and np.isfinite(xs[:2]).all() else 1.0
+
+    fig, ax = plt.subplots(figsize=(args.width / 100, args.height / 100), dpi=100)
+    series = [(n, c) for n, c in zip(names, cols) if n != "abs_diff"]
+    top = -math.inf
+    for k, (name, y) in enumerate(series):
+        ax.plot(xs, y, color=PALETTE[k % len(PALETTE)], linestyle="--" if k == 1 else "-", linewidth=1.8,
+                label=name, zorder=3 + k)
+        if np.isfinite(y).any():
+            top = max(top, np.nanmax(y))
+    if "abs_diff" in names:
+        d = cols[names.index("abs_diff")] * args.diff_scale
+        a, b = (series[0][0], series[1][0]) if len(series) >= 2 else ("a", "b")
+        label = f"|{a} - {b}|" + (f" × {args.diff_scale:g}" if args.diff_scale != 1 else "")
+        ax.plot(xs, d, color="black", linestyle=":", linewidth=1.8, label=label, zorder=10)
+        if np.isfinite(d).any():
+            top = max(top, np.nanmax(d))
+    # One pixel's extent as a cyan bar, centred on the peak of the last series, just above the data.
+    last = series[-1][1] if series else None
+    if last is not None and np.isfinite(last).any() and math.isfinite(top):
+        i = int(np.nanargmax(last))
+        y = 1.03 * top if top > 0 else top + 0.03 * abs(top) + 1e-30
+        width_text = f"{pitch:.4g} {unit}" if unit != "pixel" else ""
+        ax.plot([xs[i] - pitch / 2, xs[i] + pitch / 2], [y, y], color="#00bfe6", linewidth=5,
+                solid_capstyle="butt", label=f"one pixel ({width_text})" if width_text else "one pixel",
+                zorder=11)
+    finite = xs[np.isfinite(xs)]
+    if len(finite):
+        ax.set_xlim(finite.min() - pitch / 2, finite.max() + pitch / 2)
+    lo, hi = ax.get_ylim()
+    if lo > 0:  # intensities: the axis starts at zero
+        ax.set_ylim(0, hi)
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(args.ylabel)
+    ax.set_title(args.title)
+    ax.grid(True, color="#e0e0e0", linewidth=0.8)
+    ax.legend(loc="best", framealpha=0.9)
+    fig.tight_layout()
+    save(fig, args)
+
+
+# ---- convergence --------------------------------------------------------------------------------
+
+
+def plot_convergence(args):
+    header, rows = read_csv(args.data)
+    need = ["run", "spp", "seconds", args.metric]
+    for n in need:
+        if n not in header:
+            raise PlotError(f"'{args.data}' has no column '{n}' (header: {','.join(header)})")
+    runs = {}
+    for i, row in enumerate(rows):
+        if len(row) != len(header):
+            raise PlotError(f"{args.data}:{i + 2}: {len(row)} fields, the header has {len(header)}")
+        rec = dict(zip(header, row))
+        runs.setdefault(rec["run"], []).append(
+            tuple(number(rec[n], args.data, i + 2) for n in ("spp", "seconds", args.metric)))
+    if not runs:
+        raise PlotError(f"'{args.data}' has no rows")
+    fig, axes = plt.subplots(1, 2, figsize=(args.width / 100, args.height / 100), dpi=100)
+    ylabel = {"rmse": "RMSE", "rel_mse": "relative MSE", "max_error": "max error (of the peak)"}.get(
+        args.metric, args.metric)
+    for k, (name, pts) in enumerate(runs.items()):
+        pts = [p for p in pts if p[0] > 0 and p[1] > 0 and p[2] > 0 and all(map(math.isfinite, p))]
+        if not pts:
+            continue
+        spp, sec, err = (np.array(v) for v in zip(*pts))
+        colour = PALETTE[k % len(PALETTE)]
+        axes[0].plot(spp, err, "o-", color=colour, label=name, markersize=3.5)
+        axes[1].plot(sec, err, "o-", color=colour, label=name, markersize=3.5)
+        if k == 0 and len(spp) > 1:  # the Monte Carlo rate through the first run's first point
+            slope = -1.0 if args.metric in ("rel_mse",) else -0.5
+            guide = err[0] * (spp / spp[0]) ** slope
+            axes[0].plot(spp, guide, color="#999999", linestyle="--", linewidth=1,
+                         label="∝ 1/spp" if slope == -1 else "∝ 1/√spp")
+    for ax, xl in zip(axes, ("samples per pixel", "render time (s)")):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(xl)
+        ax.set_ylabel(ylabel)
+        ax.grid(True, which="both", color="#e6e6e6", linewidth=0.6)
+        if ax.lines:
+            ax.legend(loc="best", framealpha=0.9)
+    fig.suptitle(args.title)
+    fig.tight_layout()
+    save(fig, args)
+
+
+# ---- disc map -----------------------------------------------------------------------------------
+
+
+def plot_disc_map(args):
+    header, rows = read_csv(args.data)
+    if header[:3] != ["u", "v", "value"]:
+        raise PlotError(f"'{args.data}': the header must start with u,v,value (got {','.join(header)})")
+    u, v, val = numeric_columns(args.data, header[:3], [r[:3] for r in rows])
+    if not len(u):
+        raise PlotError(f"'{args.data}' has no rows")
+    us, vs = np.unique(u), np.unique(v)
+    if len(us) * len(vs) != len(u):
+        raise PlotError(f"'{args.data}': the points do not form a regular grid "
+                        f"({len(us)} u values × {len(vs)} v values for {len(u)} points)")
+    grid = np.full((len(vs), len(us)), np.nan)
+    grid[np.searchsorted(vs, v), np.searchsorted(us, u)] = val
+    U, V = np.meshgrid(us, vs)
+    grid[U * U + V * V > 1 + 1e-12] = np.nan  # outside the projected hemisphere
+    du = (us[1] - us[0]) if len(us) > 1 else 1.0
+    dv = (vs[1] - vs[0]) if len(vs) > 1 else 1.0
+    extent = [us[0] - du / 2, us[-1] + du / 2, vs[0] - dv / 2, vs[-1] + dv / 2]
+
+    finite = grid[np.isfinite(grid)]
+    peak = finite.max() if len(finite) else 0.0
+    cmap = matplotlib.colormaps["viridis"].copy()
+    cmap.set_bad("white")
+    if args.scale == "db":
+        with np.errstate(divide="ignore", invalid="ignore"):
+            shown = np.where(grid > 0, 10 * np.log10(grid / peak), -np.inf) if peak > 0 else np.full_like(grid, -np.inf)
+        shown = np.where(np.isnan(grid), np.nan, np.maximum(shown, -args.db_range))
+        norm = mcolors.Normalize(vmin=-args.db_range, vmax=0)
+        bar_label = f"{args.value_label} (dB, 0 dB = {peak:.4g})"
+    elif args.scale == "log":
+        positive = finite[finite > 0]
+        lo = max(positive.min(), peak * 10 ** (-args.db_range / 10)) if len(positive) else 1e-30
+        shown = np.where(np.isnan(grid), np.nan, np.maximum(grid, lo))
+        norm = mcolors.LogNorm(vmin=lo, vmax=max(peak, lo * 10))
+        bar_label = args.value_label
+    else:
+        shown = grid
+        norm = mcolors.Normalize(vmin=min(0.0, finite.min()) if len(finite) else 0, vmax=peak if peak > 0 else 1)
+        bar_label = args.value_label
+
+    fig, ax = plt.subplots(figsize=(args.width / 100, args.height / 100), dpi=100)
+    im = ax.imshow(np.ma.masked_invalid(shown), origin="lower", extent=extent, cmap=cmap, norm=norm,
+                   interpolation="nearest")
+    t = np.linspace(0, 2 * np.pi, 361)
+    ax.plot(np.cos(t), np.sin(t), color="black", linewidth=1.2)
+    for deg in (30, 60):  # rings of constant θ
+        r = math.sin(math.radians(deg))
+        ax.plot(r * np.cos(t), r * np.sin(t), color="#888888", linewidth=0.7, linestyle=":")
+        ax.text(r * math.cos(math.radians(45)), r * math.sin(math.radians(45)), f"θ = {deg}°", color="black",
+                fontsize=8, path_effects=[patheffects.withStroke(linewidth=2, foreground="white")])
+    if args.points:
+        ph, prows = read_csv(args.points)
+        if ph[:3] != ["u", "v", "label"]:
+            raise PlotError(f"'{args.points}': the header must be u,v,label (got {','.join(ph)})")
+        for i, row in enumerate(prows):
+            if len(row) < 3:
+                raise PlotError(f"{args.points}:{i + 2}: expected u,v,label")
+            pu, pv = number(row[0], args.points, i + 2), number(row[1], args.points, i + 2)
+            ax.plot([pu], [pv], marker="o", markersize=6, markerfacecolor="none", markeredgecolor="#e62020",
+                    markeredgewidth=1.5, zorder=5)
+            if row[2]:
+                ax.annotate(row[2], (pu, pv), textcoords="offset points", xytext=(5, 5), color="#b00000",
+                            fontsize=8, zorder=6)
+    ax.set_xlim(-1.05, 1.05)
+    ax.set_ylim(-1.05, 1.05)
+    ax.set_aspect("equal")
+    ax.set_xlabel("sinθ cosφ")
+    ax.set_ylabel("sinθ sinφ")
+    ax.set_title(args.title)
+    bar = fig.colorbar(im, ax=ax, fraction=0.046, pad=0.04)
+    bar.set_label(bar_label)
+    fig.tight_layout()
+    save(fig, args)
+
+
+# ---- command line -------------------------------------------------------------------------------
+
+
+def main(argv):
+    parser = argparse.ArgumentParser(prog="phasor_plot.py", description="phasor's plots (matplotlib).")
+    sub = parser.add_subparsers(dest="command", required=True)
+
+    def common(p, width, height):
+        p.add_argument("--data", required=True, help="input CSV")
+        p.add_argument("--out", required=True, help="output file")
+        p.add_argument("--format", choices=["png", "svg", "pdf"], help="default: from --out's extension")
+        p.add_argument("--title", default="")
+        p.add_argument("--width", type=int, default=width, help="pixels")
+        p.add_argument("--height", type=int, default=height, help="pixels")
+
+    p = sub.add_parser("profile", help="line plot of image rows or columns")
+    common(p, 1000, 600)
+    p.add_argument("--ylabel", default="intensity")
+    p.add_argument("--diff-scale", type=float, default=1.0, help="magnification of abs_diff")
+    p.set_defaults(run=plot_profile)
+
+    p = sub.add_parser("convergence", help="error against spp and time")
+    common(p, 1200, 500)
+    p.add_argument("--metric", default="rmse", help="the CSV column to plot (rmse, rel_mse, max_error)")
+    p.set_defaults(run=plot_convergence)
+
+    p = sub.add_parser("disc-map", help="a value over the projected hemisphere")
+    common(p, 700, 600)
+    p.add_argument("--points", help="CSV u,v,label of markers")
+    p.add_argument("--scale", choices=["db", "log", "linear"], default="db")
+    p.add_argument("--db-range", type=float, default=40.0, help="dB shown below the maximum (db, log)")
+    p.add_argument("--value-label", default="value")
+    p.set_defaults(run=plot_disc_map)
+
+    args = parser.parse_args(argv)
+    if not (16 <= args.width <= 16384 and 16 <= args.height <= 16384):
+        parser.error("--width and --height must be within 16..16384 pixels")
+    try:
+        args.run(args)
+    except PlotError as e:
+        print(f"error: {e}", file=sys.stderr)
+        return 1
+    except OSError as e:  # a failed write (full disk, file-size limit): the system's reason
+        print(f"error: {e.strerror or e}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv[1:]))

@@ -1,0 +1,45 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — plots through matplotlib. The program writes the data as CSV and runs the plot module
+// shipped with it, python/phasor_plot.py (its docstring lists the commands and their CSV), which
+// draws the file at the temporary path of core/image/output_file.h, so a plot appears together
+// with the other outputs of a command or not at all.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace phasor {
+
+class OutputFiles;
+
+/// One plot: a command of phasor_plot.py with its data and options.
+struct PlotRequest {
+    std::string command;  // "profile", "convergence", "disc-map"
+    std::string data;     // CSV text, passed as --data
+    /// Further CSV inputs: option → CSV text (e.g. {"--points", "u,v,label\n…"}).
+    std::vector<std::pair<std::string, std::string>> extraData;
+    std::vector<std::string> args;  // further options, e.g. {"--title", "double slit"}
+};
+
+/// Draws `request` into `path` — SVG or PDF when `path` ends in .svg or .pdf, otherwise PNG —
+/// staged in `files` (it appears at files.Commit()). Returns false, staging nothing, when no
+/// Python with matplotlib and numpy is found (MatplotlibMissing() says what to install); throws
+/// phasor::Error "cannot write 'PATH': reason" when the plot fails (the module's own message, e.g.
+/// "File too large").
+///
+/// The interpreter is $PHASOR_PYTHON when set (only that one), else `python3` from PATH, else
+/// /usr/bin/python3 (where Debian's python3-matplotlib installs for): the first that can import
+/// matplotlib is used for the rest of the process. It runs in its own process group (a Ctrl-C at
+/// the terminal stops phasor's render, not a plot being drawn), without writing bytecode.
+bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &request);
+
+/// The plot module: $PHASOR_PLOT_MODULE when set, else share/phasor/phasor_plot.py beside the
+/// directory of the phasor executable (`<prefix>/bin/phasor` → `<prefix>/share/phasor/`; the build
+/// tree has the same layout). Empty when not found.
+std::string PlotModulePath();
+
+/// One line for the user after StagePlot returned false: what was missing and how to install it.
+std::string MatplotlibMissing();
+
+}  // namespace phasor
