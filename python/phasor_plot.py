@@ -106,7 +106,7 @@ def save(fig, args):
 # ---- profile ------------------------------------------------------------------------------------
 
 
-def plot_profile(args):
+def figure_profile(args):
     header, rows = read_csv(args.data)
     if len(header) < 2:
         raise PlotError(f"'{args.data}' has no data column (header: {','.join(header)})")
@@ -163,13 +163,13 @@ def plot_profile(args):
     ax.grid(True, color="#e0e0e0", linewidth=0.8)
     ax.legend(loc="best", framealpha=0.9)
     fig.tight_layout()
-    save(fig, args)
+    return fig
 
 
 # ---- convergence --------------------------------------------------------------------------------
 
 
-def plot_convergence(args):
+def figure_convergence(args):
     header, rows = read_csv(args.data)
     need = ["run", "spp", "seconds", args.metric]
     for n in need:
@@ -210,13 +210,13 @@ def plot_convergence(args):
             ax.legend(loc="best", framealpha=0.9)
     fig.suptitle(args.title)
     fig.tight_layout()
-    save(fig, args)
+    return fig
 
 
 # ---- disc map -----------------------------------------------------------------------------------
 
 
-def plot_disc_map(args):
+def figure_disc_map(args):
     header, rows = read_csv(args.data)
     if header[:3] != ["u", "v", "value"]:
         raise PlotError(f"'{args.data}': the header must start with u,v,value (got {','.join(header)})")
@@ -288,13 +288,14 @@ def plot_disc_map(args):
     bar = fig.colorbar(im, ax=ax, fraction=0.046, pad=0.04)
     bar.set_label(bar_label)
     fig.tight_layout()
-    save(fig, args)
+    return fig
 
 
 # ---- command line -------------------------------------------------------------------------------
 
 
-def main(argv):
+def parse_args(argv):
+    """The command line: a namespace whose .figure(args) draws the plot (tests call it directly)."""
     parser = argparse.ArgumentParser(prog="phasor_plot.py", description="phasor's plots (matplotlib).")
     sub = parser.add_subparsers(dest="command", required=True)
 
@@ -310,12 +311,12 @@ def main(argv):
     common(p, 1000, 600)
     p.add_argument("--ylabel", default="intensity")
     p.add_argument("--diff-scale", type=float, default=1.0, help="magnification of abs_diff")
-    p.set_defaults(run=plot_profile)
+    p.set_defaults(figure=figure_profile)
 
     p = sub.add_parser("convergence", help="error against spp and time")
     common(p, 1200, 500)
     p.add_argument("--metric", default="rmse", help="the CSV column to plot (rmse, rel_mse, max_error)")
-    p.set_defaults(run=plot_convergence)
+    p.set_defaults(figure=figure_convergence)
 
     p = sub.add_parser("disc-map", help="a value over the projected hemisphere")
     common(p, 700, 600)
@@ -323,13 +324,18 @@ def main(argv):
     p.add_argument("--scale", choices=["db", "log", "linear"], default="db")
     p.add_argument("--db-range", type=float, default=40.0, help="dB shown below the maximum (db, log)")
     p.add_argument("--value-label", default="value")
-    p.set_defaults(run=plot_disc_map)
+    p.set_defaults(figure=figure_disc_map)
 
     args = parser.parse_args(argv)
     if not (16 <= args.width <= 16384 and 16 <= args.height <= 16384):
         parser.error("--width and --height must be within 16..16384 pixels")
+    return args
+
+
+def main(argv):
+    args = parse_args(argv)
     try:
-        args.run(args)
+        save(args.figure(args), args)
     except PlotError as e:
         print(f"error: {e}", file=sys.stderr)
         return 1

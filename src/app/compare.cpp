@@ -191,9 +191,12 @@ int RunCompare(const CliOptions &o) {
         }
         return 1;
     }
-    // Every name must pick an integrator, before anything is rendered.
+    // Every name must pick an integrator, before anything is rendered. `all`: every integrator of
+    // the registry, in its order (a new integrator joins the comparison by being registered).
     const std::vector<std::string> choices = IntegratorChoices(*desc);
-    std::vector<std::string> names = c.integrators;
+    const std::vector<std::string> integrators =
+        c.integrators == std::vector<std::string>{"all"} ? Registry<Integrator>::Names() : c.integrators;
+    std::vector<std::string> names = integrators;
     if (!c.referenceIntegrator.empty()) names.push_back(c.referenceIntegrator);
     for (const std::string &n : names)
         if (std::find(choices.begin(), choices.end(), n) == choices.end()) {
@@ -245,7 +248,7 @@ int RunCompare(const CliOptions &o) {
         r.isReferenceRun = true;
         runs.push_back(std::move(r));
     }
-    for (const std::string &n : c.integrators) {
+    for (const std::string &n : integrators) {
         CompareRun r;
         r.name = n;
         r.file = FileStem(n);
@@ -253,7 +256,7 @@ int RunCompare(const CliOptions &o) {
     }
     if (!o.quiet) {
         std::cerr << "compare: " << o.scene << " with";
-        for (const std::string &n : c.integrators) std::cerr << " " << n;
+        for (const std::string &n : integrators) std::cerr << " " << n;
         if (c.seconds > 0) std::cerr << ", " << c.seconds << " s each";
         else if (o.spp > 0) std::cerr << ", " << o.spp << " spp each";
         else std::cerr << ", the scene's spp";
@@ -325,8 +328,6 @@ int RunCompare(const CliOptions &o) {
         ref.description = "the image '" + c.reference + "'";
         ref.name = "reference image";
         ref.image = &*refImage;
-    } else {
-        ChooseReference(runs, ref);
     }
     ComputeErrors(runs, ref);
 

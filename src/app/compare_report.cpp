@@ -245,10 +245,11 @@ void ComputeErrors(std::vector<CompareRun> &runs, CompareReference &ref) {
                               (r.deterministic ? std::string("its own accuracy") : std::to_string(r.sppReached) + " spp") +
                               " (--reference-integrator)";
         }
-    if (!ref.image) {  // the reference run failed: fall back on the best-converged run
+    if (!ref.image) {  // no reference given, or the reference run failed: the best-converged run
         ChooseReference(runs, ref);
         if (!ref.image) return;
-        ref.description += " (the reference integrator failed)";
+        if (std::any_of(runs.begin(), runs.end(), [](const CompareRun &r) { return r.isReferenceRun; }))
+            ref.description += " (the reference integrator did not finish)";
     }
     ref.values = ChannelValues(*ref.image, "intensity");
     ref.peak = FiniteMax(ref.values);
@@ -474,7 +475,8 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
          "th { background: #eee; } td.name, td.status { text-align: left; }\n"
          "tr.reference td { background: #f4f8ff; } tr.failed td { color: #a00; }\n"
          "figure { display: inline-block; vertical-align: top; margin: 0 1.2em 1.2em 0; }\n"
-         "figure img { max-width: 100%; border: 1px solid #ddd; image-rendering: pixelated; }\n"
+         "figure img { max-width: 100%; border: 1px solid #ddd; }\n"
+         "figure:not(.plot) img { image-rendering: pixelated; }\n"
          "figure.plot img { width: 640px; }\n"
          "figcaption { font-size: 90%; color: #444; }\n"
          "code { background: #f3f3f3; padding: 1px 4px; } .missing { color: #a00; } .note { color: #555; }\n"

@@ -67,7 +67,8 @@ struct CompareReference {
 /// noise Σ variance / Σ intensity² (the `variance` channel: the i.i.d. estimate, which overstates
 /// Sobol' noise but alike for every sampling run). Marks it, fills `ref`.
 void ChooseReference(std::vector<CompareRun> &runs, CompareReference &ref);
-/// Marks the reference run (--reference-integrator) or none (an image), then the metrics of every
+/// Unless `ref` already holds an image (--reference): the reference run (--reference-integrator),
+/// else (or when it failed) the best-converged run (ChooseReference). Then the metrics of every
 /// other run and of its snapshots.
 void ComputeErrors(std::vector<CompareRun> &runs, CompareReference &ref);
 

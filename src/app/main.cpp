@@ -50,7 +50,7 @@ const char *kUsageTail =
     "                      one row (default: the middle one) or column of a channel (default:\n"
     "                      intensity) of each image as CSV (stdout unless --csv/--plot) and/or a line\n"
     "                      plot (matplotlib); with two images also |a - b| and max |a - b| / max(b)\n"
-    "  compare SCENE --integrators A,B[,...] [--spp N | --time SECONDS]\n"
+    "  compare SCENE --integrators A,B[,...]|all [--spp N | --time SECONDS]\n"
     "          [--reference FILE.exr | --reference-integrator NAME [--reference-spp N]]\n"
     "          [--row N | --column N] [-o DIR] [-D name=value ...] [--seed S] [--threads N] [--quiet]\n"
     "                      render SCENE with each integrator (equal spp or equal time) and compare\n"

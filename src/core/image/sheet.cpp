@@ -50,7 +50,7 @@ void Colour8(ColourMap map, double t, uint8_t out[3]) {
 }
 
 // Layout constants (pixels).
-constexpr int Margin = 10, LabelBand = 26, LabelLine = 19, Gap = 12, BarGap = 18, BarWidth = 24, BarLabels = 92, TitleBand = 30;
+constexpr int Margin = 10, LabelBand = 26, LabelLine = 19, Gap = 12, BarGap = 18, BarWidth = 24, BarLabels = 92, TitleBand = 40;
 constexpr int TickLength = 6, FontSize = 15, LabelFontSize = 16;
 
 }  // namespace
@@ -228,7 +228,7 @@ SheetResult StageSheetPng(OutputFiles &files, const std::string &path, const std
             text(barX + BarWidth + TickLength + 4, y, t.text, FontSize - 2, IBA::TextAlignX::Left,
                  IBA::TextAlignY::Center);
         }
-        text(width - 6, TitleBand / 2, bar->title, FontSize - 1, IBA::TextAlignX::Right, IBA::TextAlignY::Center);
+        text(width - 6, 16, bar->title, FontSize - 1, IBA::TextAlignX::Right, IBA::TextAlignY::Center);
     }
 
     std::vector<uint8_t> bytes(canvas.size());
