@@ -89,7 +89,8 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
                 std::size_t start = 0;
                 for (;;) {
                     const std::size_t comma = v.find(',', start);
-                    const std::string name = v.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+                    const std::string name =
+                        v.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
                     if (name.empty()) {
                         err = "'--integrators' expects names separated by commas (e.g. grt,ray); got '" + v + "'";
                         return false;

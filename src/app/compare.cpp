@@ -105,7 +105,8 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
     const std::string label = "[" + std::to_string(index) + "/" + std::to_string(count) + "] " + run.name;
     const bool bar = !o.quiet && isatty(2);
     std::function<void(int, int)> progress;
-    if (bar) progress = ProgressBar(label, run.deterministic, (long long)det.Width() * det.Height(), timed ? budget : 0);
+    if (bar)
+        progress = ProgressBar(label, run.deterministic, (long long)det.Width() * det.Height(), timed ? budget : 0);
     if (!timed) opt.warn = [&](const std::string &w) { std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n"; };
 
     Film film(det.Width(), det.Height(), det.Response());
@@ -161,7 +162,8 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
     run.image = std::move(img);
     if (!o.quiet) {
         std::cerr << label << ": " << (interrupted ? "interrupted: " : "");
-        if (run.deterministic) std::cerr << st.work;
+        if (run.deterministic)
+            std::cerr << st.work;
         else
             std::cerr << st.sppReached << " spp";
         std::cerr << " in " << FormatDuration(run.seconds) << (timed ? " (the time budget)" : "");
@@ -176,14 +178,14 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
 
 int RunCompare(const CliOptions &o) {
     const CliOptions::CompareOptions &c = o.compare;
-    const std::string dir =
-        !o.output.empty() ? o.output : "out/" + fs::path(o.scene).stem().string() + "_compare";
+    const std::string dir = !o.output.empty() ? o.output : "out/" + fs::path(o.scene).stem().string() + "_compare";
     // The scene, parsed once.
     Diagnostics diag(o.strict);
     std::optional<SceneDesc> desc;
     desc = ParseScene(o, diag);
     if (!desc || diag.HasErrors()) {
-        if (desc) BuildScene(o, *desc, diag, "");  // report the build's errors too
+        if (desc)
+            BuildScene(o, *desc, diag, "");  // report the build's errors too
         else {
             diag.Print(std::cerr, Colour());
             std::cerr << diag.ErrorCount() << " error" << (diag.ErrorCount() == 1 ? "" : "s") << " in '" << o.scene
@@ -201,8 +203,8 @@ int RunCompare(const CliOptions &o) {
     for (const std::string &n : names)
         if (std::find(choices.begin(), choices.end(), n) == choices.end()) {
             const std::string sug = Suggest(n, choices);
-            std::cerr << "error: unknown integrator '" << n << "'" << (sug.empty() ? "" : "; did you mean '" + sug + "'?")
-                      << " (integrators:";
+            std::cerr << "error: unknown integrator '" << n << "'"
+                      << (sug.empty() ? "" : "; did you mean '" + sug + "'?") << " (integrators:";
             for (const std::string &k : choices) std::cerr << " " << k;
             std::cerr << ")\n";
             return 1;
@@ -257,9 +259,12 @@ int RunCompare(const CliOptions &o) {
     if (!o.quiet) {
         std::cerr << "compare: " << o.scene << " with";
         for (const std::string &n : integrators) std::cerr << " " << n;
-        if (c.seconds > 0) std::cerr << ", " << c.seconds << " s each";
-        else if (o.spp > 0) std::cerr << ", " << o.spp << " spp each";
-        else std::cerr << ", the scene's spp";
+        if (c.seconds > 0)
+            std::cerr << ", " << c.seconds << " s each";
+        else if (o.spp > 0)
+            std::cerr << ", " << o.spp << " spp each";
+        else
+            std::cerr << ", the scene's spp";
         std::cerr << " -> " << dir << "/\n";
     }
 
@@ -373,8 +378,8 @@ int RunCompare(const CliOptions &o) {
         return 1;
     }
     RemoveStopHandlers();
-    const bool failed =
-        std::any_of(runs.begin(), runs.end(), [](const CompareRun &r) { return r.status == CompareRun::Status::Failed; });
+    const bool failed = std::any_of(runs.begin(), runs.end(),
+                                    [](const CompareRun &r) { return r.status == CompareRun::Status::Failed; });
     if (!o.quiet) {
         std::cerr << "reference: " << ref.description << "\n";
         PrintSummary(std::cerr, runs);

@@ -15,6 +15,7 @@
 #include "app/plot.h"
 #include "app/profile.h"
 #include "app/render_common.h"
+#include "app/text.h"
 #include "core/diagnostics.h"
 #include "core/image/image_io.h"
 #include "core/image/sheet.h"
@@ -25,12 +26,8 @@ namespace {
 namespace fs = std::filesystem;
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string Num(double v, int digits) {
-    if (!std::isfinite(v)) return "";
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    return buf;
-}
+// A number for the table; "" when there is none.
+std::string Num(double v, int digits) { return std::isfinite(v) ? FormatNumber(v, digits) : ""; }
 // A number for people: 3 significant digits, "—" when there is none.
 std::string Short(double v) { return std::isfinite(v) ? Num(v, 3) : "—"; }
 
@@ -38,21 +35,23 @@ std::string Html(const std::string &s) {
     std::string out;
     for (char ch : s) {
         switch (ch) {
-            case '&': out += "&amp;"; break;
-            case '<': out += "&lt;"; break;
-            case '>': out += "&gt;"; break;
-            case '"': out += "&quot;"; break;
-            default: out += ch;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            default:
+                out += ch;
         }
     }
     return out;
-}
-
-std::string CsvField(const std::string &s) {
-    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char ch : s) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-    return q + "\"";
 }
 
 // The smallest 1, 2 or 5 × 10^k not below x > 0.
@@ -77,12 +76,20 @@ TableRow RowOf(const CompareRun &r) {
     t.role = r.isReference ? "reference" : "compared";
     t.error = r.error;
     switch (r.status) {
-        case CompareRun::Status::Done: t.status = "ok"; break;
-        case CompareRun::Status::Interrupted: t.status = "interrupted"; break;
-        case CompareRun::Status::Failed: t.status = "failed"; break;
-        case CompareRun::Status::NotRun: t.status = "not_run"; break;
+        case CompareRun::Status::Done:
+            t.status = "ok";
+            break;
+        case CompareRun::Status::Interrupted:
+            t.status = "interrupted";
+            break;
+        case CompareRun::Status::Failed:
+            t.status = "failed";
+            break;
+        case CompareRun::Status::NotRun:
+            t.status = "not_run";
+            break;
     }
-    t.statusText = r.status == CompareRun::Status::Failed      ? "failed: " + r.error
+    t.statusText = r.status == CompareRun::Status::Failed        ? "failed: " + r.error
                    : r.status == CompareRun::Status::NotRun      ? "not run (stopped)"
                    : r.status == CompareRun::Status::Interrupted ? "interrupted (Ctrl-C)"
                    : r.isReference                               ? "reference"
@@ -103,7 +110,9 @@ TableRow RowOf(const CompareRun &r) {
 }
 
 std::string Dash(const std::string &s, const char *none = "—") { return s.empty() ? none : s; }
-std::string ShortField(const std::string &s, const char *none = "—") { return s.empty() ? none : Short(std::stod(s)); }
+std::string ShortField(const std::string &s, const char *none = "—") {
+    return s.empty() ? none : Short(std::stod(s));
+}
 
 const char *MetricsNote =
     "Errors of the `intensity` channel against the reference, over the pixels: RMSE = √mean((I − R)²); "
@@ -134,8 +143,8 @@ std::string CsvTable(const std::vector<CompareRun> &runs) {
     csv << "integrator,role,status,spp,seconds,samples_per_second,rmse,rel_mse,max_error,error\n";
     for (const CompareRun &r : runs) {
         const TableRow t = RowOf(r);
-        csv << CsvField(t.name) << ',' << t.role << ',' << t.status << ',' << t.spp << ',' << t.seconds << ','
-            << t.rate << ',' << t.rmse << ',' << t.relMse << ',' << t.maxError << ',' << CsvField(t.error) << '\n';
+        csv << CsvField(t.name) << ',' << t.role << ',' << t.status << ',' << t.spp << ',' << t.seconds << ',' << t.rate
+            << ',' << t.rmse << ',' << t.relMse << ',' << t.maxError << ',' << CsvField(t.error) << '\n';
     }
     return csv.str();
 }
@@ -143,8 +152,10 @@ std::string CsvTable(const std::vector<CompareRun> &runs) {
 // The label of a run's tile: "grt — 4096 spp, 0.52 s".
 std::string TileLabel(const CompareRun &r, const char *separator = "\n") {
     std::string s = r.name + (r.isReference ? " (reference)" : "") + separator;
-    if (r.deterministic) s += "deterministic, ";
-    else s += std::to_string(r.sppReached) + " spp, ";
+    if (r.deterministic)
+        s += "deterministic, ";
+    else
+        s += std::to_string(r.sppReached) + " spp, ";
     return s + FormatSeconds(r.seconds) + (r.status == CompareRun::Status::Interrupted ? ", interrupted" : "");
 }
 
@@ -199,9 +210,8 @@ CompareMetrics ErrorMetrics(const std::vector<double> &image, const std::vector<
 
 void ChooseReference(std::vector<CompareRun> &runs, CompareReference &ref) {
     // Complete runs first: an interrupted one may have pixels without samples (and no variance).
-    const bool anyDone = std::any_of(runs.begin(), runs.end(), [](const CompareRun &r) {
-        return r.image && r.status == CompareRun::Status::Done;
-    });
+    const bool anyDone = std::any_of(
+        runs.begin(), runs.end(), [](const CompareRun &r) { return r.image && r.status == CompareRun::Status::Done; });
     CompareRun *best = nullptr;
     double bestNoise = Infinity;
     for (CompareRun &r : runs) {
@@ -209,7 +219,7 @@ void ChooseReference(std::vector<CompareRun> &runs, CompareReference &ref) {
         double noise = Infinity;
         if (r.deterministic) {
             noise = r.status == CompareRun::Status::Done ? -1 : Infinity;  // a complete exact solution first
-        } else if (!r.variance.empty() && r.sppReached >= 2) {  // (one sample has no variance estimate)
+        } else if (!r.variance.empty() && r.sppReached >= 2) {             // (one sample has no variance estimate)
             double var = 0, sq = 0;
             for (std::size_t i = 0; i < r.variance.size(); ++i)
                 if (std::isfinite(r.variance[i]) && std::isfinite(r.intensity[i])) {
@@ -228,11 +238,13 @@ void ChooseReference(std::vector<CompareRun> &runs, CompareReference &ref) {
     ref.image = &*best->image;
     ref.name = best->name;
     ref.description = best->name + ", the best-converged run (no reference was given): ";
-    if (best->deterministic) ref.description += "deterministic, no sampling noise";
+    if (best->deterministic)
+        ref.description += "deterministic, no sampling noise";
     else if (std::isfinite(bestNoise))
-        ref.description += "the least estimated noise, relative variance " + Short(bestNoise) +
-                           " from its variance channel";
-    else ref.description += "no run has a noise estimate";
+        ref.description +=
+            "the least estimated noise, relative variance " + Short(bestNoise) + " from its variance channel";
+    else
+        ref.description += "no run has a noise estimate";
 }
 
 void ComputeErrors(std::vector<CompareRun> &runs, CompareReference &ref) {
@@ -241,9 +253,10 @@ void ComputeErrors(std::vector<CompareRun> &runs, CompareReference &ref) {
             r.isReference = true;
             ref.image = &*r.image;
             ref.name = r.name;
-            ref.description = r.name + " at " +
-                              (r.deterministic ? std::string("its own accuracy") : std::to_string(r.sppReached) + " spp") +
-                              " (--reference-integrator)";
+            ref.description =
+                r.name + " at " +
+                (r.deterministic ? std::string("its own accuracy") : std::to_string(r.sppReached) + " spp") +
+                " (--reference-integrator)";
         }
     if (!ref.image) {  // no reference given, or the reference run failed: the best-converged run
         ChooseReference(runs, ref);
@@ -263,8 +276,10 @@ void ComputeErrors(std::vector<CompareRun> &runs, CompareReference &ref) {
 
 std::string FormatSeconds(double s) {
     char buf[32];
-    if (s < 60) std::snprintf(buf, sizeof buf, "%.3g s", s);
-    else return FormatDuration(s);
+    if (s < 60)
+        std::snprintf(buf, sizeof buf, "%.3g s", s);
+    else
+        return FormatDuration(s);
     return buf;
 }
 
@@ -358,7 +373,8 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
         if (diffs[k].empty()) continue;
         const CompareRun &r = runs[k];
         const std::string name = "diff_" + r.file + ".png";
-        const Rgb8Image img = MapColours(diffs[k], r.image->width, r.image->height, ColourMap::Diverging, -limit, limit);
+        const Rgb8Image img =
+            MapColours(diffs[k], r.image->width, r.image->height, ColourMap::Diverging, -limit, limit);
         Warn(StageSheetPng(files, path(name), {SheetTile{img, r.name + " - reference"}}, &diffBar,
                            "(" + r.name + " - reference) / max(reference), clipped at +-" + Num(limit, 3)),
              path(name));
@@ -407,7 +423,8 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
         p.column = rep.column;
         p.csv = path("profile.csv");
         p.plot = path("profile.png");
-        p.title = sceneName + ": intensity, " + (row >= 0 ? "row " + std::to_string(row) : "column " + std::to_string(rep.column));
+        p.title = sceneName + ": intensity, " +
+                  (row >= 0 ? "row " + std::to_string(row) : "column " + std::to_string(rep.column));
         std::string data;
         if (RunProfile(po, images, &files, &data) != 0) throw Error("cannot draw the profile");
         add("profile.csv");
@@ -461,9 +478,11 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
         if (s.file.empty()) return;
         h << (plot ? "<figure class=\"plot\">" : "<figure>");
         if (s.image)
-            h << "<a href=\"" << Html(s.file) << "\"><img src=\"" << Html(s.file) << "\" alt=\"" << Html(caption) << "\""
-              << (width > 0 ? " width=\"" + std::to_string(width) + "\"" : "") << "></a>";
-        else h << "<p class=\"missing\">not drawn: " << Html(MatplotlibMissing()) << "; data: <a href=\"" << Html(s.file) << "\">" << Html(s.file) << "</a></p>";
+            h << "<a href=\"" << Html(s.file) << "\"><img src=\"" << Html(s.file) << "\" alt=\"" << Html(caption)
+              << "\"" << (width > 0 ? " width=\"" + std::to_string(width) + "\"" : "") << "></a>";
+        else
+            h << "<p class=\"missing\">not drawn: " << Html(MatplotlibMissing()) << "; data: <a href=\"" << Html(s.file)
+              << "\">" << Html(s.file) << "</a></p>";
         h << "<figcaption>" << Html(caption) << extraLink << "</figcaption></figure>\n";
     };
     h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
@@ -494,10 +513,14 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
     for (std::size_t k = 0; k < runs.size(); ++k) {
         const CompareRun &r = runs[k];
         const TableRow t = RowOf(r);
-        const char *cls = r.status == CompareRun::Status::Failed ? " class=\"failed\"" : r.isReference ? " class=\"reference\"" : "";
+        const char *cls = r.status == CompareRun::Status::Failed ? " class=\"failed\""
+                          : r.isReference                        ? " class=\"reference\""
+                                                                 : "";
         h << "<tr" << cls << "><td class=\"name\">";
-        if (r.image) h << "<a href=\"" << Html(r.file) << ".exr\">" << Html(r.name) << "</a>";
-        else h << Html(r.name);
+        if (r.image)
+            h << "<a href=\"" << Html(r.file) << ".exr\">" << Html(r.name) << "</a>";
+        else
+            h << Html(r.name);
         h << "</td><td class=\"status\">" << Html(t.statusText) << "</td><td>" << Dash(t.spp) << "</td><td>"
           << ShortField(t.seconds) << "</td><td>" << ShortField(t.rate) << "</td><td>" << ShortField(t.rmse)
           << "</td><td>" << ShortField(t.relMse) << "</td><td>" << ShortField(t.maxError) << "</td></tr>\n";

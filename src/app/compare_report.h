@@ -37,8 +37,8 @@ struct CompareSnapshot {
 /// One integrator's run.
 struct CompareRun {
     enum class Status { NotRun, Done, Interrupted, Failed };
-    std::string name;  // the integrator, as named on the command line
-    std::string file;  // its files' stem in the output directory
+    std::string name;             // the integrator, as named on the command line
+    std::string file;             // its files' stem in the output directory
     bool isReferenceRun = false;  // rendered for --reference-integrator
     bool isReference = false;     // the reference of the comparison (chosen or given)
     bool deterministic = false;   // no samples (rs)

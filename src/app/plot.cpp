@@ -3,6 +3,7 @@
 // data in private temporary files, its output at the staged temporary path of OutputFiles.
 
 #include "app/plot.h"
+#include "app/text.h"
 
 #include <fcntl.h>
 #include <spawn.h>
@@ -10,6 +11,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -114,8 +116,10 @@ RunResult Run(const std::vector<std::string> &args) {
     int status = 0;
     while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
     }
-    if (WIFEXITED(status)) r.status = WEXITSTATUS(status);
-    else if (WIFSIGNALED(status)) r.signal = WTERMSIG(status);
+    if (WIFEXITED(status))
+        r.status = WEXITSTATUS(status);
+    else if (WIFSIGNALED(status))
+        r.signal = WTERMSIG(status);
     return r;
 }
 
@@ -124,28 +128,39 @@ std::string LastLine(const std::string &text) {
     std::size_t end = text.find_last_not_of("\n\r ");
     if (end == std::string::npos) return "";
     std::size_t begin = text.rfind('\n', end);
-    std::string line = text.substr(begin == std::string::npos ? 0 : begin + 1, end + 1 - (begin == std::string::npos ? 0 : begin + 1));
+    std::string line =
+        text.substr(begin == std::string::npos ? 0 : begin + 1, end + 1 - (begin == std::string::npos ? 0 : begin + 1));
     if (line.rfind("error: ", 0) == 0) line = line.substr(7);
     return line;
 }
 
 std::mutex gMutex;
+std::string gKey;                         // $PHASOR_PYTHON when the interpreter was looked for
 std::optional<std::string> gInterpreter;  // the one that works; "" when none does
 std::string gMissing;                     // why none works
 
+std::string PythonVariable() {
+    const char *p = std::getenv("PHASOR_PYTHON");
+    return p ? p : "";
+}
+
 std::vector<std::string> Candidates() {
-    if (const char *p = std::getenv("PHASOR_PYTHON"); p && *p) return {p};
+    if (const std::string p = PythonVariable(); !p.empty()) return {p};
     return {"python3", "/usr/bin/python3"};
 }
 
 }  // namespace
 
 std::string PlotModulePath() {
-    if (const char *p = std::getenv("PHASOR_PLOT_MODULE"); p && *p) return p;
     std::error_code ec;
-    const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
-    if (ec) return "";
-    const fs::path module = exe.parent_path().parent_path() / "share" / "phasor" / "phasor_plot.py";
+    fs::path module;
+    if (const char *p = std::getenv("PHASOR_PLOT_MODULE"); p && *p) {
+        module = p;
+    } else {
+        const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+        if (ec) return "";
+        module = exe.parent_path().parent_path() / "share" / "phasor" / "phasor_plot.py";
+    }
     return fs::is_regular_file(module, ec) ? module.string() : "";
 }
 
@@ -157,6 +172,11 @@ std::string MatplotlibMissing() {
 
 bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &request) {
     std::lock_guard<std::mutex> lock(gMutex);
+    if (PythonVariable() != gKey) {  // look again for another $PHASOR_PYTHON
+        gKey = PythonVariable();
+        gInterpreter.reset();
+        gMissing.clear();
+    }
     if (gInterpreter && gInterpreter->empty()) return false;  // known to be missing
     const std::string module = PlotModulePath();
     if (module.empty()) {
@@ -184,20 +204,16 @@ bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &r
         std::vector<std::string> candidates = gInterpreter ? std::vector<std::string>{*gInterpreter} : Candidates();
         std::string missing;
         for (const std::string &python : candidates) {
-            std::vector<std::string> args = {python,  "-B",   module, request.command, "--data",
-                                             data->Path(), "--out", temp, "--format", format};
+            std::vector<std::string> args = {python,       "-B",    module, request.command, "--data",
+                                             data->Path(), "--out", temp,   "--format",      format};
             for (std::size_t k = 0; k < extra.size(); ++k) {
                 args.push_back(request.extraData[k].first);
                 args.push_back(extra[k]->Path());
             }
             args.insert(args.end(), request.args.begin(), request.args.end());
             const RunResult r = Run(args);
-            if (!r.started) {
-                missing += (missing.empty() ? "" : "; ") + python + ": " + r.output;
-                continue;
-            }
-            if (r.status == MissingLibrary) {
-                missing += (missing.empty() ? "" : "; ") + LastLine(r.output);
+            if (!r.started || r.status == MissingLibrary) {
+                missing += (missing.empty() ? "" : ", ") + python;
                 continue;
             }
             gInterpreter = python;
@@ -210,9 +226,32 @@ bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &r
             return true;
         }
         gInterpreter = "";
-        gMissing = "no Python with matplotlib found (" + missing + ")";
+        gMissing = "no Python with matplotlib found (tried " + missing + ")";
         return false;
     });
+}
+
+bool StageDiscMap(OutputFiles &files, const std::string &path, const DiscMap &map) {
+    if (map.n <= 0 || map.values.size() != std::size_t(map.n) * std::size_t(map.n))
+        throw Error(FileLoc{path}, "cannot write '" + path + "': the map has " + std::to_string(map.values.size()) +
+                                       " values for " + std::to_string(map.n) + "x" + std::to_string(map.n) + " cells");
+    auto num = [](double v) { return FormatNumber(v, 9); };
+    PlotRequest request;
+    request.command = "disc-map";
+    request.data = "u,v,value\n";
+    for (int j = 0; j < map.n; ++j)
+        for (int i = 0; i < map.n; ++i)
+            request.data += num(-1 + (i + 0.5) * 2.0 / map.n) + "," + num(-1 + (j + 0.5) * 2.0 / map.n) + "," +
+                            num(map.values[std::size_t(j) * map.n + i]) + "\n";
+    if (!map.markers.empty()) {
+        std::string points = "u,v,label\n";
+        for (const DiscMap::Marker &m : map.markers)
+            points += num(m.u) + "," + num(m.v) + "," + CsvField(m.label) + "\n";
+        request.extraData.push_back({"--points", points});
+    }
+    request.args = {"--title", map.title, "--value-label", map.valueLabel,
+                    "--scale", map.scale, "--db-range",    num(map.rangeDb)};
+    return StagePlot(files, path, request);
 }
 
 }  // namespace phasor

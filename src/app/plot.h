@@ -30,13 +30,34 @@ struct PlotRequest {
 ///
 /// The interpreter is $PHASOR_PYTHON when set (only that one), else `python3` from PATH, else
 /// /usr/bin/python3 (where Debian's python3-matplotlib installs for): the first that can import
-/// matplotlib is used for the rest of the process. It runs in its own process group (a Ctrl-C at
+/// matplotlib is used from then on (while $PHASOR_PYTHON stays the same). It runs in its own process group (a Ctrl-C at
 /// the terminal stops phasor's render, not a plot being drawn), without writing bytecode.
 bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &request);
 
+/// A value over the projected hemisphere, e.g. a kernel's angular distribution (`phasor probe`):
+/// `values[j·n + i]` belongs to the centre of cell (i, j) of an n × n grid over [−1, 1]² in
+/// (u, v) = (sinθ cosφ, sinθ sinφ), u growing with i, v with j (j = 0 at v = −1); cells outside the
+/// unit disc are not drawn. Markers (e.g. discrete lobes) at (u, v) with their labels.
+struct DiscMap {
+    int n = 0;
+    std::vector<double> values;
+    struct Marker {
+        double u = 0, v = 0;
+        std::string label;
+    };
+    std::vector<Marker> markers;
+    std::string title;
+    std::string valueLabel = "value";  // the colour bar's label
+    std::string scale = "db";          // "db" (0 dB = the maximum), "log" or "linear"
+    double rangeDb = 40;               // shown below the maximum (db, log)
+};
+/// Draws `map` (python/phasor_plot.py disc-map) as StagePlot does. Throws phasor::Error for an
+/// inconsistent map (n ≤ 0, values.size() ≠ n²) or a failed plot.
+bool StageDiscMap(OutputFiles &files, const std::string &path, const DiscMap &map);
+
 /// The plot module: $PHASOR_PLOT_MODULE when set, else share/phasor/phasor_plot.py beside the
 /// directory of the phasor executable (`<prefix>/bin/phasor` → `<prefix>/share/phasor/`; the build
-/// tree has the same layout). Empty when not found.
+/// tree has the same layout). Empty when that file does not exist.
 std::string PlotModulePath();
 
 /// One line for the user after StagePlot returned false: what was missing and how to install it.

@@ -20,6 +20,8 @@
 #include "core/diagnostics.h"
 #include "core/image/image_io.h"
 #include "app/plot.h"
+#include "app/render_common.h"
+#include "app/text.h"
 
 namespace phasor {
 namespace {
@@ -40,12 +42,6 @@ struct Input {
     bool labelFromMetadata = false;
 };
 
-std::string Num(double v, int digits) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    return buf;
-}
-
 // Optional numeric metadata (stored as a string attribute by the renderer).
 std::optional<double> MetadataNumber(const Input &in, const std::string &key) {
     auto it = in.img.metadata.find(key);
@@ -59,30 +55,12 @@ std::optional<double> MetadataNumber(const Input &in, const std::string &key) {
     return v;
 }
 
-// RFC 4180 quoting for a CSV header field.
-std::string CsvField(const std::string &s) {
-    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return q + "\"";
-}
-
 // The integrator's name from "grt { max_depth = 5, … }".
 std::string IntegratorName(const std::string &desc) {
     std::size_t b = desc.find_first_not_of(' ');
     if (b == std::string::npos) return "";
     std::size_t e = desc.find_first_of(" {", b);
     return desc.substr(b, e == std::string::npos ? std::string::npos : e - b);
-}
-
-// Creates `path`'s directory if needed; throws Error("cannot write …").
-void MakeParentDirectory(const std::string &path) {
-    fs::path p(path);
-    std::error_code ec;
-    if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-    if (ec)
-        throw Error("cannot write '" + path + "': cannot create directory '" + p.parent_path().string() +
-                    "': " + ec.message());
 }
 
 }  // namespace
@@ -118,9 +96,9 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
                                            " is out of range (the image has " + std::to_string(lines) + " " + what +
                                            (lines == 1 ? "" : "s") + ")"};
             if (!inputs.empty() && length != int(inputs[0].values.size()))
-                throw InputError{path, "it is " + std::to_string(length) +
-                                           " pixels " + (column ? "tall" : "wide") + " but '" + inputs[0].path +
-                                           "' is " + std::to_string(inputs[0].values.size()) + " (profiles must have the same " +
+                throw InputError{path, "it is " + std::to_string(length) + " pixels " + (column ? "tall" : "wide") +
+                                           " but '" + inputs[0].path + "' is " +
+                                           std::to_string(inputs[0].values.size()) + " (profiles must have the same " +
                                            (column ? "height" : "width") + ")"};
             for (int k = 0; k < length; ++k)
                 in.values.push_back(column ? in.img.At(in.line, k, c) : in.img.At(k, in.line, c));
@@ -130,15 +108,16 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
                                   mp = MetadataNumber(in, "phasor:pitch_m");
             if (!p.hasX0 && mx0 && mp && p.column < 0) {  // (the metadata gives x positions only)
                 if (!(*mp > 0))
-                    throw InputError{path, "metadata phasor:pitch_m = " + Num(*mp, 9) + " is not positive"};
+                    throw InputError{path, "metadata phasor:pitch_m = " + FormatNumber(*mp, 9) + " is not positive"};
                 auto differs = [](double a, double b) {
                     return std::abs(a - b) > 1e-9 * std::max(std::abs(a), std::abs(b));
                 };
                 if (havePositions && (differs(x0, *mx0) || differs(pitch, *mp)))
-                    throw InputError{
-                        path, "its pixel positions (x0 = " + Num(*mx0, 12) + " m, pitch = " + Num(*mp, 12) +
-                                  " m) differ from the other images' (x0 = " + Num(x0, 12) +
-                                  " m, pitch = " + Num(pitch, 12) + " m); give --x0 and --pitch to override"};
+                    throw InputError{path, "its pixel positions (x0 = " + FormatNumber(*mx0, 12) +
+                                               " m, pitch = " + FormatNumber(*mp, 12) +
+                                               " m) differ from the other images' (x0 = " + FormatNumber(x0, 12) +
+                                               " m, pitch = " + FormatNumber(pitch, 12) +
+                                               " m); give --x0 and --pitch to override"};
                 havePositions = true;
                 x0 = *mx0;
                 pitch = *mp;
@@ -193,9 +172,9 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
     if (pair) csv << ",abs_diff";
     csv << '\n';
     for (int i = 0; i < width; ++i) {
-        csv << (havePositions ? Num(x[i], 12) : std::to_string(i));
-        for (const Input &in : inputs) csv << ',' << Num(in.values[i], 9);
-        if (pair) csv << ',' << Num(diff[i], 9);
+        csv << (havePositions ? FormatNumber(x[i], 12) : std::to_string(i));
+        for (const Input &in : inputs) csv << ',' << FormatNumber(in.values[i], 9);
+        if (pair) csv << ',' << FormatNumber(diff[i], 9);
         csv << '\n';
     }
     const bool csvToStdout = p.csv == "-" || (p.csv.empty() && p.plot.empty());
@@ -222,10 +201,10 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
             s << "max |" << a << " - " << b << "|: no pixel has two finite values";
         } else {
             s << "max |" << a << " - " << b << "| / max(" << b << ") = "
-              << (peak > 0 ? Num(maxDiff / peak, 6) : std::string("undefined (the peak is not positive)"))
-              << "  (max |" << a << " - " << b << "| = " << Num(maxDiff, 6) << " at "
-              << (havePositions ? "x = " + Num(x[at], 9) + " m" : "pixel " + std::to_string(at)) << ", max("
-              << b << ") = " << Num(peak, 6) << ")";
+              << (peak > 0 ? FormatNumber(maxDiff / peak, 6) : std::string("undefined (the peak is not positive)"))
+              << "  (max |" << a << " - " << b << "| = " << FormatNumber(maxDiff, 6) << " at "
+              << (havePositions ? "x = " + FormatNumber(x[at], 9) + " m" : "pixel " + std::to_string(at)) << ", max("
+              << b << ") = " << FormatNumber(peak, 6) << ")";
         }
         if (nonFinite > 0) s << "; " << nonFinite << " pixel(s) with NaN/Inf skipped";
         summary = s.str();
@@ -239,7 +218,7 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
     plot.args = {"--title",
                  !p.title.empty() ? p.title
                                   : p.channel + (column ? ", column " : ", row ") + std::to_string(inputs[0].line),
-                 "--ylabel", p.channel, "--diff-scale", Num(p.diffScale, 9)};
+                 "--ylabel", p.channel, "--diff-scale", FormatNumber(p.diffScale, 9)};
 
     // Write the CSV and the plot all or nothing (core/image/output_file.h). Without matplotlib the
     // plot's data is written instead (to the --csv file, else beside the plot as .csv).

@@ -116,19 +116,30 @@ void PrintError(const Error &e) {
 
 std::string FormatDuration(double s) {
     char buf[32];
-    if (s < 60) std::snprintf(buf, sizeof buf, "%.1fs", s);
-    else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
-    else std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, (int(s) / 60) % 60);
+    if (s < 60)
+        std::snprintf(buf, sizeof buf, "%.1fs", s);
+    else if (s < 3600)
+        std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
+    else
+        std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, (int(s) / 60) % 60);
     return buf;
 }
 
-void CheckWritable(const std::string &path) {
+void MakeParentDirectory(const std::string &path) {
     namespace fs = std::filesystem;
     fs::path p(path);
     std::error_code ec;
     if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-    if (ec) throw Error("cannot write '" + path + "': cannot create directory '" + p.parent_path().string() +
-                        "': " + ec.message());
+    if (ec)
+        throw Error("cannot write '" + path + "': cannot create directory '" + p.parent_path().string() +
+                    "': " + ec.message());
+}
+
+void CheckWritable(const std::string &path) {
+    namespace fs = std::filesystem;
+    MakeParentDirectory(path);
+    fs::path p(path);
+    std::error_code ec;
     if (fs::is_directory(p, ec)) throw Error("cannot write '" + path + "': it is a directory");
     fs::path probe = p;
     probe += ".phasor-probe";
@@ -174,11 +185,13 @@ std::function<void(int, int)> ProgressBar(const std::string &label, bool determi
         if (!deterministic)
             std::snprintf(rate, sizeof rate, "  %.2f Msamples/s", double(done) * pixels / std::max(t, 1e-9) * 1e-6);
         char count[48];
-        if (budgetSeconds > 0 && !deterministic) std::snprintf(count, sizeof count, "%d spp", done);
-        else std::snprintf(count, sizeof count, "%d/%d %s", done, total, deterministic ? "steps" : "spp");
+        if (budgetSeconds > 0 && !deterministic)
+            std::snprintf(count, sizeof count, "%d spp", done);
+        else
+            std::snprintf(count, sizeof count, "%d/%d %s", done, total, deterministic ? "steps" : "spp");
         std::fprintf(stderr, "\r%s%s[%s%s] %3d%% %s  %s elapsed  %s %s%s   ", label.c_str(), label.empty() ? "" : " ",
-                     std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(), int(frac * 100),
-                     count, FormatDuration(t).c_str(), budgetSeconds > 0 ? "left" : "ETA",
+                     std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(), int(frac * 100), count,
+                     FormatDuration(t).c_str(), budgetSeconds > 0 ? "left" : "ETA",
                      FormatDuration(budgetSeconds > 0 ? std::max(0.0, budgetSeconds - t)
                                     : frac > 0        ? t / frac - t
                                                       : 0)

@@ -17,15 +17,7 @@ rm -rf "$out"; mkdir -p "$out"
 ds=$src/scenes/validation/double_slit.wscene
 small=$src/tests/app/scenes/small.wscene
 slow=$src/tests/app/scenes/slow.wscene
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# run ARGS…: runs phasor ARGS, leaving $rc, $stdout, $stderr.
-run() {
-    "$phasor" "$@" >"$out/.stdout" 2>"$out/.stderr"; rc=$?
-    stdout=$(cat "$out/.stdout"); stderr=$(cat "$out/.stderr")
-    rm -f "$out/.stdout" "$out/.stderr"
-}
+source "$(dirname "$0")/common.sh"  # fail, run
 # field CSV ROW_NAME COLUMN_NAME: a field of results.csv (rows by integrator, columns by header).
 field() {
     awk -F, -v row="$2" -v col="$3" 'NR == 1 { for (i = 1; i <= NF; i++) if ($i == col) c = i; next }

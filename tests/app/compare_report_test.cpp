@@ -36,8 +36,8 @@ TEST(CompareMetrics, NonFinitePixelsAreSkippedAndDegenerateReferencesGiveNaN) {
     EXPECT_TRUE(std::isnan(ErrorMetrics({1}, {1, 2}).rmse));  // sizes differ
 }
 
-CompareRun MakeRun(const std::string &name, bool deterministic, CompareRun::Status status, std::vector<double> intensity,
-               std::vector<double> variance, int spp) {
+CompareRun MakeRun(const std::string &name, bool deterministic, CompareRun::Status status,
+                   std::vector<double> intensity, std::vector<double> variance, int spp) {
     CompareRun r;
     r.name = name;
     r.deterministic = deterministic;
@@ -71,10 +71,9 @@ TEST(CompareReference, BestConvergedRun) {
 
     // A complete deterministic run beats any sampling run; an interrupted one does not, nor a run
     // with one sample (no variance estimate).
-    std::vector<CompareRun> more = {MakeRun("grt", false, S::Done, {2, 2}, {1e-9, 1e-9}, 4096),
-                                    MakeRun("rs", true, S::Done, {2, 2}, {}, 0),
-                                    MakeRun("half", false, S::Interrupted, {2, 0}, {0, 0}, 0),
-                                    MakeRun("one", false, S::Done, {2, 2}, {0, 0}, 1)};
+    std::vector<CompareRun> more = {
+        MakeRun("grt", false, S::Done, {2, 2}, {1e-9, 1e-9}, 4096), MakeRun("rs", true, S::Done, {2, 2}, {}, 0),
+        MakeRun("half", false, S::Interrupted, {2, 0}, {0, 0}, 0), MakeRun("one", false, S::Done, {2, 2}, {0, 0}, 1)};
     CompareReference r2;
     ChooseReference(more, r2);
     EXPECT_TRUE(more[1].isReference);

@@ -6,15 +6,7 @@
 set -u
 phasor=$1 mkexr=$2 scene=$3 out=$4/profile
 rm -rf "$out"; mkdir -p "$out"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# run ARGS…: runs phasor, leaving $rc, $stdout, $stderr.
-run() {
-    "$phasor" "$@" >"$out/.stdout" 2>"$out/.stderr"; rc=$?
-    stdout=$(cat "$out/.stdout"); stderr=$(cat "$out/.stderr")
-    rm -f "$out/.stdout" "$out/.stderr"
-}
+source "$(dirname "$0")/common.sh"  # fail, run
 expect_line() {  # expect_line FILE N TEXT: line N of FILE is exactly TEXT
     local got; got=$(sed -n "$2p" "$1")
     [[ "$got" == "$3" ]] || fail "$1 line $2 is '$got', expected '$3'"

@@ -25,16 +25,14 @@ namespace IBA = OIIO::ImageBufAlgo;
 
 // viridis (van der Walt & Smith 2015, matplotlib's default colour map): its published sRGB colours
 // at t = 0, 1/9, …, 1; interpolated linearly in between.
-constexpr uint8_t Viridis[10][3] = {{0x44, 0x01, 0x54}, {0x48, 0x28, 0x78}, {0x3E, 0x4A, 0x89},
-                                    {0x31, 0x68, 0x8E}, {0x26, 0x82, 0x8E}, {0x1F, 0x9E, 0x89},
-                                    {0x35, 0xB7, 0x79}, {0x6D, 0xCD, 0x59}, {0xB4, 0xDE, 0x2C},
-                                    {0xFD, 0xE7, 0x25}};
+constexpr uint8_t Viridis[10][3] = {{0x44, 0x01, 0x54}, {0x48, 0x28, 0x78}, {0x3E, 0x4A, 0x89}, {0x31, 0x68, 0x8E},
+                                    {0x26, 0x82, 0x8E}, {0x1F, 0x9E, 0x89}, {0x35, 0xB7, 0x79}, {0x6D, 0xCD, 0x59},
+                                    {0xB4, 0xDE, 0x2C}, {0xFD, 0xE7, 0x25}};
 // ColorBrewer RdBu, 11 classes (Cynthia Brewer, colorbrewer2.org, Apache 2.0), reversed: blue for
 // negative values, white at zero, red for positive ones.
-constexpr uint8_t Diverging[11][3] = {{0x05, 0x30, 0x61}, {0x21, 0x66, 0xAC}, {0x43, 0x93, 0xC3},
-                                      {0x92, 0xC5, 0xDE}, {0xD1, 0xE5, 0xF0}, {0xF7, 0xF7, 0xF7},
-                                      {0xFD, 0xDB, 0xC7}, {0xF4, 0xA5, 0x82}, {0xD6, 0x60, 0x4D},
-                                      {0xB2, 0x18, 0x2B}, {0x67, 0x00, 0x1F}};
+constexpr uint8_t Diverging[11][3] = {{0x05, 0x30, 0x61}, {0x21, 0x66, 0xAC}, {0x43, 0x93, 0xC3}, {0x92, 0xC5, 0xDE},
+                                      {0xD1, 0xE5, 0xF0}, {0xF7, 0xF7, 0xF7}, {0xFD, 0xDB, 0xC7}, {0xF4, 0xA5, 0x82},
+                                      {0xD6, 0x60, 0x4D}, {0xB2, 0x18, 0x2B}, {0x67, 0x00, 0x1F}};
 
 template <std::size_t N>
 void Interpolate(const uint8_t (&table)[N][3], double t, uint8_t out[3]) {
@@ -45,12 +43,15 @@ void Interpolate(const uint8_t (&table)[N][3], double t, uint8_t out[3]) {
 }
 
 void Colour8(ColourMap map, double t, uint8_t out[3]) {
-    if (map == ColourMap::Diverging) Interpolate(Diverging, t, out);
-    else Interpolate(Viridis, t, out);
+    if (map == ColourMap::Diverging)
+        Interpolate(Diverging, t, out);
+    else
+        Interpolate(Viridis, t, out);
 }
 
 // Layout constants (pixels).
-constexpr int Margin = 10, LabelBand = 26, LabelLine = 19, Gap = 12, BarGap = 18, BarWidth = 24, BarLabels = 92, TitleBand = 40;
+constexpr int Margin = 10, LabelBand = 26, LabelLine = 19, Gap = 12, BarGap = 18, BarWidth = 24, BarLabels = 92,
+              TitleBand = 40;
 constexpr int TickLength = 6, FontSize = 15, LabelFontSize = 16;
 
 }  // namespace
@@ -79,8 +80,10 @@ std::vector<double> DecibelLevels(const std::vector<double> &values, double zero
     std::vector<double> db(values.size(), -rangeDb);
     for (std::size_t i = 0; i < values.size(); ++i) {
         const double v = values[i];
-        if (v == Infinity) db[i] = 0;
-        else if (zeroDb > 0 && v > 0 && std::isfinite(v)) db[i] = std::max(-rangeDb, 10 * std::log10(v / zeroDb));
+        if (v == Infinity)
+            db[i] = 0;
+        else if (zeroDb > 0 && v > 0 && std::isfinite(v))
+            db[i] = std::max(-rangeDb, 10 * std::log10(v / zeroDb));
     }
     return db;
 }
@@ -117,7 +120,8 @@ SheetLayout LayoutSheet(const std::vector<SheetTile> &tiles, const ColourBar *ba
         tileW = std::max(tileW, t.image.width);
         tileH = std::max(tileH, t.image.height);
         // Labels: one or more lines ('\n') above each tile.
-        if (!t.label.empty()) labelLines = std::max(labelLines, 1 + int(std::count(t.label.begin(), t.label.end(), '\n')));
+        if (!t.label.empty())
+            labelLines = std::max(labelLines, 1 + int(std::count(t.label.begin(), t.label.end(), '\n')));
     }
     SheetLayout L;
     L.scale = SheetScale(tiles);
@@ -149,8 +153,7 @@ SheetLayout LayoutSheet(const std::vector<SheetTile> &tiles, const ColourBar *ba
 }
 
 SheetResult StageSheetPng(OutputFiles &files, const std::string &path, const std::vector<SheetTile> &tiles,
-                          const ColourBar *bar, const std::string &description, int columns,
-                          const std::string &font) {
+                          const ColourBar *bar, const std::string &description, int columns, const std::string &font) {
     SheetLayout L;
     try {
         L = LayoutSheet(tiles, bar, columns);
