@@ -90,8 +90,17 @@ std::vector<std::string> IntegratorChoices(const SceneDesc &desc) {
     return names;
 }
 
+// What the runs share: the reference when it is known before they render (an image, or the
+// reference run rendered first; then each snapshot is compared at once and its pixels dropped),
+// and the memory left for snapshots whose reference is not known yet.
+struct SnapshotContext {
+    const std::vector<double> *reference = nullptr;
+    double bytesLeft = 0;
+};
+
 // Renders one run (the scene already built for its integrator) and fills `run`.
-void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int index, int count, double budget) {
+void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int index, int count, double budget,
+               SnapshotContext &snap) {
     const Integrator &integrator = scene.GetIntegrator();
     const Detector &det = scene.GetDetector();
     run.deterministic = integrator.Deterministic();
@@ -115,15 +124,28 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
     const auto start = Clock::now();
     double snapshotCost = 0;
     int next = 1;
+    const double pixels = double(det.Width()) * det.Height();
+    // (the reference run itself needs none)
+    const bool snapshots = !run.deterministic && !run.isReferenceRun;
     opt.progress = [&](int done, int total) {
         if (progress) progress(done, total);
-        if (run.deterministic || done < next) return;
+        if (!snapshots || run.snapshotsCut || done < next) return;
+        if (!snap.reference && snap.bytesLeft < pixels * sizeof(float)) {
+            run.snapshotsCut = true;
+            return;
+        }
         const auto t0 = Clock::now();
         const Image img = film.Resolve();
         CompareSnapshot s;
         s.spp = done;
         s.seconds = std::chrono::duration<double>(t0 - start).count() - snapshotCost;
-        s.intensity = ChannelValues(img, "intensity");
+        const std::vector<double> values = ChannelValues(img, "intensity");
+        if (snap.reference) {
+            s.metrics = ErrorMetrics(values, *snap.reference);
+        } else {
+            s.intensity.assign(values.begin(), values.end());
+            snap.bytesLeft -= pixels * sizeof(float);
+        }
         run.snapshots.push_back(std::move(s));
         next = std::max(done + 1, int(std::ceil(done * 1.5)));
         snapshotCost += std::chrono::duration<double>(Clock::now() - t0).count();
@@ -157,8 +179,17 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
     if (timed) img.metadata["phasor:time_budget_seconds"] = std::to_string(budget);
     run.intensity = ChannelValues(img, "intensity");
     run.variance = img.ChannelIndex("variance") >= 0 ? ChannelValues(img, "variance") : std::vector<double>{};
-    if (!run.deterministic && (run.snapshots.empty() || run.snapshots.back().spp != st.sppReached))
-        run.snapshots.push_back({st.sppReached, run.seconds, run.intensity});
+    if (snapshots && (run.snapshots.empty() || run.snapshots.back().spp != st.sppReached)) {
+        CompareSnapshot last;
+        last.spp = st.sppReached;
+        last.seconds = run.seconds;
+        if (snap.reference) last.metrics = ErrorMetrics(run.intensity, *snap.reference);
+        else last.intensity.assign(run.intensity.begin(), run.intensity.end());  // (the image is kept anyway)
+        run.snapshots.push_back(std::move(last));
+    }
+    if (run.snapshotsCut)
+        std::cerr << "warning: " << run.name << ": the convergence plot stops at " << run.snapshots.back().spp
+                  << " spp (its snapshots would not fit in memory; give --reference to compare them at once)\n";
     run.image = std::move(img);
     if (!o.quiet) {
         std::cerr << label << ": " << (interrupted ? "interrupted: " : "");
@@ -268,6 +299,12 @@ int RunCompare(const CliOptions &o) {
         std::cerr << " -> " << dir << "/\n";
     }
 
+    // Snapshots for the convergence plot: compared at once with a reference image; else kept
+    // (float per pixel) within a quarter of the available memory, at most 1 GB.
+    SnapshotContext snap;
+    snap.reference = refImage ? &ref.values : nullptr;
+    snap.bytesLeft = std::min(1e9, AvailableMemory() / 4);
+
     InstallStopHandlers(!o.quiet);
     int width = 0, height = 0, sceneSpp = 0;
     bool radiometric = false;
@@ -313,7 +350,8 @@ int RunCompare(const CliOptions &o) {
         const double budget = run.isReferenceRun ? 0 : c.seconds;
         CliOptions ro = o;
         if (run.isReferenceRun) ro.spp = c.referenceSpp;  // 0: the scene's
-        RenderRun(run, *scene, ro, int(i) + 1, int(runs.size()), budget);
+        RenderRun(run, *scene, ro, int(i) + 1, int(runs.size()), budget, snap);
+        if (run.isReferenceRun && run.image && run.status == CompareRun::Status::Done) snap.reference = &run.intensity;
     }
 
     // Nothing to show: every run failed (their errors are printed) or none finished.

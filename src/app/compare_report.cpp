@@ -269,8 +269,11 @@ void ComputeErrors(std::vector<CompareRun> &runs, CompareReference &ref) {
     for (CompareRun &r : runs) {
         if (!r.image || r.isReference) continue;
         r.metrics = ErrorMetrics(r.intensity, ref.values);
-        for (const CompareSnapshot &s : r.snapshots)
-            r.convergence.push_back({CompareSnapshot{s.spp, s.seconds, {}}, ErrorMetrics(s.intensity, ref.values)});
+        for (CompareSnapshot &s : r.snapshots)
+            if (!s.metrics) {
+                s.metrics = ErrorMetrics(std::vector<double>(s.intensity.begin(), s.intensity.end()), ref.values);
+                s.intensity = {};
+            }
     }
 }
 
@@ -442,11 +445,13 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
     conv << "run,spp,seconds,rmse,rel_mse,max_error\n";
     int curves = 0;
     for (const CompareRun &r : runs) {
-        if (!Sampling(r) || r.isReference || r.convergence.size() < 2) continue;
+        if (!Sampling(r) || r.isReference || r.snapshots.size() < 2) continue;
         ++curves;
-        for (const auto &[s, m] : r.convergence)
+        for (const CompareSnapshot &s : r.snapshots) {
+            const CompareMetrics m = s.metrics.value_or(CompareMetrics{});
             conv << CsvField(r.name) << ',' << s.spp << ',' << Num(s.seconds, 6) << ',' << Num(m.rmse, 6) << ','
                  << Num(m.relMse, 6) << ',' << Num(m.maxError, 6) << '\n';
+        }
     }
     if (curves > 0) {
         files.Stage(path("convergence.csv"), conv.str());

@@ -27,11 +27,14 @@ struct CompareMetrics {
 };
 CompareMetrics ErrorMetrics(const std::vector<double> &image, const std::vector<double> &reference);
 
-/// `intensity` of a sampling run after `spp` samples per pixel, `seconds` into it.
+/// A sampling run after `spp` samples per pixel, `seconds` into it: its errors against the
+/// reference when that was known during the render, else its `intensity` (float, to be compared
+/// when the reference is chosen).
 struct CompareSnapshot {
     int spp = 0;
     double seconds = 0;
-    std::vector<double> intensity;
+    std::optional<CompareMetrics> metrics;
+    std::vector<float> intensity;
 };
 
 /// One integrator's run.
@@ -49,9 +52,9 @@ struct CompareRun {
     double seconds = 0;  // render time
     std::optional<Image> image;
     std::vector<double> intensity, variance;
-    std::vector<CompareSnapshot> snapshots;
-    std::optional<CompareMetrics> metrics;  // against the reference (not for the reference)
-    std::vector<std::pair<CompareSnapshot, CompareMetrics>> convergence;  // (snapshot without pixels, errors)
+    std::vector<CompareSnapshot> snapshots;  // in order; all with metrics after ComputeErrors
+    bool snapshotsCut = false;               // no more snapshots were kept (memory)
+    std::optional<CompareMetrics> metrics;   // against the reference (not for the reference)
 };
 
 /// What the runs are compared against.
