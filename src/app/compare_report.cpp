@@ -464,10 +464,21 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
             add("convergence.png");
             convergenceShown = {"convergence.png", true};
         } else {
-            std::fprintf(stderr, "warning: %s; convergence.png not drawn, its data is in convergence.csv\n",
-                         MatplotlibMissing().c_str());
             convergenceShown = {"convergence.csv", false};
         }
+    }
+
+    // Without matplotlib: one warning for every plot not drawn.
+    std::vector<std::string> notDrawn;
+    for (const Shown &x : shown)
+        if (!x.file.empty() && !x.image) notDrawn.push_back(x.file);
+    for (const Shown *x : {&refShown, &profileShown, &convergenceShown})
+        if (!x->file.empty() && !x->image) notDrawn.push_back(x->file);
+    if (!notDrawn.empty()) {
+        std::string list;
+        for (const std::string &f : notDrawn) list += (list.empty() ? "" : ", ") + f;
+        std::fprintf(stderr, "warning: %s; the plots are not drawn, their data is in %s\n",
+                     MatplotlibMissing().c_str(), list.c_str());
     }
 
     // The page.

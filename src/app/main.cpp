@@ -16,6 +16,7 @@
 
 #include "app/cli.h"
 #include "app/compare.h"
+#include "app/plot.h"
 #include "app/profile.h"
 #include "app/render_common.h"
 #include "core/image/image_io.h"
@@ -129,6 +130,9 @@ int Render(const CliOptions &o) {
         return 1;
     }
     RemoveStopHandlers();
+    if (shown != png.string())
+        std::cerr << "warning: " << MatplotlibMissing() << "; '" << png.string() << "' not drawn, its data is in '"
+                  << shown << "'\n";
     if (!o.quiet) {
         std::cerr << (st.cancelled ? "interrupted: " : "");
         if (deterministic)

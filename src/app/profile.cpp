@@ -236,9 +236,10 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
                 dataInstead =
                     !csvToStdout && !p.csv.empty() ? p.csv : fs::path(p.plot).replace_extension(".csv").string();
                 if (dataInstead != p.csv) files.Stage(dataInstead, csv.str());
-                std::cerr << "warning: " << MatplotlibMissing() << "; '" << p.plot << "' not drawn, its data is in '"
-                          << dataInstead << "'\n";
-                if (plotData) *plotData = dataInstead;
+                if (plotData) *plotData = dataInstead;  // the caller tells the user
+                else
+                    std::cerr << "warning: " << MatplotlibMissing() << "; '" << p.plot
+                              << "' not drawn, its data is in '" << dataInstead << "'\n";
             }
         }
         if (into) return 0;  // the caller commits (and reports) the files

@@ -20,8 +20,8 @@ struct Image;
 /// with `into`, the CSV and plot are staged there instead of written (the caller commits them,
 /// e.g. `render` writing a one-row image's plot together with its EXR) and a failed write throws
 /// phasor::Error instead of being printed. When matplotlib is missing
-/// the plot's data is written instead (with a warning) and `plotData`, when given, receives that
-/// file's name. Returns the exit status.
+/// the plot's data is written instead, with a warning — unless `plotData` is given: it then
+/// receives that file's name and the caller tells the user. Returns the exit status.
 int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded = {}, OutputFiles *into = nullptr,
                std::string *plotData = nullptr);
 

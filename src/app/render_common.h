@@ -77,8 +77,8 @@ void StampMetadata(Image &img, const Scene &scene, const std::string &scenePath,
 /// The PNG shown for a rendered image, staged in `files`: a one-row image as `phasor profile`'s
 /// line plot of its intensity (matplotlib), a radiometric detector's (`radiometric`) as the dB false colour with its
 /// colour bar (0 dB = `zeroDb`, ≤ 0: the image's maximum), a camera's through the OCIO display
-/// transform. Returns the file staged: `png`, or the plot's data (a .csv beside it, after a
-/// warning) when matplotlib is missing. Throws phasor::Error.
+/// transform. Returns the file staged: `png`, or the plot's data (a .csv beside it) when matplotlib
+/// is missing, which the caller tells the user (MatplotlibMissing()). Throws phasor::Error.
 std::string StageDisplayPng(OutputFiles &files, const std::string &png, const Image &img, bool radiometric,
                             const std::string &label, const std::string &title, double zeroDb = 0);
 
