@@ -13,9 +13,12 @@ Commands (each reads CSV only; none reads images):
                column per series, optionally abs_diff (drawn dotted, magnified by --diff-scale).
   convergence  error against samples per pixel and against time, one curve per run (`compare`).
                CSV: run,spp,seconds,rmse[,...]
-  disc-map     a value over the projected hemisphere (sinθcosφ, sinθsinφ) on the unit disc, colour
-               scale in dB/log/linear with a colour bar, labelled markers (`phasor probe`).
-               CSV: u,v,value on a regular grid; --points CSV: u,v,label.
+  disc-map     a value over the projected hemisphere (sinθcosφ, sinθsinφ) on the unit disc — one
+               disc per name in an optional first column `disc` (e.g. reflection, transmission),
+               all on one colour scale (dB/log/linear) with a colour bar — and markers (`phasor
+               probe`). CSV: [disc,]u,v,value on a regular grid per disc; --points CSV:
+               [disc,]u,v,label[,marker[,size]] (marker o: a red ring, x: a white cross; size in
+               points).
 
 Exit status: 0 drawn; 1 an error (one line "error: reason" on stderr; for a file that cannot be
 written the reason is the system's, e.g. "File too large"); 2 bad arguments; 3 matplotlib or
@@ -216,78 +219,146 @@ def figure_convergence(args):
 # ---- disc map -----------------------------------------------------------------------------------
 
 
-def figure_disc_map(args):
-    header, rows = read_csv(args.data)
-    if header[:3] != ["u", "v", "value"]:
-        raise PlotError(f"'{args.data}': the header must start with u,v,value (got {','.join(header)})")
-    u, v, val = numeric_columns(args.data, header[:3], [r[:3] for r in rows])
-    if not len(u):
-        raise PlotError(f"'{args.data}' has no rows")
-    us, vs = np.unique(u), np.unique(v)
-    if len(us) * len(vs) != len(u):
-        raise PlotError(f"'{args.data}': the points do not form a regular grid "
-                        f"({len(us)} u values × {len(vs)} v values for {len(u)} points)")
-    grid = np.full((len(vs), len(us)), np.nan)
-    grid[np.searchsorted(vs, v), np.searchsorted(us, u)] = val
-    U, V = np.meshgrid(us, vs)
-    grid[U * U + V * V > 1 + 1e-12] = np.nan  # outside the projected hemisphere
-    du = (us[1] - us[0]) if len(us) > 1 else 1.0
-    dv = (vs[1] - vs[0]) if len(vs) > 1 else 1.0
-    extent = [us[0] - du / 2, us[-1] + du / 2, vs[0] - dv / 2, vs[-1] + dv / 2]
+def disc_grids(path):
+    """{disc name: (grid, extent)} in order of appearance from a CSV [disc,]u,v,value on regular grids."""
+    header, rows = read_csv(path)
+    named = header[:1] == ["disc"]
+    cols = header[1:4] if named else header[:3]
+    if cols != ["u", "v", "value"]:
+        raise PlotError(f"'{path}': the header must be [disc,]u,v,value (got {','.join(header)})")
+    groups = {}
+    for i, row in enumerate(rows):
+        if len(row) != len(header):
+            raise PlotError(f"{path}:{i + 2}: {len(row)} fields, the header has {len(header)}")
+        name = row[0] if named else ""
+        rest = row[1:4] if named else row[:3]
+        groups.setdefault(name, []).append([number(t, path, i + 2) for t in rest])
+    if not groups:
+        raise PlotError(f"'{path}' has no rows")
+    grids = {}
+    for name, pts in groups.items():
+        u, v, val = (np.array(c) for c in zip(*pts))
+        us, vs = np.unique(u), np.unique(v)
+        if len(us) * len(vs) != len(u):
+            raise PlotError(f"'{path}': the points{' of ' + name if name else ''} do not form a regular grid "
+                            f"({len(us)} u values × {len(vs)} v values for {len(u)} points)")
+        grid = np.full((len(vs), len(us)), np.nan)
+        grid[np.searchsorted(vs, v), np.searchsorted(us, u)] = val
+        U, V = np.meshgrid(us, vs)
+        grid[U * U + V * V > 1 + 1e-12] = np.nan  # outside the projected hemisphere
+        du = (us[1] - us[0]) if len(us) > 1 else 1.0
+        dv = (vs[1] - vs[0]) if len(vs) > 1 else 1.0
+        grids[name] = (grid, [us[0] - du / 2, us[-1] + du / 2, vs[0] - dv / 2, vs[-1] + dv / 2])
+    return grids
 
-    finite = grid[np.isfinite(grid)]
+
+def disc_points(path, discs):
+    """Markers from a CSV [disc,]u,v,label[,marker[,size]]: (disc, u, v, label, marker, size)."""
+    header, rows = read_csv(path)
+    named = header[:1] == ["disc"]
+    rest = header[1:] if named else header
+    if rest[:3] != ["u", "v", "label"] or any(h not in ("marker", "size") for h in rest[3:]):
+        raise PlotError(f"'{path}': the header must be [disc,]u,v,label[,marker[,size]] (got {','.join(header)})")
+    points = []
+    for i, row in enumerate(rows):
+        if len(row) != len(header):
+            raise PlotError(f"{path}:{i + 2}: {len(row)} fields, the header has {len(header)}")
+        rec = dict(zip(rest, row[1:] if named else row))
+        disc = row[0] if named else next(iter(discs))
+        if disc not in discs:
+            raise PlotError(f"{path}:{i + 2}: no disc '{disc}' in the data")
+        marker = rec.get("marker") or "o"
+        if marker not in ("o", "x"):
+            raise PlotError(f"{path}:{i + 2}: marker '{marker}' is neither o (a ring) nor x (a cross)")
+        size = number(rec["size"], path, i + 2) if rec.get("size") else 7.0
+        points.append((disc, number(rec["u"], path, i + 2), number(rec["v"], path, i + 2), rec["label"], marker,
+                       size))
+    return points
+
+
+def figure_disc_map(args):
+    grids = disc_grids(args.data)
+    values = np.concatenate([g.ravel() for g, _ in grids.values()])
+    finite = values[np.isfinite(values)]
     peak = finite.max() if len(finite) else 0.0
     cmap = matplotlib.colormaps["viridis"].copy()
     cmap.set_bad("white")
+    empty = not peak > 0 and args.scale != "linear"  # nothing to show on a dB or log scale
+
+    def shown_of(grid):
+        if empty:
+            return grid
+        if args.scale == "db":
+            with np.errstate(divide="ignore", invalid="ignore"):
+                db = np.where(grid > 0, 10 * np.log10(grid / peak), -np.inf)
+            return np.where(np.isnan(grid), np.nan, np.maximum(db, -args.db_range))
+        if args.scale == "log":
+            return np.where(np.isnan(grid), np.nan, np.maximum(grid, lo))
+        return grid
+
     if args.scale == "db":
-        with np.errstate(divide="ignore", invalid="ignore"):
-            shown = np.where(grid > 0, 10 * np.log10(grid / peak), -np.inf) if peak > 0 else np.full_like(grid, -np.inf)
-        shown = np.where(np.isnan(grid), np.nan, np.maximum(shown, -args.db_range))
         norm = mcolors.Normalize(vmin=-args.db_range, vmax=0)
         bar_label = f"{args.value_label} (dB, 0 dB = {peak:.4g})"
     elif args.scale == "log":
         positive = finite[finite > 0]
         lo = max(positive.min(), peak * 10 ** (-args.db_range / 10)) if len(positive) else 1e-30
-        shown = np.where(np.isnan(grid), np.nan, np.maximum(grid, lo))
         norm = mcolors.LogNorm(vmin=lo, vmax=max(peak, lo * 10))
         bar_label = args.value_label
     else:
-        shown = grid
         norm = mcolors.Normalize(vmin=min(0.0, finite.min()) if len(finite) else 0, vmax=peak if peak > 0 else 1)
         bar_label = args.value_label
+    if empty:
+        bar_label = f"{args.value_label}: zero everywhere"
 
-    fig, ax = plt.subplots(figsize=(args.width / 100, args.height / 100), dpi=100)
-    im = ax.imshow(np.ma.masked_invalid(shown), origin="lower", extent=extent, cmap=cmap, norm=norm,
-                   interpolation="nearest")
+    k = len(grids)
+    width = args.width or 80 + 420 * k + 130
+    fig, axes = plt.subplots(1, k, figsize=(width / 100, args.height / 100), dpi=100, squeeze=False)
+    axes = list(axes[0])
     t = np.linspace(0, 2 * np.pi, 361)
-    ax.plot(np.cos(t), np.sin(t), color="black", linewidth=1.2)
-    for deg in (30, 60):  # rings of constant θ
-        r = math.sin(math.radians(deg))
-        ax.plot(r * np.cos(t), r * np.sin(t), color="#888888", linewidth=0.7, linestyle=":")
-        ax.text(r * math.cos(math.radians(45)), r * math.sin(math.radians(45)), f"θ = {deg}°", color="black",
-                fontsize=8, path_effects=[patheffects.withStroke(linewidth=2, foreground="white")])
+    for ax, (name, (grid, extent)) in zip(axes, grids.items()):
+        if empty:  # a neutral disc, not the colour of "−40 dB"
+            ax.imshow(np.ma.masked_invalid(np.where(np.isnan(grid), np.nan, 0.0)), origin="lower", extent=extent,
+                      cmap=mcolors.ListedColormap(["#e6e6e6"]), interpolation="nearest")
+        else:
+            ax.imshow(np.ma.masked_invalid(shown_of(grid)), origin="lower", extent=extent, cmap=cmap, norm=norm,
+                      interpolation="nearest")
+        ax.plot(np.cos(t), np.sin(t), color="black", linewidth=1.2)  # the horizon
+        for deg in (30, 60):  # rings of constant θ
+            r = math.sin(math.radians(deg))
+            ax.plot(r * np.cos(t), r * np.sin(t), color="#888888", linewidth=0.7, linestyle=":")
+            ax.text(r * math.cos(math.radians(45)), r * math.sin(math.radians(45)), f"θ = {deg}°", color="black",
+                    fontsize=8, path_effects=[patheffects.withStroke(linewidth=2, foreground="white")])
+        ax.set_xlim(-1.05, 1.05)
+        ax.set_ylim(-1.05, 1.05)
+        ax.set_aspect("equal")
+        ax.set_xlabel("sinθ cosφ")
+        if ax is axes[0]:
+            ax.set_ylabel("sinθ sinφ")
+        if name:
+            ax.set_title(name)
     if args.points:
-        ph, prows = read_csv(args.points)
-        if ph[:3] != ["u", "v", "label"]:
-            raise PlotError(f"'{args.points}': the header must be u,v,label (got {','.join(ph)})")
-        for i, row in enumerate(prows):
-            if len(row) < 3:
-                raise PlotError(f"{args.points}:{i + 2}: expected u,v,label")
-            pu, pv = number(row[0], args.points, i + 2), number(row[1], args.points, i + 2)
-            ax.plot([pu], [pv], marker="o", markersize=6, markerfacecolor="none", markeredgecolor="#e62020",
-                    markeredgewidth=1.5, zorder=5)
-            if row[2]:
-                ax.annotate(row[2], (pu, pv), textcoords="offset points", xytext=(5, 5), color="#b00000",
-                            fontsize=8, zorder=6)
-    ax.set_xlim(-1.05, 1.05)
-    ax.set_ylim(-1.05, 1.05)
-    ax.set_aspect("equal")
-    ax.set_xlabel("sinθ cosφ")
-    ax.set_ylabel("sinθ sinφ")
-    ax.set_title(args.title)
-    bar = fig.colorbar(im, ax=ax, fraction=0.046, pad=0.04)
-    bar.set_label(bar_label)
-    fig.tight_layout()
+        where = dict(zip(grids, axes))
+        for disc, pu, pv, label, marker, size in disc_points(args.points, grids):
+            ax = where[disc]
+            if marker == "o":  # a red ring with a white halo
+                ax.plot([pu], [pv], marker="o", markersize=size, markerfacecolor="none", markeredgecolor="white",
+                        markeredgewidth=3.5, zorder=5)
+                ax.plot([pu], [pv], marker="o", markersize=size, markerfacecolor="none", markeredgecolor="#e62020",
+                        markeredgewidth=1.8, zorder=6)
+            else:  # a white cross with a black outline
+                ax.plot([pu], [pv], marker="x", markersize=size, color="black", markeredgewidth=3.5, zorder=5)
+                ax.plot([pu], [pv], marker="x", markersize=size, color="white", markeredgewidth=1.5, zorder=6)
+            if label:
+                ax.annotate(label, (pu, pv), textcoords="offset points", xytext=(size / 2 + 3, size / 2 + 1),
+                            color="#a00000" if marker == "o" else "black", fontsize=8, zorder=7,
+                            path_effects=[patheffects.withStroke(linewidth=2, foreground="white")])
+    fig.suptitle(args.title)
+    if empty:  # no scale to show
+        fig.text(0.5, 0.03, bar_label, ha="center")
+    else:
+        bar = fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), ax=axes, fraction=0.046 / k,
+                           pad=0.04 / k)
+        bar.set_label(bar_label)
     return fig
 
 
@@ -318,8 +389,8 @@ def parse_args(argv):
     p.add_argument("--metric", default="rmse", help="the CSV column to plot (rmse, rel_mse, max_error)")
     p.set_defaults(figure=figure_convergence)
 
-    p = sub.add_parser("disc-map", help="a value over the projected hemisphere")
-    common(p, 700, 600)
+    p = sub.add_parser("disc-map", help="a value over the projected hemisphere (one disc per 'disc' name)")
+    common(p, 0, 520)  # width 0: from the number of discs
     p.add_argument("--points", help="CSV u,v,label of markers")
     p.add_argument("--scale", choices=["db", "log", "linear"], default="db")
     p.add_argument("--db-range", type=float, default=40.0, help="dB shown below the maximum (db, log)")
@@ -327,7 +398,7 @@ def parse_args(argv):
     p.set_defaults(figure=figure_disc_map)
 
     args = parser.parse_args(argv)
-    if not (16 <= args.width <= 16384 and 16 <= args.height <= 16384):
+    if not ((16 <= args.width or args.width == 0) and args.width <= 16384 and 16 <= args.height <= 16384):
         parser.error("--width and --height must be within 16..16384 pixels")
     return args
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — the command-line program: render, check, format, list, describe, profile, compare.
+// phasor — the command-line program: render, check, format, list, describe, profile, probe, compare.
 #include <unistd.h>
 
 #include <algorithm>
@@ -17,6 +17,7 @@
 #include "app/cli.h"
 #include "app/compare.h"
 #include "app/plot.h"
+#include "app/probe.h"
 #include "app/profile.h"
 #include "app/render_common.h"
 #include "core/image/image_io.h"
@@ -51,6 +52,12 @@ const char *kUsageTail =
     "                      one row (default: the middle one) or column of a channel (default:\n"
     "                      intensity) of each image as CSV (stdout unless --csv/--plot) and/or a line\n"
     "                      plot (matplotlib); with two images also |a - b| and max |a - b| / max(b)\n"
+    "  probe SCENE --material NAME --theta ANGLE [--phi ANGLE] --lambda LENGTH [--uv U V]\n"
+    "        [--samples N] [--seed S] [--ray] [--csv FILE|-] [--plot FILE.png] [-D name=value ...]\n"
+    "                      one kernel of SCENE lit from (theta, phi) at wavelength lambda (e.g. 30deg,\n"
+    "                      550nm): reflectance R and transmittance T (power; continuous lobes by Monte\n"
+    "                      Carlo with a standard error), each near-delta lobe's direction and efficiency;\n"
+    "                      --ray: the ray-optics limit; --plot: the angular distribution\n"
     "  compare SCENE --integrators A,B[,...]|all [--spp N | --time SECONDS]\n"
     "          [--reference FILE.exr | --reference-integrator NAME [--reference-spp N]]\n"
     "          [--row N | --column N] [-o DIR] [-D name=value ...] [--seed S] [--threads N] [--quiet]\n"
@@ -298,6 +305,7 @@ int RunCommand(const CliOptions &o) {
         case Command::List: return List(o);
         case Command::Describe: return Describe(o);
         case Command::Profile: return RunProfile(o);
+        case Command::Probe: return RunProbe(o);
         case Command::Compare: return RunCompare(o);
     }
     return 1;

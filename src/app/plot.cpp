@@ -10,6 +10,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdio>
 #include <cstdlib>
@@ -231,26 +232,53 @@ bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &r
     });
 }
 
+std::string DiscMapCsv(const DiscMap &map) {
+    if (map.n <= 0 || map.discs.empty()) throw Error("the map has no disc or no cells");
+    bool named = false;
+    for (const DiscMap::Disc &d : map.discs) {
+        if (d.values.size() != std::size_t(map.n) * std::size_t(map.n))
+            throw Error("disc '" + d.name + "' has " + std::to_string(d.values.size()) + " values for " +
+                        std::to_string(map.n) + "x" + std::to_string(map.n) + " cells");
+        named |= !d.name.empty();
+        if (map.discs.size() > 1 && (d.name.empty() || &d != &*std::find_if(map.discs.begin(), map.discs.end(),
+                                                                             [&](const DiscMap::Disc &x) {
+                                                                                 return x.name == d.name;
+                                                                             })))
+            throw Error("discs of one map need distinct names; '" + d.name + "' is empty or repeated");
+    }
+    for (const DiscMap::Marker &m : map.markers)
+        if (m.disc < 0 || m.disc >= int(map.discs.size()) || (m.symbol != 'o' && m.symbol != 'x'))
+            throw Error("a marker names disc " + std::to_string(m.disc) + " of " + std::to_string(map.discs.size()) +
+                        " or a symbol other than 'o' and 'x'");
+    std::string csv = named ? "disc,u,v,value\n" : "u,v,value\n";
+    for (const DiscMap::Disc &d : map.discs)
+        for (int j = 0; j < map.n; ++j)
+            for (int i = 0; i < map.n; ++i)
+                csv += (named ? CsvField(d.name) + "," : std::string()) + FormatNumber(-1 + (i + 0.5) * 2.0 / map.n, 9) +
+                       "," + FormatNumber(-1 + (j + 0.5) * 2.0 / map.n, 9) + "," +
+                       FormatNumber(d.values[std::size_t(j) * map.n + i], 9) + "\n";
+    return csv;
+}
+
 bool StageDiscMap(OutputFiles &files, const std::string &path, const DiscMap &map) {
-    if (map.n <= 0 || map.values.size() != std::size_t(map.n) * std::size_t(map.n))
-        throw Error(FileLoc{path}, "cannot write '" + path + "': the map has " + std::to_string(map.values.size()) +
-                                       " values for " + std::to_string(map.n) + "x" + std::to_string(map.n) + " cells");
-    auto num = [](double v) { return FormatNumber(v, 9); };
     PlotRequest request;
     request.command = "disc-map";
-    request.data = "u,v,value\n";
-    for (int j = 0; j < map.n; ++j)
-        for (int i = 0; i < map.n; ++i)
-            request.data += num(-1 + (i + 0.5) * 2.0 / map.n) + "," + num(-1 + (j + 0.5) * 2.0 / map.n) + "," +
-                            num(map.values[std::size_t(j) * map.n + i]) + "\n";
+    try {
+        request.data = DiscMapCsv(map);
+    } catch (const Error &e) {
+        throw Error(FileLoc{path}, "cannot write '" + path + "': " + e.Message());
+    }
+    const bool named = request.data.rfind("disc,", 0) == 0;
     if (!map.markers.empty()) {
-        std::string points = "u,v,label\n";
+        std::string points = named ? "disc,u,v,label,marker,size\n" : "u,v,label,marker,size\n";
         for (const DiscMap::Marker &m : map.markers)
-            points += num(m.u) + "," + num(m.v) + "," + CsvField(m.label) + "\n";
+            points += (named ? CsvField(map.discs[m.disc].name) + "," : std::string()) + FormatNumber(m.u, 9) + "," +
+                      FormatNumber(m.v, 9) + "," + CsvField(m.label) + "," + std::string(1, m.symbol) + "," +
+                      FormatNumber(m.size, 4) + "\n";
         request.extraData.push_back({"--points", points});
     }
-    request.args = {"--title", map.title, "--value-label", map.valueLabel,
-                    "--scale", map.scale, "--db-range",    num(map.rangeDb)};
+    request.args = {"--title", map.title, "--value-label", map.valueLabel, "--scale", map.scale, "--db-range",
+                    FormatNumber(map.rangeDb, 9)};
     return StagePlot(files, path, request);
 }
 

@@ -34,16 +34,25 @@ struct PlotRequest {
 /// the terminal stops phasor's render, not a plot being drawn), without writing bytecode.
 bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &request);
 
-/// A value over the projected hemisphere, e.g. a kernel's angular distribution (`phasor probe`):
-/// `values[j·n + i]` belongs to the centre of cell (i, j) of an n × n grid over [−1, 1]² in
-/// (u, v) = (sinθ cosφ, sinθ sinφ), u growing with i, v with j (j = 0 at v = −1); cells outside the
-/// unit disc are not drawn. Markers (e.g. discrete lobes) at (u, v) with their labels.
+/// A value over projected hemispheres, e.g. a kernel's angular distribution (`phasor probe`): one
+/// or more discs, each an n × n grid over [−1, 1]² in (u, v) = (sinθ cosφ, sinθ sinφ), `values[j·n +
+/// i]` at the centre of cell (i, j), u growing with i, v with j (j = 0 at v = −1); cells outside
+/// the unit disc are not drawn. All discs share one colour scale (0 dB = the largest value of any)
+/// and one colour bar. Markers on a disc: 'o' a red ring, 'x' a white cross, `size` in points,
+/// with an optional label.
 struct DiscMap {
     int n = 0;
-    std::vector<double> values;
+    struct Disc {
+        std::string name;  // the disc's title: distinct when there are several ("" with one: none)
+        std::vector<double> values;
+    };
+    std::vector<Disc> discs;
     struct Marker {
+        int disc = 0;
         double u = 0, v = 0;
         std::string label;
+        char symbol = 'o';
+        double size = 7;
     };
     std::vector<Marker> markers;
     std::string title;
@@ -51,8 +60,12 @@ struct DiscMap {
     std::string scale = "db";          // "db" (0 dB = the maximum), "log" or "linear"
     double rangeDb = 40;               // shown below the maximum (db, log)
 };
-/// Draws `map` (python/phasor_plot.py disc-map) as StagePlot does. Throws phasor::Error for an
-/// inconsistent map (n ≤ 0, values.size() ≠ n²) or a failed plot.
+/// The map's data as the plot module reads it: `[disc,]u,v,value` (the `disc` column when a disc
+/// has a name). Throws phasor::Error for an inconsistent map (n ≤ 0, no disc, a disc without n²
+/// values, several discs without distinct names, a marker on no disc or with another symbol).
+std::string DiscMapCsv(const DiscMap &map);
+/// Draws `map` (python/phasor_plot.py disc-map) as StagePlot does (false: matplotlib is missing,
+/// nothing staged; the caller may stage DiscMapCsv instead). Throws phasor::Error.
 bool StageDiscMap(OutputFiles &files, const std::string &path, const DiscMap &map);
 
 /// The plot module: $PHASOR_PLOT_MODULE when set, else share/phasor/phasor_plot.py beside the

@@ -125,16 +125,6 @@ std::string FormatDuration(double s) {
     return buf;
 }
 
-void MakeParentDirectory(const std::string &path) {
-    namespace fs = std::filesystem;
-    fs::path p(path);
-    std::error_code ec;
-    if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-    if (ec)
-        throw Error("cannot write '" + path + "': cannot create directory '" + p.parent_path().string() +
-                    "': " + ec.message());
-}
-
 void CheckWritable(const std::string &path) {
     namespace fs = std::filesystem;
     MakeParentDirectory(path);

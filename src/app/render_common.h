@@ -50,8 +50,6 @@ void PrintError(const Error &e);
 
 // ---- rendering ----------------------------------------------------------------------------------
 std::string FormatDuration(double seconds);
-/// Creates the directory of `path` if needed; throws phasor::Error ("cannot write 'PATH': …").
-void MakeParentDirectory(const std::string &path);
 /// Verifies before rendering that `path` can be created (so a long render never ends in an
 /// unwritable path), creating missing parent directories. Throws phasor::Error.
 void CheckWritable(const std::string &path);

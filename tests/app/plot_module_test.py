@@ -140,7 +140,7 @@ class PlotModuleTest(unittest.TestCase):
     def test_disc_map_puts_values_over_the_projected_hemisphere(self):
         import matplotlib
 
-        points = self.write("pts.csv", "u,v,label\n0.5,-0.25,R0\n-0.3,0.4,T+1\n")
+        points = self.write("pts.csv", "u,v,label\n0.6,-0.1,R0\n-0.3,0.4,T+1\n")
         args = MODULE.parse_args(["disc-map", "--data", self.disc_csv(), "--points", points, "--out",
                                   self.path("d.png"), "--value-label", "Eval cos"])
         fig = MODULE.figure_disc_map(args)
@@ -148,9 +148,9 @@ class PlotModuleTest(unittest.TestCase):
         viridis = matplotlib.colormaps["viridis"]
         top = [round(255 * c) for c in viridis(1.0)[:3]]
         bottom = [round(255 * c) for c in viridis(0.0)[:3]]
-        # The peak (0 dB) at (0.5, −0.25) next to its marker; far from it 1e-3 of the peak is −30 dB
+        # The peak (0 dB) at (0.5, −0.25) (a cell centre); far from it 1e-3 of the peak is −30 dB
         # (t = 0.25 of the 40 dB range); outside the unit disc nothing (white).
-        self.assertTrue(close(rgb_at(fig, ax, 0.52, -0.27), top, 8), rgb_at(fig, ax, 0.52, -0.27))
+        self.assertTrue(close(rgb_at(fig, ax, 0.5, -0.25), top, 8), rgb_at(fig, ax, 0.5, -0.25))
         far = [round(255 * c) for c in viridis(0.25)[:3]]
         self.assertTrue(close(rgb_at(fig, ax, -0.6, -0.2), far, 8), rgb_at(fig, ax, -0.6, -0.2))
         self.assertTrue(close(rgb_at(fig, ax, 0.95, 0.95), [255, 255, 255], 2), rgb_at(fig, ax, 0.95, 0.95))
@@ -164,6 +164,51 @@ class PlotModuleTest(unittest.TestCase):
             status, err = self.run_main(["disc-map", "--data", self.disc_csv(), "--out", self.path(scale + ".png"),
                                          "--scale", scale])
             self.assertEqual(status, 0, err)
+
+    def test_two_discs_on_one_scale_with_rings_and_a_cross(self):
+        import matplotlib
+
+        rows = ["disc,u,v,value"]
+        n = 21
+        for disc, peak in (("reflection", 1.0), ("transmission", 0.01)):
+            for j in range(n):
+                for i in range(n):
+                    u, v = -1 + 2 * i / (n - 1), -1 + 2 * j / (n - 1)
+                    rows.append(f"{disc},{u},{v},{peak}")
+        points = self.write("p.csv", "disc,u,v,label,marker,size\nreflection,-0.5,0,0.04,o,9\n"
+                                     "transmission,0.3,0.3,0.96,o,12\nreflection,0.5,0,,x,10\n")
+        args = MODULE.parse_args(["disc-map", "--data", self.write("d2.csv", "\n".join(rows) + "\n"), "--points",
+                                  points, "--out", self.path("d2.png")])
+        fig = MODULE.figure_disc_map(args)
+        left, right = fig.axes[:2]
+        self.assertEqual((left.get_title(), right.get_title()), ("reflection", "transmission"))
+        self.assertEqual([round(v) for v in fig.get_size_inches() * fig.dpi], [80 + 840 + 130, 520])
+        viridis = matplotlib.colormaps["viridis"]
+        # One scale: the reflection disc at 0 dB, the transmission disc 20 dB below (t = 0.5).
+        top = [round(255 * c) for c in viridis(1.0)[:3]]
+        mid = [round(255 * c) for c in viridis(0.5)[:3]]
+        self.assertTrue(close(rgb_at(fig, left, 0.1, -0.6), top, 8), rgb_at(fig, left, 0.1, -0.6))
+        self.assertTrue(close(rgb_at(fig, right, -0.1, -0.6), mid, 8), rgb_at(fig, right, -0.1, -0.6))
+        # The ring's red edge at its radius on the left disc, the label beside it; the cross white
+        # at its centre.
+        self.assertIn("0.04", [t.get_text() for t in left.texts])
+        self.assertIn("0.96", [t.get_text() for t in right.texts])
+        self.assertTrue(close(rgb_at(fig, left, 0.5, 0), [255, 255, 255], 30), rgb_at(fig, left, 0.5, 0))
+        # A marker on a disc that is not in the data is an error.
+        bad = self.write("bad.csv", "disc,u,v,label\nsomewhere,0,0,a\n")
+        status, err = self.run_main(["disc-map", "--data", self.path("d2.csv"), "--points", bad, "--out",
+                                     self.path("x.png")])
+        self.assertEqual(status, 1)
+        self.assertIn("no disc 'somewhere'", err)
+
+    def test_a_map_that_is_zero_everywhere_is_neutral_grey(self):
+        rows = ["u,v,value"] + [f"{-1 + 2 * i / 10},{-1 + 2 * j / 10},0" for j in range(11) for i in range(11)]
+        args = MODULE.parse_args(["disc-map", "--data", self.write("z.csv", "\n".join(rows) + "\n"), "--out",
+                                  self.path("z.png"), "--value-label", "Eval cos"])
+        fig = MODULE.figure_disc_map(args)
+        self.assertTrue(close(rgb_at(fig, fig.axes[0], 0.1, 0.1), [230, 230, 230], 3), rgb_at(fig, fig.axes[0], 0.1, 0.1))
+        self.assertEqual(len(fig.axes), 1)  # no colour bar: there is no scale
+        self.assertIn("Eval cos: zero everywhere", [t.get_text() for t in fig.texts])
 
     def test_disc_map_needs_a_regular_grid(self):
         data = self.write("g.csv", "u,v,value\n0,0,1\n0.5,0,1\n0,0.5,1\n")

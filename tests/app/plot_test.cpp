@@ -4,6 +4,7 @@
 // is staged, the rest stays, and MatplotlibMissing() says what to install; the disc map of
 // `phasor probe` from its grid.
 
+#include <algorithm>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
@@ -111,22 +112,53 @@ TEST_F(PlotTest, WithoutMatplotlibNothingIsStagedAndTheUserIsToldWhatToInstall) 
     EXPECT_TRUE(StagePlot(files, Path("q.png"), Profile()));
 }
 
-TEST_F(PlotTest, DiscMapFromAGrid) {
+TEST_F(PlotTest, DiscMapFromGrids) {
+    // Two discs (the layout of `phasor probe`): the CSV the plot module reads, cell centres and
+    // the disc column; then the plot.
     DiscMap map;
+    map.n = 4;
+    for (const char *name : {"reflection", "transmission"}) {
+        DiscMap::Disc d;
+        d.name = name;
+        for (int k = 0; k < 16; ++k) d.values.push_back(k);
+        map.discs.push_back(d);
+    }
+    const std::string csv = DiscMapCsv(map);
+    EXPECT_EQ(csv.substr(0, csv.find('\n', csv.find('\n') + 1) + 1), "disc,u,v,value\nreflection,-0.75,-0.75,0\n");
+    EXPECT_NE(csv.find("reflection,-0.25,-0.75,1\n"), std::string::npos);  // i grows along u
+    EXPECT_NE(csv.find("transmission,0.75,0.75,15\n"), std::string::npos);
+    EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 33);
+
     map.n = 32;
-    for (int j = 0; j < map.n; ++j)
-        for (int i = 0; i < map.n; ++i) map.values.push_back(i == 24 && j == 16 ? 1.0 : 1e-3);
-    map.markers = {{0.53, 0.03, "R0"}, {-0.4, 0.2, "T, \"+1\""}};
+    for (DiscMap::Disc &d : map.discs) {
+        d.values.clear();
+        for (int j = 0; j < map.n; ++j)
+            for (int i = 0; i < map.n; ++i) d.values.push_back(i == 24 && j == 16 ? 1.0 : 1e-3);
+    }
+    map.markers = {{0, 0.53, 0.03, "R0", 'o', 9}, {1, -0.4, 0.2, "T, \"+1\"", 'o', 7}, {0, -0.5, 0, "", 'x', 10}};
     map.title = "probe";
     OutputFiles files;
     ASSERT_TRUE(StageDiscMap(files, Path("map.png"), map));
     files.Commit();
     const Image png = ReadImage(Path("map.png"));
-    EXPECT_EQ(png.width, 700);
-    EXPECT_EQ(png.height, 600);
-    map.values.pop_back();
-    OutputFiles more;
-    EXPECT_THROW(StageDiscMap(more, Path("bad.png"), map), Error);
+    EXPECT_EQ(png.width, 80 + 2 * 420 + 130);
+    EXPECT_EQ(png.height, 520);
+
+    // Inconsistent maps are errors naming the file; nothing is written.
+    auto bad = [&](DiscMap m) {
+        OutputFiles more;
+        EXPECT_THROW(StageDiscMap(more, Path("bad.png"), m), Error);
+    };
+    DiscMap short_ = map;
+    short_.discs[1].values.pop_back();
+    bad(short_);
+    DiscMap same = map;
+    same.discs[1].name = "reflection";
+    bad(same);
+    DiscMap lost = map;
+    lost.markers.push_back({2, 0, 0, "", 'o', 7});
+    bad(lost);
+    EXPECT_EQ(Listing(), std::vector<std::string>{"map.png"});
 }
 
 }  // namespace

@@ -172,45 +172,6 @@ std::string WriteChi2Data(const std::string &name, int nCos, int nPhi, const std
     return file.string();
 }
 
-// The plate a footprint-aware kernel is queried on: the plane z = 0 with identity to_world, so
-// local, world and plate coordinates coincide.
-class ContractPlate final : public Shape {
-  public:
-    ContractPlate() { name = "contract_plate"; }
-    SurfaceInteraction Interaction(const Ray &, double, unsigned, double, double) const override {
-        return {};
-    }
-    Bounds3 Bounds() const override { return {}; }
-    double Area() const override { return 0; }
-    ShapeSample Sample(const Vec2 &) const override { return {}; }
-    std::string ToString() const override { return "rectangle (contract plate)"; }
-    bool IsPlanar() const override { return true; }
-};
-
-// The incident GR of footprint-aware kernels: β [m] and ρ at the hit, the same for every
-// wavelength; the hit point near the plate's origin (the presets place openings there).
-constexpr double ContractBeta = 0.5e-6, ContractRho = 0.5;
-const Vec3 ContractHit(0.3e-6, -0.4e-6, 0);
-
-// Points q at a GR arriving along −wi at si.p (wave regime).
-void AttachFootprint(ScatterQuery &q, SpectralGenRay &gr, SurfaceInteraction &si,
-                     const ContractPlate &plate) {
-    si.n = Vec3(0, 0, 1);
-    si.shading = Frame();
-    si.shape = &plate;
-    gr.o = si.p;
-    gr.d = -q.wi;
-    gr.count = q.wl->Count();
-    for (int i = 0; i < gr.count; ++i) {
-        gr.k[i] = 2 * Pi * q.etaOutside / q.wl->lambda[i];
-        gr.beta2[i] = ContractBeta * ContractBeta;
-        gr.rho[i] = ContractRho;
-    }
-    q.rayOptics = false;
-    q.gr = &gr;
-    q.si = &si;
-}
-
 class MaterialContract : public ::testing::TestWithParam<ContractCase> {
   protected:
     void SetUp() override {

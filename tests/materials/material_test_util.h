@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
-// Shared helpers for the material tests: building a kernel through the registry (the same
-// look-up → validate → create → report-unused protocol a scene uses), fixture objects presets may
-// refer to, wavelengths and directions.
+// Shared helpers for the material tests and the kernel benchmarks (bench/kernel_bench.cpp):
+// building a kernel through the registry (the same look-up → validate → create → report-unused
+// protocol a scene uses), fixture objects presets may refer to, wavelengths and directions, and the
+// incident generalized ray of footprint-aware kernels.
 #pragma once
 
 #include <memory>
 #include <string>
 
 #include "core/diagnostics.h"
+#include "core/render/genray.h"
 #include "core/render/material.h"
 #include "core/render/registry.h"
+#include "core/render/shape.h"
 
 namespace phasor::test {
 
@@ -105,5 +108,43 @@ inline Vec3 DirectionFromCosTheta(double cosTheta, double phi) {
 
 /// Uniform direction on the sphere from two uniform numbers.
 inline Vec3 UniformSphere(double u1, double u2) { return DirectionFromCosTheta(1 - 2 * u1, 2 * Pi * u2); }
+
+/// The plate a footprint-aware kernel is queried on: the plane z = 0 with identity to_world, so
+/// local, world and plate coordinates coincide.
+class ContractPlate final : public Shape {
+  public:
+    ContractPlate() { name = "contract_plate"; }
+    SurfaceInteraction Interaction(const Ray &, double, unsigned, double, double) const override {
+        return {};
+    }
+    Bounds3 Bounds() const override { return {}; }
+    double Area() const override { return 0; }
+    ShapeSample Sample(const Vec2 &) const override { return {}; }
+    std::string ToString() const override { return "rectangle (contract plate)"; }
+    bool IsPlanar() const override { return true; }
+};
+
+/// The incident GR of footprint-aware kernels: β [m] and ρ at the hit, the same for every
+/// wavelength; the hit point near the plate's origin (the presets place openings there).
+inline constexpr double ContractBeta = 0.5e-6, ContractRho = 0.5;
+inline const Vec3 ContractHit(0.3e-6, -0.4e-6, 0);
+
+/// Points q at a GR arriving along −wi at si.p (wave regime).
+inline void AttachFootprint(ScatterQuery &q, SpectralGenRay &gr, SurfaceInteraction &si, const ContractPlate &plate) {
+    si.n = Vec3(0, 0, 1);
+    si.shading = Frame();
+    si.shape = &plate;
+    gr.o = si.p;
+    gr.d = -q.wi;
+    gr.count = q.wl->Count();
+    for (int i = 0; i < gr.count; ++i) {
+        gr.k[i] = 2 * Pi * q.etaOutside / q.wl->lambda[i];
+        gr.beta2[i] = ContractBeta * ContractBeta;
+        gr.rho[i] = ContractRho;
+    }
+    q.rayOptics = false;
+    q.gr = &gr;
+    q.si = &si;
+}
 
 }  // namespace phasor::test
