@@ -182,7 +182,10 @@ sigint)
     wait $pid; rc=$?
     [[ $rc -eq 130 ]] || fail "Ctrl-C: exit status $rc, expected 130: $(cat "$out/stderr")"
     [[ -s "$dir/index.html" && -s "$dir/ray.exr" ]] || fail "Ctrl-C: outputs $(ls "$dir" 2>&1)"
-    [[ $(field "$dir/results.csv" ray status) == ok && $(field "$dir/results.csv" slow status) == interrupted ]] ||
+    # (slow is normally interrupted mid-pass; on a machine so loaded that the signal beat its start
+    # it is not_run — either way it has no complete result)
+    slow_status=$(field "$dir/results.csv" slow status)
+    [[ $(field "$dir/results.csv" ray status) == ok && ($slow_status == interrupted || $slow_status == not_run) ]] ||
         fail "Ctrl-C: $(cat "$dir/results.csv")"
     grep -q "stopped (Ctrl-C)" "$dir/index.html" || fail "Ctrl-C: the page does not say the comparison was stopped"
     no_temporaries "$dir"
