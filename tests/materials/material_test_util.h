@@ -23,8 +23,11 @@ inline constexpr const char *UnderTestName = "under_test";
 /// that needs another object names one of these):
 ///   @contract_checker  texture  checkerboard(color0 = 0.1, color1 = 0.9, scale = 4)
 ///   @contract_half     texture  constant(value = 0.5)
+///   @contract_ramp     texture  gradient(value0 = 0.1, value1 = 0.9) along u over [0, 1]: dimensionless
 ///   @contract_gold     material conductor(ior = "Au")
 ///   @contract_glass    material dielectric(ior = 1.5)
+///   @contract_aluminium material conductor(ior = "Al")
+///   @contract_matte    material diffuse(reflectance = 0.6)
 inline void AddFixtures(SceneDesc &desc) {
     auto add = [&](const char *keyword, const char *type, const char *name, const ParamDict &params) {
         SceneEntity e;
@@ -36,6 +39,8 @@ inline void AddFixtures(SceneDesc &desc) {
     };
     add("Material", "conductor", "contract_gold", ParamDict().Set("ior", Value::String("Au")));
     add("Material", "dielectric", "contract_glass", ParamDict().Set("ior", Value::Number(1.5)));
+    add("Material", "conductor", "contract_aluminium", ParamDict().Set("ior", Value::String("Al")));
+    add("Material", "diffuse", "contract_matte", ParamDict().Set("reflectance", Value::Number(0.6)));
     SceneEntity checker;
     checker.keyword = "Texture";
     checker.type = "checkerboard";
@@ -50,7 +55,49 @@ inline void AddFixtures(SceneDesc &desc) {
     half.name = "contract_half";
     half.params.Set("value", Value::Number(0.5));
     desc.entities.push_back(half);
+    add("Texture", "gradient", "contract_ramp", ParamDict().Set("value0", Value::Number(0.1)).Set("value1", Value::Number(0.9)));
 }
+
+/// A scene of a few entities (plus the fixtures, when asked), built at once; keeps the diagnostics.
+struct MiniScene {
+    SceneDesc desc;
+    Diagnostics diag;
+    /// Adds the fixtures of AddFixtures.
+    MiniScene &WithFixtures() {
+        AddFixtures(desc);
+        return *this;
+    }
+    MiniScene &Add(const std::string &keyword, const std::string &type, const std::string &name, ParamDict p) {
+        SceneEntity e;
+        e.keyword = keyword;
+        e.type = type;
+        e.name = name;
+        e.params = std::move(p);
+        desc.entities.push_back(std::move(e));
+        return *this;
+    }
+    /// Builds everything; returns the object named `name` (nullptr if it failed).
+    template <typename T>
+    std::shared_ptr<T> Build(const std::string &name) {
+        BuildContext ctx(desc, diag);
+        ctx.BuildAll();
+        for (const auto &o : ctx.All<T>())
+            if (const SceneEntity *e = ctx.EntityOf(o.get()); e && e->name == name) return o;
+        return nullptr;
+    }
+    /// The first error's message ("" if none).
+    std::string FirstError() const {
+        for (const Diagnostic &d : diag.All())
+            if (d.severity == Severity::Error) return d.message;
+        return "";
+    }
+    /// The latest error's message ("" if none).
+    std::string LastError() const {
+        for (auto it = diag.All().rbegin(); it != diag.All().rend(); ++it)
+            if (it->severity == Severity::Error) return it->message;
+        return "";
+    }
+};
 
 /// Builds one object of family T (keyword "Material", "Texture", …) from `params` in a scene that
 /// also holds the fixtures. Returns nullptr if building failed; `diag` receives every diagnostic.

@@ -150,7 +150,7 @@ std::string ReadErrorReason(std::string text) {
 
 }  // namespace
 
-Image ReadImage(const std::string &path) {
+Image ReadImage(const std::string &path, std::string *pixelFormat) {
     StderrCapture libpngMessages;
     auto fail = [&](const std::string &oiioError) {
         libpngMessages.Finish(false);
@@ -159,6 +159,7 @@ Image ReadImage(const std::string &path) {
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
     if (!in) fail(OIIO::geterror());
     const OIIO::ImageSpec &spec = in->spec();
+    if (pixelFormat) *pixelFormat = spec.format.c_str();
     Image img;
     img.width = spec.width;
     img.height = spec.height;
