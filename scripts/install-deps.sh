@@ -10,7 +10,9 @@ PACKAGES=(
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcerf-dev
   libgtest-dev libbenchmark-dev
   openimageio-tools   # iinfo: the Ctrl-C test reads the partial image's metadata with it
-  fonts-dejavu-core   # DejaVu Sans: the text of `phasor profile` plots (core/image/plot.cpp)
+  fonts-dejavu-core   # DejaVu Sans: labels on images drawn by OpenImageIO (core/image/sheet.cpp)
+  python3-matplotlib  # every plot (python/phasor_plot.py: profile, compare, probe); brings numpy
+  chromium            # headless: the test that opens `phasor compare`'s page (tests/app/compare.sh)
 )
 # Optional extras for `make fuzz` (clang + libFuzzer runtime).
 if [[ "${PHASOR_WITH_FUZZ:-0}" == 1 ]]; then

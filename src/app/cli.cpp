@@ -36,8 +36,8 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
     static const std::vector<std::pair<std::string, Command>> commands = {
         {"render", Command::Render}, {"check", Command::Check},       {"format", Command::Format},
         {"list", Command::List},     {"describe", Command::Describe}, {"profile", Command::Profile},
-        {"probe", Command::Probe},   {"help", Command::Help},         {"--help", Command::Help},
-        {"-h", Command::Help},       {"--version", Command::Version}};
+        {"probe", Command::Probe},   {"compare", Command::Compare},   {"help", Command::Help},
+        {"--help", Command::Help},   {"-h", Command::Help},           {"--version", Command::Version}};
     auto known = std::find_if(commands.begin(), commands.end(), [&](const auto &c) { return c.first == cmd; });
     if (known == commands.end()) {
         std::vector<std::string> names;
@@ -80,16 +80,62 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
                 return false;
             }
             o.defines.emplace_back(def.substr(0, eq), def.substr(eq + 1));
-        } else if (o.command == Command::Profile && (a == "--row" || a == "--channel" || a == "--csv" ||
+        } else if (o.command == Command::Compare &&
+                   (a == "--integrators" || a == "--reference" || a == "--reference-integrator")) {
+            if (!value(a, v)) return false;
+            auto &c = o.compare;
+            if (a == "--integrators") {
+                std::size_t start = 0;
+                for (;;) {
+                    const std::size_t comma = v.find(',', start);
+                    const std::string name =
+                        v.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+                    if (name.empty()) {
+                        err = "'--integrators' expects names separated by commas (e.g. grt,ray); got '" + v + "'";
+                        return false;
+                    }
+                    if (std::find(c.integrators.begin(), c.integrators.end(), name) != c.integrators.end()) {
+                        err = "'--integrators' names '" + name + "' twice";
+                        return false;
+                    }
+                    c.integrators.push_back(name);
+                    if (comma == std::string::npos) break;
+                    start = comma + 1;
+                }
+            } else if (a == "--reference") c.reference = v;
+            else c.referenceIntegrator = v;
+        } else if (o.command == Command::Compare && (a == "--time" || a == "--reference-spp")) {
+            if (!value(a, v)) return false;
+            auto &c = o.compare;
+            if (a == "--time") {
+                if (!ParseDouble(v, c.seconds) || !(c.seconds > 0)) {
+                    err = "'--time' expects a positive number of seconds; got '" + v + "'";
+                    return false;
+                }
+            } else if (!ParseInt(v, c.referenceSpp) || c.referenceSpp < 1) {
+                err = "'--reference-spp' expects a whole number ≥ 1; got '" + v + "'";
+                return false;
+            }
+        } else if ((o.command == Command::Compare || o.command == Command::Profile) &&
+                   (a == "--row" || a == "--column")) {
+            if (!value(a, v)) return false;
+            int n = -1;
+            if (!ParseInt(v, n) || n < 0) {
+                err = "'" + a + "' expects a non-negative whole number; got '" + v + "'";
+                return false;
+            }
+            int &row = o.command == Command::Compare ? o.compare.row : o.profile.row;
+            int &column = o.command == Command::Compare ? o.compare.column : o.profile.column;
+            (a == "--row" ? row : column) = n;
+            if (row >= 0 && column >= 0) {
+                err = "'--row' and '--column' exclude each other (one profile per run)";
+                return false;
+            }
+        } else if (o.command == Command::Profile && (a == "--channel" || a == "--csv" ||
                                                       a == "--plot" || a == "--label" || a == "--title")) {
             if (!value(a, v)) return false;
             auto &p = o.profile;
-            if (a == "--row") {
-                if (!ParseInt(v, p.row) || p.row < 0) {
-                    err = "'--row' expects a non-negative whole number; got '" + v + "'";
-                    return false;
-                }
-            } else if (a == "--channel") p.channel = v;
+            if (a == "--channel") p.channel = v;
             else if (a == "--csv") p.csv = v;
             else if (a == "--plot") p.plot = v;
             else if (a == "--label") p.labels.push_back(v);
@@ -150,6 +196,31 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
         return false;
     }
     switch (o.command) {
+        case Command::Compare: {
+            if (positional.size() != 1) {
+                err = "'compare' expects exactly one scene file";
+                return false;
+            }
+            o.scene = positional[0];
+            const auto &c = o.compare;
+            if (c.integrators.empty()) {
+                err = "'compare' needs --integrators (e.g. --integrators grt,ray)";
+                return false;
+            }
+            if (c.seconds > 0 && o.spp > 0) {
+                err = "'--spp' (equal samples) and '--time' (equal time) exclude each other";
+                return false;
+            }
+            if (!c.reference.empty() && !c.referenceIntegrator.empty()) {
+                err = "'--reference' (an image) and '--reference-integrator' (a render) exclude each other";
+                return false;
+            }
+            if (c.referenceSpp > 0 && c.referenceIntegrator.empty()) {
+                err = "'--reference-spp' goes with '--reference-integrator'";
+                return false;
+            }
+            break;
+        }
         case Command::Render:
         case Command::Check:
         case Command::Format:
@@ -184,6 +255,10 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
                 return false;
             }
             if (p.hasX0 != p.hasPitch) { err = "'--x0' and '--pitch' go together"; return false; }
+            if (p.hasX0 && p.column >= 0) {
+                err = "'--x0' and '--pitch' give positions along a row; a column is indexed in pixels";
+                return false;
+            }
             break;
         }
         case Command::Probe: {

@@ -8,7 +8,7 @@
 
 namespace phasor {
 
-enum class Command { Help, Version, Render, Check, Format, List, Describe, Profile, Probe };
+enum class Command { Help, Version, Render, Check, Format, List, Describe, Profile, Probe, Compare };
 
 struct CliOptions {
     Command command = Command::Help;
@@ -20,10 +20,11 @@ struct CliOptions {
     bool permissive = false;  // --permissive: unknown parameters and unused -D are warnings
     std::vector<std::pair<std::string, std::string>> defines;  // -D name=value, in order
 
-    // `profile`: one image row of each input as CSV and/or a line plot.
+    // `profile`: one image row (or column) of each input as CSV and/or a line plot.
     struct ProfileOptions {
         std::vector<std::string> inputs;  // EXR files
         int row = -1;                     // -1: each image's middle row
+        int column = -1;                  // ≥ 0: this column instead of a row
         std::string channel = "intensity";
         std::string csv, plot;            // output paths ("" = not written; csv "-" = stdout)
         std::vector<std::string> labels;  // one per input, or empty
@@ -44,6 +45,17 @@ struct CliOptions {
         bool rayOptics = false;          // --ray: ScatterQuery::rayOptics
         std::string csv, plot;           // output paths ("" = not written; csv "-" = stdout)
     } probe;
+
+    // `compare`: render a scene with several integrators and compare them (app/compare.h); the
+    // output directory is `output`, spp/seed/threads/sampler/defines as for `render`.
+    struct CompareOptions {
+        std::vector<std::string> integrators;  // --integrators a,b,c (in order, distinct)
+        double seconds = 0;                    // --time: the budget of each integrator (0: equal spp)
+        std::string reference;                 // --reference FILE.exr
+        std::string referenceIntegrator;       // --reference-integrator NAME
+        int referenceSpp = 0;                  // --reference-spp N (0: the scene's spp)
+        int row = -1, column = -1;             // --row / --column: a profile plot
+    } compare;
 };
 
 /// Fills `o` from argv; on a usage error returns false with a message in `err`.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — the command-line program: render, check, format, list, describe, profile, probe.
+// phasor — the command-line program: render, check, format, list, describe, profile, probe, compare.
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,8 +15,11 @@
 #include <sstream>
 
 #include "app/cli.h"
+#include "app/compare.h"
+#include "app/plot.h"
 #include "app/probe.h"
 #include "app/profile.h"
+#include "app/render_common.h"
 #include "core/image/image_io.h"
 #include "core/render/registry.h"
 #include "core/render/scene.h"
@@ -25,29 +28,6 @@
 using namespace phasor;
 
 namespace {
-
-// Cancellation (README "Using phasor"): the first SIGINT (Ctrl-C) or SIGTERM (`timeout`, batch
-// schedulers) asks the render to stop; it finishes the pixels in progress and the partial image is
-// written. A second signal ends the program at once (the default action).
-std::atomic<bool> gCancel{false};
-volatile std::sig_atomic_t gSignal = 0;  // the first signal received, 0 if none
-volatile std::sig_atomic_t gAnnounce = 0;  // print "stopping…" when the first signal arrives
-
-extern "C" void OnStopSignal(int sig) {
-    if (gSignal == 0) gSignal = sig;
-    gCancel.store(true);
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
-    if (gAnnounce) {  // write(2) is async-signal-safe; iostreams are not
-        static const char msg[] = "\nstopping: finishing the pixels in progress (Ctrl-C again to quit at once)\n";
-        ssize_t ignored = ::write(2, msg, sizeof msg - 1);
-        (void)ignored;
-    }
-}
-
-// Exit status of a render stopped by `sig`: 128 + the signal number, as a shell reports a
-// process killed by it (130 for SIGINT, 143 for SIGTERM).
-int StoppedStatus(int sig) { return 128 + sig; }
 
 // The usage text, in two parts around the list of families (from the registry).
 const char *kUsageHead =
@@ -67,17 +47,22 @@ const char *kUsageHead =
 const char *kUsageTail =
     "  describe [FAMILY] NAME print a plug-in's parameters (FAMILY only if NAME is in several)\n"
     "  describe --markdown    print every plug-in's parameters as Markdown (docs/plugins.md)\n"
-    "  profile IMAGE.exr [IMAGE.exr ...] [--row N] [--channel NAME] [--csv FILE|-] [--plot FILE.png]\n"
-    "          [--label NAME ...] [--x0 M --pitch M] [--diff-scale N] [--title TEXT]\n"
-    "                      one row (default: the middle one) of a channel (default: intensity) of\n"
-    "                      each image as CSV (stdout unless --csv/--plot) and/or a line plot; with\n"
-    "                      two images also |a - b| and max |a - b| / max(b)\n"
+    "  profile IMAGE.exr [IMAGE.exr ...] [--row N | --column N] [--channel NAME] [--csv FILE|-]\n"
+    "          [--plot FILE.png] [--label NAME ...] [--x0 M --pitch M] [--diff-scale N] [--title TEXT]\n"
+    "                      one row (default: the middle one) or column of a channel (default:\n"
+    "                      intensity) of each image as CSV (stdout unless --csv/--plot) and/or a line\n"
+    "                      plot (matplotlib); with two images also |a - b| and max |a - b| / max(b)\n"
     "  probe SCENE --material NAME --theta ANGLE [--phi ANGLE] --lambda LENGTH [--uv U V]\n"
     "        [--samples N] [--seed S] [--ray] [--csv FILE|-] [--plot FILE.png] [-D name=value ...]\n"
     "                      one kernel of SCENE lit from (theta, phi) at wavelength lambda (e.g. 30deg,\n"
     "                      550nm): reflectance R and transmittance T (power; continuous lobes by Monte\n"
     "                      Carlo with a standard error), each near-delta lobe's direction and efficiency;\n"
     "                      --ray: the ray-optics limit; --plot: the angular distribution\n"
+    "  compare SCENE --integrators A,B[,...]|all [--spp N | --time SECONDS]\n"
+    "          [--reference FILE.exr | --reference-integrator NAME [--reference-spp N]]\n"
+    "          [--row N | --column N] [-o DIR] [-D name=value ...] [--seed S] [--threads N] [--quiet]\n"
+    "                      render SCENE with each integrator (equal spp or equal time) and compare\n"
+    "                      them: EXR/PNG each, grid, differences, table, plots, DIR/index.html\n"
     "  --version, --help\n";
 
 std::string Usage() {
@@ -86,71 +71,12 @@ std::string Usage() {
     return kUsageHead + std::string("                     ") + families + "\n" + kUsageTail;
 }
 
-bool Colour() { return isatty(2) && !std::getenv("NO_COLOR"); }
-
-// Parses and builds; prints diagnostics. Returns nullptr on error. What was read cleanly is
-// built even after errors, so one run reports the scene's parse, resolve and build errors.
-std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
-    diag.SetPermissive(o.permissive);
-    ParseOptions parse;
-    parse.defines = o.defines;
-    parse.partial = true;
-    std::unique_ptr<Scene> scene;
-    try {
-        auto desc = ParseSceneFile(o.scene, parse, diag);
-        if (desc) scene = Scene::Build(*desc, diag, o.integrator);
-    } catch (const std::bad_alloc &) {  // (what was allocated is released by now)
-        scene.reset();
-        diag.Error(FileLoc{o.scene, 0, 0, 1},
-                   "out of memory while loading the scene (a scene takes about 60 bytes of memory per byte "
-                   "of text, more for long inline lists: put large meshes in mesh files; docs/wscene.md §7)");
-    }
-    diag.Print(std::cerr, Colour());
-    if (diag.HasErrors()) {
-        std::cerr << diag.ErrorCount() << " error" << (diag.ErrorCount() == 1 ? "" : "s") << " in '" << o.scene
-                  << "'\n";
-        return nullptr;
-    }
-    return scene;
-}
-
-std::string FormatDuration(double s) {
-    char buf[32];
-    if (s < 60) std::snprintf(buf, sizeof buf, "%.1fs", s);
-    else if (s < 3600) std::snprintf(buf, sizeof buf, "%dm%02ds", int(s) / 60, int(s) % 60);
-    else std::snprintf(buf, sizeof buf, "%dh%02dm", int(s) / 3600, (int(s) / 60) % 60);
-    return buf;
-}
-
-// Verifies before rendering that `path` can be created (so a long render never ends in an
-// unwritable path), creating missing parent directories.
-void CheckWritable(const std::string &path) {
-    namespace fs = std::filesystem;
-    fs::path p(path);
-    std::error_code ec;
-    if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-    if (ec) throw Error("cannot write '" + path + "': cannot create directory '" + p.parent_path().string() +
-                        "': " + ec.message());
-    if (fs::is_directory(p, ec)) throw Error("cannot write '" + path + "': it is a directory");
-    fs::path probe = p;
-    probe += ".phasor-probe";
-    FILE *f = std::fopen(probe.c_str(), "wb");
-    if (!f) throw Error("cannot write '" + path + "': " + std::strerror(errno));
-    std::fclose(f);
-    fs::remove(probe, ec);
-}
-
 int Render(const CliOptions &o) {
     Diagnostics diag(o.strict);
     auto scene = Load(o, diag);
     if (!scene) return 1;
-    RenderSettings &rs = scene->Settings();
-    RenderOptions opt;
-    opt.spp = o.spp > 0 ? o.spp : rs.spp;
-    opt.seed = o.seed >= 0 ? uint64_t(o.seed) : rs.seed;
-    opt.threads = o.threads;
-    opt.sampler = o.sampler.empty() ? rs.sampler : o.sampler;
-    opt.cancel = &gCancel;
+    const RenderSettings &rs = scene->Settings();
+    RenderOptions opt = OptionsFor(*scene, o);
     std::string out = !o.output.empty() ? o.output
                       : !rs.output.empty() ? rs.output
                                            : "out/" + std::filesystem::path(o.scene).stem().string() + ".exr";
@@ -164,120 +90,56 @@ int Render(const CliOptions &o) {
     try {
         CheckWritable(exr.string());
         CheckWritable(png.string());
+        CheckMemory(*scene);  // refuse a resolution the machine cannot hold before allocating anything
     } catch (const Error &e) {
-        std::cerr << "error: " << e.Message() << "\n";
+        PrintError(e);
         return 1;
     }
 
     const Detector &det = scene->GetDetector();
     const Integrator &integrator = scene->GetIntegrator();
     const bool deterministic = integrator.Deterministic();
-    // Refuse a resolution the machine cannot hold before allocating anything (film.h).
-    if (const double need = Film::MemoryNeeded(det.Width(), det.Height()), avail = AvailableMemory(); need > avail) {
-        char buf[256];
-        std::snprintf(buf, sizeof buf,
-                      "detector '%s': %dx%d pixels need about %.3g GB of memory (%.0f bytes per pixel) but only "
-                      "%.3g GB are available; lower its 'resolution' (or raise its 'pitch')",
-                      det.name.c_str(), det.Width(), det.Height(), need / 1e9, need / det.Width() / det.Height(),
-                      avail / 1e9);
-        Diagnostics located;
-        located.Report(Error(scene->Where(&det), buf));
-        located.Print(std::cerr);
-        return 1;
-    }
     Film film(det.Width(), det.Height(), det.Response());
-    bool bar = !o.quiet && isatty(2);
-    auto start = std::chrono::steady_clock::now();
-    if (bar)
-        opt.progress = [&](int done, int total) {
-            double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            double frac = double(done) / total;
-            int width = 30, filled = int(frac * width);
-            // rs counts its own steps (batches of field nodes) and has no sample rate.
-            char rate[48] = "";
-            if (!deterministic)
-                std::snprintf(rate, sizeof rate, "  %.2f Msamples/s",
-                              double(done) * det.Width() * det.Height() / std::max(t, 1e-9) * 1e-6);
-            std::fprintf(stderr, "\r[%s%s] %3d%% %d/%d %s  %s elapsed  ETA %s%s   ",
-                         std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(),
-                         int(frac * 100), done, total, deterministic ? "steps" : "spp", FormatDuration(t).c_str(),
-                         FormatDuration(frac > 0 ? t / frac - t : 0).c_str(), rate);
-            std::fflush(stderr);
-        };
+    const bool bar = !o.quiet && isatty(2);
+    if (bar) opt.progress = ProgressBar("", deterministic, (long long)det.Width() * det.Height());
     opt.warn = [&](const std::string &w) { std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n"; };
     // The stop handlers stay installed until the outputs are written, so that a signal during
     // the writes cannot leave a temporary file behind.
-    gAnnounce = !o.quiet;
-    std::signal(SIGINT, OnStopSignal);
-    std::signal(SIGTERM, OnStopSignal);
+    InstallStopHandlers(!o.quiet);
     RenderStats st;
     try {
         st = integrator.Render(*scene, film, opt);
     } catch (const Error &e) {
         if (bar) std::cerr << "\n";
-        if (e.Loc().Known()) {  // an error about a scene object: file:line:col with its source line
-            Diagnostics located;
-            located.Report(e);
-            located.Print(std::cerr);
-        } else {
-            std::cerr << "error: " << e.Message() << "\n";
-        }
+        PrintError(e);
         return 1;
     }
     if (bar) std::fprintf(stderr, "\n");
     if (!st.hasImage) {  // cancelled before anything honest could be written (rs)
         std::cerr << "interrupted: " << integrator.name << " " << st.work << "; no image written\n";
-        return StoppedStatus(gSignal ? int(gSignal) : SIGINT);
+        return StoppedStatus();
     }
 
     Image img = film.Resolve();
-    img.metadata["phasor:scene"] = o.scene;
-    img.metadata["phasor:integrator"] = integrator.ToString();
-    if (deterministic) {
-        img.metadata.erase("phasor:samples_per_pixel");  // rs takes no samples
-    } else {
-        img.metadata["phasor:spp_requested"] = std::to_string(opt.spp);
-        img.metadata["phasor:spp_reached"] = std::to_string(st.sppReached);
-        img.metadata["phasor:spp_max"] = std::to_string(st.sppMax);
-        img.metadata["phasor:seed"] = std::to_string(opt.seed);
-        img.metadata["phasor:sampler"] = opt.sampler;
-    }
-    for (const auto &[key, value] : st.metadata) img.metadata[key] = value;
-    img.metadata["phasor:render_seconds"] = std::to_string(st.seconds);
-    img.metadata["phasor:cancelled"] = st.cancelled ? "true" : "false";
-    if (const SensorPlaneGeometry *sp = det.SensorPlane()) {  // pixel centres, for `phasor profile`
-        char buf[64];
-        std::snprintf(buf, sizeof buf, "%.17g", sp->PixelCenter(0, 0).x);
-        img.metadata["phasor:x0_m"] = buf;
-        std::snprintf(buf, sizeof buf, "%.17g", sp->pitchX);
-        img.metadata["phasor:pitch_m"] = buf;
-    }
+    StampMetadata(img, *scene, o.scene, opt, st);
     // The EXR and the PNG are written all or nothing (core/image/output_file.h): if either fails,
     // neither appears (and earlier files of those names are left as they were).
+    std::string shown;
     try {
         OutputFiles files;
         WriteExr(files, exr.string(), img);
-        if (img.height == 1) {
-            // A one-row image as a PNG would be N×1 pixels: stage `phasor profile`'s line plot of
-            // its intensity instead (x in metres from the metadata for sensor planes).
-            CliOptions plot;
-            plot.quiet = true;
-            plot.profile.inputs = {exr.string()};
-            plot.profile.plot = png.string();
-            plot.profile.labels = {integrator.name};
-            plot.profile.title = std::filesystem::path(o.scene).filename().string() + ": intensity";
-            if (RunProfile(plot, {&img}, &files) != 0) return 1;
-        } else if (det.Response().GetKind() == SensorResponse::Kind::Radiometric)
-            WriteFalseColorPng(files, png.string(), img, "intensity");
-        else
-            WritePng(files, png.string(), img);
+        shown = StageDisplayPng(files, png.string(), img,
+                                det.Response().GetKind() == SensorResponse::Kind::Radiometric, integrator.name,
+                                std::filesystem::path(o.scene).filename().string() + ": intensity");
         files.Commit();
     } catch (const Error &e) {
         std::cerr << "error: " << e.Message() << "\n";
         return 1;
     }
-    std::signal(SIGINT, SIG_DFL);
-    std::signal(SIGTERM, SIG_DFL);
+    RemoveStopHandlers();
+    if (shown != png.string())
+        std::cerr << "warning: " << MatplotlibMissing() << "; '" << png.string() << "' not drawn, its data is in '"
+                  << shown << "'\n";
     if (!o.quiet) {
         std::cerr << (st.cancelled ? "interrupted: " : "");
         if (deterministic)
@@ -286,16 +148,10 @@ int Render(const CliOptions &o) {
             std::cerr << "rendered " << st.sppReached << " spp"
                       << (st.sppMax > st.sppReached ? " (" + std::to_string(st.sppMax) + " in some pixels)" : "")
                       << " in " << FormatDuration(st.seconds) << " with " << integrator.name << "\n";
-        for (const std::string &w : st.counters.Warnings()) std::cerr << "warning: " << w << "\n";
-        if (!st.cancelled && std::all_of(img.data.begin(), img.data.end(), [](float v) { return v == 0; }))
-            std::cerr << "warning: the image is black: " << scene->DarkImageCause() << "\n";
-        if (st.invalidSamples > 0)
-            std::cerr << "warning: " << st.invalidSamples
-                      << " samples were NaN, negative or beyond the float range of the image (|v| > 3.4e38) "
-                         "and were discarded (counted in phasor:invalid_samples)\n";
-        std::cerr << "wrote " << exr.string() << " and " << png.string() << "\n";
+        PrintRenderWarnings(*scene, st, img);
+        std::cerr << "wrote " << exr.string() << " and " << shown << "\n";
     }
-    if (gSignal) return StoppedStatus(int(gSignal));
+    if (StopSignal()) return StoppedStatus();
     return 0;
 }
 
@@ -450,6 +306,7 @@ int RunCommand(const CliOptions &o) {
         case Command::Describe: return Describe(o);
         case Command::Profile: return RunProfile(o);
         case Command::Probe: return RunProbe(o);
+        case Command::Compare: return RunCompare(o);
     }
     return 1;
 }

@@ -21,7 +21,8 @@
 // (no GR footprint: q.gr = nullptr, β = 0). `--ray`: the ray-optics limit (rayOptics = true).
 // Footprint-aware kernels (the aperture) answer only for a given GR on a given shape — a plane-wave
 // probe has neither — and are refused with an explanation.
-// The plot (one function, WriteProbePlot) maps Eval·|cosθo| [1/sr] over both hemispheres.
+// The plot (MakeMap, drawn by matplotlib through app/plot.h) maps Eval·|cosθo| [1/sr] over both
+// hemispheres.
 
 #include "app/probe.h"
 
@@ -30,15 +31,16 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "app/plot.h"
 #include "core/diagnostics.h"
 #include "core/image/image_io.h"
-#include "core/image/plot.h"
 #include "core/render/material.h"
 #include "core/render/registry.h"
 #include "core/render/sampler.h"
@@ -215,122 +217,39 @@ std::string ReportText(const std::string &material, const std::string &type, con
 
 // ---- The angular plot --------------------------------------------------------------------------
 
-// Eval·|cosθo| over the projected hemispheres, (x, y) = (sinθ cosφ, sinθ sinφ): disc 0 is wi's
-// side (reflection), disc 1 the far side (transmission); each disc `size` × `size` pixels, x to
-// the right, y up. Discrete lobes and the source direction as points on the discs.
-struct ProbeMap {
-    int size = 0;
-    std::vector<double> value[2];  // row-major, row 0 at y = +1; NaN outside the disc
-    struct Mark {
-        int disc = 0;
-        double x = 0, y = 0;
-        double efficiency = 0;
-    };
-    std::vector<Mark> lobes;
-    double sourceX = 0, sourceY = 0;  // wi, on disc 0
-    std::string title;                // what the map shows (material, incidence, λ)
-};
-
-ProbeMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int size) {
-    ProbeMap map;
-    map.size = size;
+// Eval·|cosθo| [1/sr] over the projected hemispheres, (u, v) = (sinθ cosφ, sinθ sinφ): the disc
+// "reflection" on wi's side, "transmission" on the far side, `size` × `size` cells each; the
+// near-delta lobes as rings (bigger for larger efficiency, labelled with it) and the direction
+// towards the source as a cross on the reflection disc. Drawn by the plot module (app/plot.h
+// StageDiscMap): one dB scale (0 dB = the maximum, 40 dB), θ = 30° and 60° circles, a colour bar.
+DiscMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int size) {
+    DiscMap map;
+    map.n = size;
+    map.valueLabel = "Eval·|cosθo| [1/sr]";
     q.lobes = LobeContinuous;
     const double side = q.wi.z > 0 ? 1 : -1;
     for (int disc = 0; disc < 2; ++disc) {
-        std::vector<double> &v = map.value[disc];
-        v.assign(std::size_t(size) * size, std::nan(""));
+        DiscMap::Disc d;
+        d.name = disc == 0 ? "reflection" : "transmission";
+        d.values.assign(std::size_t(size) * size, 0.0);
         for (int j = 0; j < size; ++j)
             for (int i = 0; i < size; ++i) {
-                const double x = 2 * (i + 0.5) / size - 1, y = 1 - 2 * (j + 0.5) / size;
+                const double x = 2 * (i + 0.5) / size - 1, y = 2 * (j + 0.5) / size - 1;
                 const double s2 = x * x + y * y;
-                if (s2 >= 1) continue;
+                if (s2 >= 1) continue;  // (not drawn)
                 const Vec3 wo(x, y, (disc == 0 ? side : -side) * std::sqrt(1 - s2));
                 const double f = r.continuous ? m.Eval(q, wo)[0] * std::abs(wo.z) : 0.0;
-                v[std::size_t(j) * size + i] = std::isfinite(f) ? f : 0.0;
+                d.values[std::size_t(j) * size + i] = std::isfinite(f) ? f : 0.0;
             }
+        map.discs.push_back(std::move(d));
     }
-    for (const ProbeLobe &l : r.lobes) map.lobes.push_back({l.transmission ? 1 : 0, l.wo.x, l.wo.y, l.efficiency});
-    map.sourceX = q.wi.x;
-    map.sourceY = q.wi.y;
+    for (const ProbeLobe &l : r.lobes) {
+        // 6 pt for an efficiency of 1e-6 or less, 14 pt for 1.
+        const double size = 6 + 8 * Clamp(1 + std::log10(std::max(l.efficiency, 1e-12)) / 6, 0.0, 1.0);
+        map.markers.push_back({l.transmission ? 1 : 0, l.wo.x, l.wo.y, Num(l.efficiency, 3), 'o', size});
+    }
+    map.markers.push_back({0, q.wi.x, q.wi.y, "source", 'x', 10});
     return map;
-}
-
-// The one place that draws probe's plot (core/image/plot.h's raster colour-bar image): both discs on
-// one dB scale (0 dB = the maximum, 40 dB range), light-grey circles at θ = 30° and 60°, near-delta
-// lobes as red rings (larger for larger efficiency), the source direction as a white cross.
-// Staged in `files`; returns the PlotResult (text drawn or not).
-PlotResult WriteProbePlot(OutputFiles &files, const std::string &path, const ProbeMap &map) {
-    constexpr double RangeDb = 40;
-    const int n = map.size, gap = 24, margin = 12;
-    const int w = 2 * n + gap + 2 * margin, h = n + 2 * margin;
-    std::vector<double> rgb(std::size_t(w) * h * 3, 1.0);  // white background
-    auto blend = [&](int x, int y, const Vec3 &c, double a) {
-        if (x < 0 || y < 0 || x >= w || y >= h || !(a > 0)) return;
-        double *p = &rgb[(std::size_t(y) * w + x) * 3];
-        a = std::min(a, 1.0);
-        for (int k = 0; k < 3; ++k) p[k] = (1 - a) * p[k] + a * c[k];
-    };
-    double peak = 0;
-    for (const auto &v : map.value)
-        for (double x : v)
-            if (std::isfinite(x)) peak = std::max(peak, x);
-    auto level = [&](double v) {  // colour-map coordinate: 0 dB at 1, −RangeDb at 0
-        return peak > 0 && v > 0 ? Clamp(1 + 10 * std::log10(v / peak) / RangeDb, 0.0, 1.0) : 0.0;
-    };
-    auto discX = [&](int disc) { return margin + disc * (n + gap); };
-    for (int disc = 0; disc < 2; ++disc)
-        for (int j = 0; j < n; ++j)
-            for (int i = 0; i < n; ++i) {
-                const double v = map.value[disc][std::size_t(j) * n + i];
-                if (std::isnan(v)) continue;
-                // Without a continuous lobe the discs are neutral grey, not the colour of "≤ −40 dB".
-                blend(discX(disc) + i, margin + j, peak > 0 ? ViridisDisplay(level(v)) : Vec3(0.9, 0.9, 0.9), 1);
-            }
-    // A ring of radius `rad` and width `lw` [pixels] centred at pixel position (cx, cy), anti-aliased.
-    auto ring = [&](double cx, double cy, double rad, double lw, const Vec3 &c) {
-        const int x0 = int(std::floor(cx - rad - lw)), x1 = int(std::ceil(cx + rad + lw));
-        const int y0 = int(std::floor(cy - rad - lw)), y1 = int(std::ceil(cy + rad + lw));
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) {
-                const double d = std::hypot(x + 0.5 - cx, y + 0.5 - cy);
-                blend(x, y, c, lw / 2 + 0.5 - std::abs(d - rad));
-            }
-    };
-    auto toPixel = [&](int disc, double x, double y) {
-        return Vec2(discX(disc) + (x + 1) * n / 2, margin + (1 - y) * n / 2);
-    };
-    const Vec3 grey(0.75, 0.75, 0.75), red(0.95, 0.1, 0.1), white(1, 1, 1), black(0, 0, 0);
-    for (int disc = 0; disc < 2; ++disc) {
-        const Vec2 c = toPixel(disc, 0, 0);
-        for (double th : {30.0, 60.0}) ring(c.x, c.y, std::sin(th * Pi / 180) * n / 2, 1, grey);
-        ring(c.x, c.y, n / 2.0, 1.5, black);  // the horizon
-    }
-    for (const ProbeMap::Mark &l : map.lobes) {
-        const Vec2 p = toPixel(l.disc, l.x, l.y);
-        // 4 px for an efficiency of 1e-6 or less, 11 px for 1.
-        const double rad = 4 + 7 * Clamp(1 + std::log10(std::max(l.efficiency, 1e-12)) / 6, 0.0, 1.0);
-        ring(p.x, p.y, rad + 1.5, 1.5, white);
-        ring(p.x, p.y, rad, 2.5, red);
-    }
-    {
-        const Vec2 p = toPixel(0, map.sourceX, map.sourceY);
-        for (int k = -7; k <= 7; ++k)
-            for (int t = -1; t <= 1; ++t) {
-                const Vec3 c = t == 0 ? white : black;
-                blend(int(p.x) + k, int(p.y) + k + t, c, 1);
-                blend(int(p.x) + k, int(p.y) - k + t, c, 1);
-            }
-    }
-    std::vector<uint8_t> bytes(rgb.size());
-    for (std::size_t k = 0; k < rgb.size(); ++k) bytes[k] = uint8_t(std::lround(Clamp(rgb[k], 0.0, 1.0) * 255));
-    std::vector<ColourBarTick> ticks;
-    for (double db = 0; db <= RangeDb; db += 10) ticks.push_back({1 - db / RangeDb, Num(-db, 3) + " dB"});
-    // (The bar title is the only text this raster draws: short enough for the image's width.)
-    const std::string scale = peak > 0 ? "Eval*cos(theta_o) in dB, 0 dB = " + Num(peak, 4) + "/sr"
-                                       : "no continuous lobe";
-    const std::string barTitle = "reflection | transmission: " + scale + "; o: lobes, x: source";
-    return WriteImageWithColourBarPng(files, path, bytes, w, h, ViridisDisplay, ticks, barTitle,
-                                      map.title + "; " + barTitle);
 }
 
 // The scene's named materials, for messages.
@@ -359,10 +278,6 @@ int RunProbe(const CliOptions &o) {
             throw ProbeError{"'--theta' " + p.theta + " is grazing (the light runs along the surface): no "
                              "kernel scatters it; use an angle below or above 90deg"};
         if (!(lambda > 0)) throw ProbeError{"'--lambda' must be positive; got '" + p.lambda + "'"};
-        if (!p.plot.empty()) {
-            const std::string ext = p.plot.size() >= 4 ? p.plot.substr(p.plot.size() - 4) : "";
-            if (ext != ".png" && ext != ".PNG") throw ProbeError{"'--plot' writes a PNG; name it FILE.png, not '" + p.plot + "'"};
-        }
 
         // The scene: parsed and resolved whole, but only the material (and what it refers to) is built,
         // so a scene without lights or a detector (a material library) can be probed.
@@ -437,20 +352,25 @@ int RunProbe(const CliOptions &o) {
             MakeParentDirectory(p.csv);
             files.Stage(p.csv, csv);
         }
+        std::string mapData;  // the map's data, written instead of the plot without matplotlib
         if (!p.plot.empty()) {
-            ProbeMap map = MakeMap(*material, q, result, 300);
+            DiscMap map = MakeMap(*material, q, result, 300);
             map.title = "phasor probe " + name + " (" + type + "), theta = " + DegText(theta) + " deg, phi = " +
                         DegText(phi) + " deg, lambda = " + Num(lambda * 1e9, 6) + " nm";
             MakeParentDirectory(p.plot);
-            const PlotResult r = WriteProbePlot(files, p.plot, map);
-            if (!r.textDrawn) std::cerr << "warning: " << r.textProblem << "; the plot has no text\n";
+            if (!StageDiscMap(files, p.plot, map)) {
+                mapData = std::filesystem::path(p.plot).replace_extension(".map.csv").string();
+                files.Stage(mapData, DiscMapCsv(map));
+                std::cerr << "warning: " << MatplotlibMissing() << "; '" << p.plot << "' not drawn, its data is in '"
+                          << mapData << "'\n";
+            }
         }
         files.Commit();
         (csvToStdout ? std::cerr : std::cout) << report;
         if (csvToStdout) std::cout << csv;
         if (!o.quiet) {
             if (!p.csv.empty() && !csvToStdout) std::cerr << "wrote " << p.csv << "\n";
-            if (!p.plot.empty()) std::cerr << "wrote " << p.plot << "\n";
+            if (!p.plot.empty()) std::cerr << "wrote " << (mapData.empty() ? p.plot : mapData) << "\n";
         }
         return 0;
     } catch (const ProbeError &e) {

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — `phasor profile` (profile.h). Reads every input first and checks everything (channel,
-// row, widths, pixel positions) before writing anything; the CSV and the plot are written all or
-// nothing (core/image/output_file.h), so an error leaves no output behind.
+// row or column, sizes, pixel positions) before writing anything; the CSV and the plot (drawn by
+// matplotlib through app/plot.h) are written all or nothing (core/image/output_file.h), so an
+// error leaves no output behind.
 
 #include "app/profile.h"
 
@@ -18,7 +19,9 @@
 
 #include "core/diagnostics.h"
 #include "core/image/image_io.h"
-#include "core/image/plot.h"
+#include "app/plot.h"
+#include "app/render_common.h"
+#include "app/text.h"
 
 namespace phasor {
 namespace {
@@ -33,17 +36,11 @@ struct InputError {
 struct Input {
     std::string path;
     Image img;
-    int row = 0;
-    std::vector<double> values;  // the row of the channel
+    int line = 0;                // the row (or column) taken
+    std::vector<double> values;  // its values of the channel
     std::string label;
     bool labelFromMetadata = false;
 };
-
-std::string Num(double v, int digits) {
-    char buf[64];
-    std::snprintf(buf, sizeof buf, "%.*g", digits, v);
-    return buf;
-}
 
 // Optional numeric metadata (stored as a string attribute by the renderer).
 std::optional<double> MetadataNumber(const Input &in, const std::string &key) {
@@ -58,14 +55,6 @@ std::optional<double> MetadataNumber(const Input &in, const std::string &key) {
     return v;
 }
 
-// RFC 4180 quoting for a CSV header field.
-std::string CsvField(const std::string &s) {
-    if (s.find_first_of(",\"\n\r") == std::string::npos) return s;
-    std::string q = "\"";
-    for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-    return q + "\"";
-}
-
 // The integrator's name from "grt { max_depth = 5, … }".
 std::string IntegratorName(const std::string &desc) {
     std::size_t b = desc.find_first_not_of(' ');
@@ -74,17 +63,10 @@ std::string IntegratorName(const std::string &desc) {
     return desc.substr(b, e == std::string::npos ? std::string::npos : e - b);
 }
 
-// x axis unit for a plot of positions in metres: a factor and its name.
-std::pair<double, std::string> LengthUnit(double maxAbs) {
-    if (maxAbs >= 1) return {1, "m"};
-    if (maxAbs >= 1e-3) return {1e3, "mm"};
-    if (maxAbs >= 1e-6) return {1e6, "um"};
-    return {1e9, "nm"};
-}
-
 }  // namespace
 
-int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded, OutputFiles *into) {
+int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded, OutputFiles *into,
+               std::string *plotData) {
     const CliOptions::ProfileOptions &p = o.profile;
     std::vector<Input> inputs;
     bool havePositions = p.hasX0;
@@ -105,31 +87,37 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
                 throw InputError{path, "no channel '" + p.channel + "' (it has: " + names + ")"};
             }
             if (in.img.width <= 0 || in.img.height <= 0) throw InputError{path, "the image is empty"};
-            in.row = p.row >= 0 ? p.row : in.img.height / 2;
-            if (in.row >= in.img.height)
-                throw InputError{path, "row " + std::to_string(in.row) + " is out of range (the image has " +
-                                           std::to_string(in.img.height) + " row" +
-                                           (in.img.height == 1 ? "" : "s") + ")"};
-            if (!inputs.empty() && in.img.width != inputs[0].img.width)
-                throw InputError{path, "it is " + std::to_string(in.img.width) + " pixels wide but '" +
-                                           inputs[0].path + "' is " + std::to_string(inputs[0].img.width) +
-                                           " (profiles must have the same width)"};
-            for (int x = 0; x < in.img.width; ++x) in.values.push_back(in.img.At(x, in.row, c));
+            const bool column = p.column >= 0;
+            const int lines = column ? in.img.width : in.img.height, length = column ? in.img.height : in.img.width;
+            const char *what = column ? "column" : "row";
+            in.line = column ? p.column : p.row >= 0 ? p.row : in.img.height / 2;
+            if (in.line >= lines)
+                throw InputError{path, std::string(what) + " " + std::to_string(in.line) +
+                                           " is out of range (the image has " + std::to_string(lines) + " " + what +
+                                           (lines == 1 ? "" : "s") + ")"};
+            if (!inputs.empty() && length != int(inputs[0].values.size()))
+                throw InputError{path, "it is " + std::to_string(length) + " pixels " + (column ? "tall" : "wide") +
+                                           " but '" + inputs[0].path + "' is " +
+                                           std::to_string(inputs[0].values.size()) + " (profiles must have the same " +
+                                           (column ? "height" : "width") + ")"};
+            for (int k = 0; k < length; ++k)
+                in.values.push_back(column ? in.img.At(in.line, k, c) : in.img.At(k, in.line, c));
 
             // Pixel positions: --x0/--pitch, else the renderer's metadata (all inputs must agree).
             std::optional<double> mx0 = MetadataNumber(in, "phasor:x0_m"),
                                   mp = MetadataNumber(in, "phasor:pitch_m");
-            if (!p.hasX0 && mx0 && mp) {
+            if (!p.hasX0 && mx0 && mp && p.column < 0) {  // (the metadata gives x positions only)
                 if (!(*mp > 0))
-                    throw InputError{path, "metadata phasor:pitch_m = " + Num(*mp, 9) + " is not positive"};
+                    throw InputError{path, "metadata phasor:pitch_m = " + FormatNumber(*mp, 9) + " is not positive"};
                 auto differs = [](double a, double b) {
                     return std::abs(a - b) > 1e-9 * std::max(std::abs(a), std::abs(b));
                 };
                 if (havePositions && (differs(x0, *mx0) || differs(pitch, *mp)))
-                    throw InputError{
-                        path, "its pixel positions (x0 = " + Num(*mx0, 12) + " m, pitch = " + Num(*mp, 12) +
-                                  " m) differ from the other images' (x0 = " + Num(x0, 12) +
-                                  " m, pitch = " + Num(pitch, 12) + " m); give --x0 and --pitch to override"};
+                    throw InputError{path, "its pixel positions (x0 = " + FormatNumber(*mx0, 12) +
+                                               " m, pitch = " + FormatNumber(*mp, 12) +
+                                               " m) differ from the other images' (x0 = " + FormatNumber(x0, 12) +
+                                               " m, pitch = " + FormatNumber(pitch, 12) +
+                                               " m); give --x0 and --pitch to override"};
                 havePositions = true;
                 x0 = *mx0;
                 pitch = *mp;
@@ -168,7 +156,8 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
         }
     }
 
-    const int width = inputs[0].img.width;
+    const int width = int(inputs[0].values.size());  // the profile's length
+    const bool column = p.column >= 0;
     std::vector<double> x(width);
     for (int i = 0; i < width; ++i) x[i] = havePositions ? x0 + i * pitch : double(i);  // pixel centres
     const bool pair = inputs.size() == 2;
@@ -178,14 +167,14 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
 
     // CSV text.
     std::ostringstream csv;
-    csv << (havePositions ? "x_m" : "x_px");
+    csv << (havePositions ? "x_m" : column ? "y_px" : "x_px");
     for (const Input &in : inputs) csv << ',' << CsvField(in.label);
     if (pair) csv << ",abs_diff";
     csv << '\n';
     for (int i = 0; i < width; ++i) {
-        csv << (havePositions ? Num(x[i], 12) : std::to_string(i));
-        for (const Input &in : inputs) csv << ',' << Num(in.values[i], 9);
-        if (pair) csv << ',' << Num(diff[i], 9);
+        csv << (havePositions ? FormatNumber(x[i], 12) : std::to_string(i));
+        for (const Input &in : inputs) csv << ',' << FormatNumber(in.values[i], 9);
+        if (pair) csv << ',' << FormatNumber(diff[i], 9);
         csv << '\n';
     }
     const bool csvToStdout = p.csv == "-" || (p.csv.empty() && p.plot.empty());
@@ -212,80 +201,28 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
             s << "max |" << a << " - " << b << "|: no pixel has two finite values";
         } else {
             s << "max |" << a << " - " << b << "| / max(" << b << ") = "
-              << (peak > 0 ? Num(maxDiff / peak, 6) : std::string("undefined (the peak is not positive)"))
-              << "  (max |" << a << " - " << b << "| = " << Num(maxDiff, 6) << " at "
-              << (havePositions ? "x = " + Num(x[at], 9) + " m" : "pixel " + std::to_string(at)) << ", max("
-              << b << ") = " << Num(peak, 6) << ")";
+              << (peak > 0 ? FormatNumber(maxDiff / peak, 6) : std::string("undefined (the peak is not positive)"))
+              << "  (max |" << a << " - " << b << "| = " << FormatNumber(maxDiff, 6) << " at "
+              << (havePositions ? "x = " + FormatNumber(x[at], 9) + " m" : "pixel " + std::to_string(at)) << ", max("
+              << b << ") = " << FormatNumber(peak, 6) << ")";
         }
         if (nonFinite > 0) s << "; " << nonFinite << " pixel(s) with NaN/Inf skipped";
         summary = s.str();
     }
 
-    // Plot series: the first input blue and solid, the second green and dashed (Fig. S6), more
-    // inputs in further colours; |a − b| black and dotted, optionally magnified.
-    std::vector<PlotSeries> series;
-    PlotOptions plot;
-    if (!p.plot.empty()) {
-        const Vec3 palette[] = {{0.10, 0.35, 0.85}, {0.10, 0.62, 0.20}, {0.85, 0.15, 0.15},
-                                {0.95, 0.55, 0.05}, {0.55, 0.25, 0.70}, {0.45, 0.45, 0.45}};
-        double maxAbsX = 0;
-        for (double v : x) maxAbsX = std::max(maxAbsX, std::abs(v));
-        auto [scale, unit] = havePositions ? LengthUnit(maxAbsX) : std::pair<double, std::string>{1, "pixel"};
-        std::vector<double> xs(width);
-        for (int i = 0; i < width; ++i) xs[i] = x[i] * scale;
-        for (std::size_t k = 0; k < inputs.size(); ++k) {
-            PlotSeries s;
-            s.label = inputs[k].label;
-            s.x = xs;
-            s.y = inputs[k].values;
-            s.rgb = palette[k % 6];
-            s.style = k == 1 ? PlotSeries::Dashed : PlotSeries::Solid;
-            series.push_back(std::move(s));
-        }
-        if (pair) {
-            PlotSeries s;
-            s.label = "|" + inputs[0].label + " - " + inputs[1].label + "|" +
-                      (p.diffScale != 1 ? " x " + Num(p.diffScale, 6) : "");
-            s.x = xs;
-            for (double d : diff) s.y.push_back(d * p.diffScale);
-            s.rgb = Vec3(0, 0, 0);
-            s.style = PlotSeries::Dotted;
-            series.push_back(std::move(s));
-        }
-        // One pixel's extent as a cyan bar, centred on the peak of the last input, just above it.
-        const std::vector<double> &ref = inputs.back().values;
-        int peakAt = 0;
-        double peak = -Infinity, top = -Infinity;
-        for (int i = 0; i < width; ++i)
-            if (std::isfinite(ref[i]) && ref[i] > peak) {
-                peak = ref[i];
-                peakAt = i;
-            }
-        for (const PlotSeries &s : series)
-            for (double v : s.y)
-                if (std::isfinite(v)) top = std::max(top, v);
-        if (std::isfinite(peak) && std::isfinite(top)) {
-            const double w = havePositions ? pitch * scale : 1;
-            PlotBar bar;
-            bar.label = havePositions ? "one pixel (" + Num(w, 4) + " " + unit + ")" : "one pixel";
-            bar.x0 = xs[peakAt] - w / 2;
-            bar.x1 = xs[peakAt] + w / 2;
-            bar.y = top > 0 ? 1.03 * top : top + 0.03 * std::abs(top) + 1e-30;
-            plot.bars.push_back(bar);
-        }
-        // The x axis spans the sensor row: from pixel 0's left edge to the last pixel's right edge.
-        const double halfPixel = (havePositions ? pitch * scale : 1) / 2;
-        plot.xMin = std::min(xs.front(), xs.back()) - halfPixel;
-        plot.xMax = std::max(xs.front(), xs.back()) + halfPixel;
-        plot.title =
-            !p.title.empty()
-                ? p.title
-                : p.channel + ", row " + (p.row >= 0 ? std::to_string(p.row) : std::to_string(inputs[0].row));
-        plot.xLabel = havePositions ? "x (" + unit + ")" : "x (pixel)";
-        plot.yLabel = p.channel;
-    }
+    // The plot (python/phasor_plot.py `profile`, in the style of Fig. S6: the first input blue
+    // and solid, the second green and dashed, |a − b| black and dotted, one pixel as a cyan bar).
+    PlotRequest plot;
+    plot.command = "profile";
+    plot.data = csv.str();
+    plot.args = {"--title",
+                 !p.title.empty() ? p.title
+                                  : p.channel + (column ? ", column " : ", row ") + std::to_string(inputs[0].line),
+                 "--ylabel", p.channel, "--diff-scale", FormatNumber(p.diffScale, 9)};
 
-    // Write the CSV and the plot all or nothing (core/image/output_file.h).
+    // Write the CSV and the plot all or nothing (core/image/output_file.h). Without matplotlib the
+    // plot's data is written instead (to the --csv file, else beside the plot as .csv).
+    std::string dataInstead;
     try {
         OutputFiles own;
         OutputFiles &files = into ? *into : own;
@@ -295,12 +232,20 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
         }
         if (!p.plot.empty()) {
             MakeParentDirectory(p.plot);
-            PlotResult r = WritePlotPng(files, p.plot, series, plot);
-            if (!r.textDrawn) std::cerr << "warning: " << r.textProblem << "; the plot has no text\n";
+            if (!StagePlot(files, p.plot, plot)) {
+                dataInstead =
+                    !csvToStdout && !p.csv.empty() ? p.csv : fs::path(p.plot).replace_extension(".csv").string();
+                if (dataInstead != p.csv) files.Stage(dataInstead, csv.str());
+                if (plotData) *plotData = dataInstead;  // the caller tells the user
+                else
+                    std::cerr << "warning: " << MatplotlibMissing() << "; '" << p.plot
+                              << "' not drawn, its data is in '" << dataInstead << "'\n";
+            }
         }
         if (into) return 0;  // the caller commits (and reports) the files
         files.Commit();
     } catch (const Error &e) {
+        if (into) throw;  // the caller reports it (and discards its other files)
         std::cerr << "error: " << e.Message() << "\n";
         return 1;
     }
@@ -308,7 +253,8 @@ int RunProfile(const CliOptions &o, const std::vector<const Image *> &preloaded,
     if (!summary.empty()) (csvToStdout ? std::cerr : std::cout) << summary << "\n";
     if (!o.quiet) {
         if (!csvToStdout && !p.csv.empty()) std::cerr << "wrote " << p.csv << "\n";
-        if (!p.plot.empty()) std::cerr << "wrote " << p.plot << "\n";
+        if (!p.plot.empty() && dataInstead.empty()) std::cerr << "wrote " << p.plot << "\n";
+        if (!dataInstead.empty() && dataInstead != p.csv) std::cerr << "wrote " << dataInstead << "\n";
     }
     return 0;
 }

@@ -154,6 +154,14 @@ run --material paint --theta 45deg --phi 30deg --lambda 550nm --csv "$out/paint.
 [[ $rc -eq 0 && -s "$out/paint.csv" ]] || fail "plot run: exit status $rc: $stderr"
 [[ "$(head -c 4 "$out/sub/paint.png" | od -An -tx1 | tr -d ' ')" == 89504e47 ]] || fail "paint.png is not a PNG"
 [[ $(stat -c %s "$out/sub/paint.png") -gt 10000 ]] || fail "paint.png is suspiciously small"
+grep -aq "Software.Matplotlib version" "$out/sub/paint.png" || fail "paint.png was not drawn by matplotlib"
+# Without matplotlib (a Python without site packages): the map's data instead, and how to install it.
+printf '#!/bin/sh\nexec python3 -S "$@"\n' >"$out/nompl"
+chmod +x "$out/nompl"
+PHASOR_PYTHON=$out/nompl run --material paint --theta 45deg --lambda 550nm --plot "$out/nompl.png" --quiet
+[[ $rc -eq 0 && ! -e "$out/nompl.png" && "$(head -1 "$out/nompl.map.csv")" == "disc,u,v,value" ]] &&
+    grep -q "apt-get install python3-matplotlib" <<<"$stderr" || fail "no matplotlib: exit status $rc, $stderr"
+[[ $(grep -c '^transmission,' "$out/nompl.map.csv") -eq 90000 ]] || fail "no matplotlib: the map's data is incomplete"
 
 # 7. Errors: exit status 1, the message, and no output file (not even a temporary one).
 check_error() {  # check_error REGEX ARGS…

@@ -1,19 +1,12 @@
 #!/usr/bin/env bash
 # profile.sh PHASOR WRITE_TEST_EXR SCENE OUTDIR — `phasor profile`: CSV columns and values, pixel
-# positions from metadata or --x0/--pitch, labels, the |a − b| summary, the plot PNG; errors give
-# exit status 1, a message naming the file and no output file (not even a temporary one).
+# positions from metadata or --x0/--pitch, rows and columns, labels, the |a − b| summary, the plot
+# (matplotlib; its data instead when matplotlib is missing); errors give exit status 1, a message
+# naming the file and no output file (not even a temporary one).
 set -u
 phasor=$1 mkexr=$2 scene=$3 out=$4/profile
 rm -rf "$out"; mkdir -p "$out"
-failures=0
-fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
-
-# run ARGS…: runs phasor, leaving $rc, $stdout, $stderr.
-run() {
-    "$phasor" "$@" >"$out/.stdout" 2>"$out/.stderr"; rc=$?
-    stdout=$(cat "$out/.stdout"); stderr=$(cat "$out/.stderr")
-    rm -f "$out/.stdout" "$out/.stderr"
-}
+source "$(dirname "$0")/common.sh"  # fail, run
 expect_line() {  # expect_line FILE N TEXT: line N of FILE is exactly TEXT
     local got; got=$(sed -n "$2p" "$1")
     [[ "$got" == "$3" ]] || fail "$1 line $2 is '$got', expected '$3'"
@@ -49,6 +42,12 @@ grep -q "max |grt - rs| / max(rs) = 0.125 .*at x = -2.5e-06 m" <<<"$stdout" ||
 [[ "$(od -An -tu1 -j16 -N8 "$out/pair.png" | tr -s ' ')" == " 0 0 3 232 0 0 2 88" ]] ||
     fail "pair.png is not 1000×600"
 
+# The plot is matplotlib's (its PNG names it as the software that wrote it).
+grep -aq "Software.Matplotlib version" "$out/pair.png" || fail "pair.png was not drawn by matplotlib"
+# SVG and PDF by the plot's name.
+run profile "$out/a.exr" "$out/b.exr" --plot "$out/pair.svg" --quiet
+[[ $rc -eq 0 && "$(head -c 5 "$out/pair.svg")" == "<?xml" ]] || fail "pair.svg: exit status $rc: $stderr"
+
 # 2. --row, --label, and the CSV on stdout (no --csv and no --plot); the summary goes to stderr.
 run profile "$out/a.exr" "$out/b.exr" --row 0 --label A --label B
 [[ $rc -eq 0 ]] || fail "row 0: exit status $rc: $stderr"
@@ -64,6 +63,23 @@ run profile "$out/plain.exr" --x0 -0.002 --pitch 0.0005 --csv -
 [[ $rc -eq 0 && "$(sed -n 1p <<<"$stdout")" == "x_m,plain" && "$(sed -n 9p <<<"$stdout")" == "0.0015,1" ]] ||
     fail "--x0/--pitch: exit status $rc, output '$stdout' $stderr"
 
+# 3b. --column: the values down a column (y in pixels); the middle row of these images is row 1.
+run profile "$out/a.exr" "$out/b.exr" --column 2 --csv - --quiet
+[[ $rc -eq 0 && "$(sed -n 1p <<<"$stdout")" == "y_px,grt,rs,abs_diff" && "$(sed -n 2p <<<"$stdout")" == "0,1000,1000,0" &&
+    "$(sed -n 3p <<<"$stdout")" == "1,2,2,0" && "$(sed -n 4p <<<"$stdout")" == "2,1002,1002,0" ]] ||
+    fail "--column: exit status $rc, output '$stdout' $stderr"
+
+# 3c. Without matplotlib (a Python without site packages): the plot's data instead, in one line
+# saying how to install it, exit status 0.
+printf '#!/bin/sh\nexec python3 -S "$@"\n' >"$out/nompl"
+chmod +x "$out/nompl"
+PHASOR_PYTHON=$out/nompl run profile "$out/a.exr" "$out/b.exr" --plot "$out/nompl.png"
+[[ $rc -eq 0 && ! -e "$out/nompl.png" && -s "$out/nompl.csv" ]] || fail "no matplotlib: exit status $rc, $(ls "$out")"
+[[ $(grep -c . <<<"$stderr") -eq 2 ]] &&
+    grep -q "^warning: .*apt-get install python3-matplotlib.*'$out/nompl.png' not drawn, its data is in '$out/nompl.csv'$" <<<"$stderr" ||
+    fail "no matplotlib: stderr '$stderr'"
+rm -f "$out/nompl.csv" "$out/nompl"
+
 # 4. Errors: exit status 1, the file and the reason, and no output at all.
 check_error() {  # check_error REGEX ARGS…
     local regex=$1; shift
@@ -78,6 +94,8 @@ check_error "^error: .*/a\.exr: no channel 'irradiance' \(it has: R G B intensit
     "$out/a.exr" --channel irradiance
 check_error "^error: .*/a\.exr: row 3 is out of range \(the image has 3 rows\)" "$out/a.exr" --row 3
 check_error "^error: .*'--x0' and '--pitch' go together" "$out/a.exr" --x0 0
+check_error "^error: .*a\.exr: column 8 is out of range \(the image has 8 columns\)" "$out/a.exr" --column 8
+check_error "^error: '--row' and '--column' exclude each other" "$out/a.exr" --row 1 --column 1
 # An unwritable plot: the CSV (written first, to a temporary file) must not appear either.
 run profile "$out/a.exr" "$out/b.exr" --csv "$out/err.csv" --plot /proc/phasor-test/err.png
 [[ $rc -eq 1 ]] && grep -q "^error: cannot write '/proc/phasor-test/err.png'" <<<"$stderr" ||

@@ -21,7 +21,7 @@
 #include "core/image/color.h"
 #include "core/image/oiio_write.h"
 #include "core/image/image_io.h"
-#include "core/image/plot.h"
+#include "core/image/sheet.h"
 
 namespace phasor {
 namespace {
@@ -57,28 +57,7 @@ uint8_t Quantize8(float v) {
     return uint8_t(std::lround(double(v) * 255.0));
 }
 
-// Viridis (van der Walt & Smith 2015, matplotlib's default colour map): the published sRGB colours
-// at t = 0, 1/9, …, 1; interpolated linearly in between.
-constexpr uint8_t Viridis[10][3] = {
-    {0x44, 0x01, 0x54}, {0x48, 0x28, 0x78}, {0x3E, 0x4A, 0x89}, {0x31, 0x68, 0x8E},
-    {0x26, 0x82, 0x8E}, {0x1F, 0x9E, 0x89}, {0x35, 0xB7, 0x79}, {0x6D, 0xCD, 0x59},
-    {0xB4, 0xDE, 0x2C}, {0xFD, 0xE7, 0x25}};
-
-void ViridisColor(double t, uint8_t rgb[3]) {
-    t = Clamp(t, 0, 1) * 9;
-    int i = std::min(int(t), 8);
-    double f = t - i;
-    for (int c = 0; c < 3; ++c)
-        rgb[c] = uint8_t(std::lround(Lerp(f, Viridis[i][c], Viridis[i + 1][c])));
-}
-
 }  // namespace
-
-Vec3 ViridisDisplay(double t) {
-    uint8_t c[3];
-    ViridisColor(t, c);
-    return Vec3(c[0], c[1], c[2]) / 255.0;
-}
 
 namespace detail {
 
@@ -195,15 +174,16 @@ Image ReadImage(const std::string &path, std::string *pixelFormat) {
     return img;
 }
 
-void WritePng(OutputFiles &files, const std::string &path, const Image &img, const DisplayOptions &opt) {
-    CheckShape(path, img);
+Rgb8Image ToDisplay(const Image &img, const DisplayOptions &opt) {
+    if (img.width <= 0 || img.height <= 0 || img.channels.empty() ||
+        img.data.size() != std::size_t(img.width) * img.height * img.channels.size())
+        throw Error("the image is empty or its size is inconsistent");
     int r = img.ChannelIndex("R"), g = img.ChannelIndex("G"), b = img.ChannelIndex("B");
     if (r < 0 || g < 0 || b < 0) {
         // A monochrome image: show its intensity (or Y) as grey.
         int mono = img.ChannelIndex("intensity");
         if (mono < 0) mono = img.ChannelIndex("Y");
-        if (mono < 0)
-            WriteError(path, "the image has no R, G, B (or intensity) channels to display");
+        if (mono < 0) throw Error("the image has no R, G, B (or intensity) channels to display");
         r = g = b = mono;
     }
     const std::size_t numPixels = std::size_t(img.width) * img.height;
@@ -214,17 +194,27 @@ void WritePng(OutputFiles &files, const std::string &path, const Image &img, con
         rgb[3 * i + 1] = img.data[i * nc + g];
         rgb[3 * i + 2] = img.data[i * nc + b];
     }
+    detail::ApplyDisplayTransformInPlace(rgb.data(), numPixels, opt);
+    // Clamp to the display range and quantise to 8 bits.
+    Rgb8Image out;
+    out.width = img.width;
+    out.height = img.height;
+    out.rgb.resize(rgb.size());
+    for (std::size_t i = 0; i < rgb.size(); ++i) out.rgb[i] = Quantize8(rgb[i]);
+    return out;
+}
+
+void WritePng(OutputFiles &files, const std::string &path, const Image &img, const DisplayOptions &opt) {
+    CheckShape(path, img);
+    Rgb8Image display;
     try {
-        detail::ApplyDisplayTransformInPlace(rgb.data(), numPixels, opt);
+        display = ToDisplay(img, opt);
     } catch (const Error &e) {
         WriteError(path, e.Message());
     }
-    // Clamp to the display range and quantise to 8 bits.
-    std::vector<uint8_t> bytes(rgb.size());
-    for (std::size_t i = 0; i < rgb.size(); ++i) bytes[i] = Quantize8(rgb[i]);
     OIIO::ImageSpec spec(img.width, img.height, 3, OIIO::TypeDesc::UINT8);
     spec.attribute("oiio:ColorSpace", "sRGB");
-    detail::StageImage(files, path, "png", spec, OIIO::TypeDesc::UINT8, bytes.data());
+    detail::StageImage(files, path, "png", spec, OIIO::TypeDesc::UINT8, display.rgb.data());
 }
 
 void WritePng(const std::string &path, const Image &img, const DisplayOptions &opt) {
@@ -233,53 +223,56 @@ void WritePng(const std::string &path, const Image &img, const DisplayOptions &o
     files.Commit();
 }
 
-void WriteFalseColorPng(OutputFiles &files, const std::string &path, const Image &img,
-                        const std::string &channel, double rangeDb) {
-    CheckShape(path, img);
+std::vector<double> ChannelValues(const Image &img, const std::string &channel) {
     const int c = img.ChannelIndex(channel);
-    if (c < 0) WriteError(path, "the image has no channel '" + channel + "'");
-    if (!(rangeDb > 0) || !std::isfinite(rangeDb))
-        WriteError(path, "the dB range must be positive, got " + std::to_string(rangeDb));
-    const std::size_t numPixels = std::size_t(img.width) * img.height;
-    const std::size_t nc = img.channels.size();
-    double maxValue = 0;
-    for (std::size_t i = 0; i < numPixels; ++i) {
-        double v = img.data[i * nc + c];
-        if (std::isfinite(v)) maxValue = std::max(maxValue, v);
-    }
-    std::vector<uint8_t> bytes(3 * numPixels);
-    for (std::size_t i = 0; i < numPixels; ++i) {
-        double v = img.data[i * nc + c];
-        // The channel is a power-like quantity (intensity, irradiance): level = 10·log10(v/max) dB,
-        // mapped linearly from −rangeDb (t = 0) to 0 dB (t = 1). Non-positive values get t = 0.
-        double t = 0;
-        if (maxValue > 0 && v > 0 && std::isfinite(v))
-            t = 1 + 10 * std::log10(v / maxValue) / rangeDb;
-        else if (v == Infinity)
-            t = 1;
-        ViridisColor(t, &bytes[3 * i]);
-    }
-    // The colour bar: 0 dB (the maximum) at the top down to −rangeDb, labelled every 10 dB (5 dB
-    // below a 20 dB range), its title naming the channel and the value that 0 dB stands for.
-    std::vector<ColourBarTick> ticks;
-    const double step = rangeDb >= 20 ? 10 : 5;
-    for (double db = 0; db <= rangeDb * (1 + 1e-9); db += step) {
-        char label[32];
-        std::snprintf(label, sizeof label, "%g dB", db > 0 ? -db : 0.0);  // "0 dB", not "-0 dB"
-        ticks.push_back(ColourBarTick{1 - db / rangeDb, label});
-    }
-    char title[96];
-    std::snprintf(title, sizeof title, "%s, 0 dB = %.4g", channel.c_str(), maxValue);
-    WriteImageWithColourBarPng(files, path, bytes, img.width, img.height, ViridisDisplay, ticks, title,
-                               channel + " in dB, " + std::to_string(rangeDb) + " dB range, 0 dB = " +
-                                   std::to_string(maxValue));
+    if (c < 0) throw Error("the image has no channel '" + channel + "'");
+    const std::size_t numPixels = std::size_t(img.width) * img.height, nc = img.channels.size();
+    std::vector<double> v(numPixels);
+    for (std::size_t i = 0; i < numPixels; ++i) v[i] = img.data[i * nc + c];
+    return v;
 }
 
-void WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
-                        double rangeDb) {
+double FiniteMax(const std::vector<double> &values) {
+    double m = 0;
+    for (double v : values)
+        if (std::isfinite(v)) m = std::max(m, v);
+    return m;
+}
+
+Rgb8Image ToFalseColourDb(const Image &img, const std::string &channel, double rangeDb, double zeroDb,
+                          ColourBar *bar) {
+    if (!(rangeDb > 0) || !std::isfinite(rangeDb))
+        throw Error("the dB range must be positive, got " + std::to_string(rangeDb));
+    const std::vector<double> v = ChannelValues(img, channel);
+    if (!(zeroDb > 0)) zeroDb = FiniteMax(v);
+    if (bar) {
+        char title[96];
+        std::snprintf(title, sizeof title, "%s, 0 dB = %.4g", channel.c_str(), zeroDb);
+        *bar = DecibelBar(rangeDb, title);
+    }
+    return MapColours(DecibelLevels(v, zeroDb, rangeDb), img.width, img.height, ColourMap::Viridis, -rangeDb, 0);
+}
+
+SheetResult WriteFalseColorPng(OutputFiles &files, const std::string &path, const Image &img,
+                               const std::string &channel, double rangeDb, double zeroDb) {
+    CheckShape(path, img);
+    ColourBar bar;
+    Rgb8Image map;
+    try {
+        map = ToFalseColourDb(img, channel, rangeDb, zeroDb, &bar);
+    } catch (const Error &e) {
+        WriteError(path, e.Message());
+    }
+    return StageSheetPng(files, path, {SheetTile{std::move(map), ""}}, &bar,
+                         channel + " in dB, " + std::to_string(rangeDb) + " dB range, " + bar.title);
+}
+
+SheetResult WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
+                               double rangeDb, double zeroDb) {
     OutputFiles files;
-    WriteFalseColorPng(files, path, img, channel, rangeDb);
+    SheetResult r = WriteFalseColorPng(files, path, img, channel, rangeDb, zeroDb);
     files.Commit();
+    return r;
 }
 
 }  // namespace phasor

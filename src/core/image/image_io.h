@@ -8,6 +8,7 @@
 
 #include "core/image/film.h"
 #include "core/image/output_file.h"
+#include "core/image/sheet.h"
 
 namespace phasor {
 
@@ -33,6 +34,9 @@ struct DisplayOptions {
     std::string view = "Standard";
     double exposure = 0;  // stops, applied in scene-linear before the transform
 };
+/// The display transform of the R,G,B channels of `img` (scene-linear Rec.709; a monochrome
+/// image's intensity or Y as grey) as 8-bit sRGB. Throws phasor::Error (no FileLoc).
+Rgb8Image ToDisplay(const Image &img, const DisplayOptions &opt = {});
 /// Applies the display transform to the R,G,B channels of `img` (scene-linear Rec.709) and writes
 /// an 8-bit PNG through OIIO. Uses $OCIO if set, else the config shipped with phasor.
 void WritePng(const std::string &path, const Image &img, const DisplayOptions &opt = {});
@@ -50,15 +54,22 @@ void ConvertToSceneLinear(float *rgb, std::size_t numPixels, const std::string &
 /// Name of the OCIO config in use ("$OCIO: <path>" or "built-in").
 std::string ColorConfigDescription();
 
-/// The false-colour PNGs' colour map (viridis, 8-bit) at t ∈ [0, 1] (clamped) as a display-referred
-/// sRGB colour in [0, 1] — e.g. for WriteImageWithColourBarPng (core/image/plot.h).
-Vec3 ViridisDisplay(double t);
+/// One channel's values, as double (throws phasor::Error when there is no such channel).
+std::vector<double> ChannelValues(const Image &img, const std::string &channel);
+/// The largest finite value (0 if none is positive).
+double FiniteMax(const std::vector<double> &values);
 
-/// Writes a one-channel false-colour PNG (dB scale over `rangeDb` below the max, viridis-like
-/// colour map) — for sensor-plane images.
-void WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
-                        double rangeDb = 40);
-void WriteFalseColorPng(OutputFiles &files, const std::string &path, const Image &img,
-                        const std::string &channel, double rangeDb = 40);
+/// The false colour of sensor images: one power-like channel (intensity, irradiance) in dB
+/// against `zeroDb` (≤ 0: the channel's largest finite value), `rangeDb` shown, through viridis
+/// (sheet.h DecibelLevels); `bar`, when given, receives the matching colour bar, its title naming
+/// the channel and the value of 0 dB. Throws phasor::Error (no FileLoc).
+Rgb8Image ToFalseColourDb(const Image &img, const std::string &channel, double rangeDb = 40, double zeroDb = 0,
+                          ColourBar *bar = nullptr);
+/// Writes ToFalseColourDb with its colour bar to the right (sheet.h StageSheetPng) — the PNG of
+/// radiometric detectors. A missing font is not an error: the result says so (no text drawn).
+SheetResult WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
+                               double rangeDb = 40, double zeroDb = 0);
+SheetResult WriteFalseColorPng(OutputFiles &files, const std::string &path, const Image &img,
+                               const std::string &channel, double rangeDb = 40, double zeroDb = 0);
 
 }  // namespace phasor

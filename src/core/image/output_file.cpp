@@ -5,6 +5,7 @@
 #include "core/image/output_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <atomic>
@@ -50,7 +51,7 @@ void OutputFiles::Discard() {
     pending_.clear();
 }
 
-void OutputFiles::Stage(const std::string &path, std::string_view bytes) {
+std::string OutputFiles::CreateTemp(const std::string &path, int &fd) {
     const fs::path target(path);
     if (target.filename().empty() || target.filename() == "." || target.filename() == "..") {
         Discard();
@@ -72,13 +73,16 @@ void OutputFiles::Stage(const std::string &path, std::string_view bytes) {
     static std::atomic<unsigned long> counter{0};
     const fs::path temp = dir / ("." + target.filename().string() + ".tmp-" + std::to_string(::getpid()) + "-" +
                                  std::to_string(counter++));
-    const int fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
+    fd = ::open(temp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0666);
     if (fd < 0) {
         const int err = errno;
         Discard();
         Fail(path, std::strerror(err));
     }
-    int err = WriteAll(fd, bytes);
+    return temp.string();
+}
+
+void OutputFiles::FinishTemp(const std::string &path, const std::string &temp, int fd, int err) {
     if (!err && ::fsync(fd) != 0 && errno != EINVAL && errno != EROFS) err = errno;  // EINVAL: no fsync here (pipes)
     if (::close(fd) != 0 && !err && errno != EINTR) err = errno;
     if (err) {
@@ -86,7 +90,43 @@ void OutputFiles::Stage(const std::string &path, std::string_view bytes) {
         Discard();
         Fail(path, std::strerror(err));
     }
-    pending_.push_back({path, temp.string()});
+    pending_.push_back({path, temp});
+}
+
+void OutputFiles::Stage(const std::string &path, std::string_view bytes) {
+    int fd = -1;
+    const std::string temp = CreateTemp(path, fd);
+    FinishTemp(path, temp, fd, WriteAll(fd, bytes));
+}
+
+bool OutputFiles::StageWritten(const std::string &path, const std::function<bool(const std::string &)> &write) {
+    int fd = -1;
+    const std::string temp = CreateTemp(path, fd);
+    ::close(fd);
+    bool written = false;
+    try {
+        written = write(temp);
+    } catch (...) {
+        ::unlink(temp.c_str());
+        Discard();
+        throw;
+    }
+    if (!written) {
+        ::unlink(temp.c_str());
+        return false;
+    }
+    // The writer closed its own descriptor; reopen to flush the file to the disk and to check
+    // that it is still the regular file created above.
+    fd = ::open(temp.c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW);
+    struct stat st {};
+    int err = fd < 0 ? errno : ::fstat(fd, &st) != 0 ? errno : S_ISREG(st.st_mode) ? 0 : EINVAL;
+    if (fd < 0) {
+        ::unlink(temp.c_str());
+        Discard();
+        Fail(path, std::strerror(err));
+    }
+    FinishTemp(path, temp, fd, err);
+    return true;
 }
 
 void OutputFiles::Commit() {

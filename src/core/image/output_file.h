@@ -4,6 +4,7 @@
 // module (src/core/image/output_file.cpp); no third-party types.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -33,6 +34,14 @@ class OutputFiles {
     /// Writes `bytes` to a new temporary file for `path`. On failure the temporary is removed,
     /// every other staged temporary too, and the set is empty.
     void Stage(const std::string &path, std::string_view bytes);
+    /// Stages a file that another writer produces (e.g. a plot drawn by a child process):
+    /// `write(temp)` writes the whole file at `temp` (a new empty file, created here with O_EXCL)
+    /// and returns true, or returns false when it wrote nothing on purpose (the temporary is
+    /// removed, nothing is staged, the set is unchanged; StageWritten returns false), or throws
+    /// phasor::Error. A written file is fsync'ed and checked like Stage()'s. On any failure the
+    /// temporary is removed, every other staged temporary too, and the error (the writer's, or
+    /// "cannot write 'PATH': reason") propagates.
+    bool StageWritten(const std::string &path, const std::function<bool(const std::string &temp)> &write);
     /// Renames every staged file into place (in staging order); the set is then empty.
     void Commit();
     /// Removes every staged temporary (also done by the destructor).
@@ -42,6 +51,11 @@ class OutputFiles {
     struct Pending {
         std::string target, temp;
     };
+    /// A new temporary file beside `path` (open for writing in `fd`); throws after Discard().
+    std::string CreateTemp(const std::string &path, int &fd);
+    /// fsync + close `fd` (after a write that ended with errno `err`, 0 if fine); registers the
+    /// temporary, or removes it and throws after Discard().
+    void FinishTemp(const std::string &path, const std::string &temp, int fd, int err);
     std::vector<Pending> pending_;
 };
 

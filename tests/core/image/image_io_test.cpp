@@ -235,15 +235,17 @@ TEST_F(ImageIoTest, FalseColourMapsTheDbRangeOntoViridis) {
     const std::string path = Path("false.png");
     WriteFalseColorPng(path, img, "intensity", rangeDb);
     Image back = ReadImage(path);
-    // The map sits at the top left below a 32 px title band, enlarged to 256 px tall (a whole
-    // factor, core/image/plot.h WriteImageWithColourBarPng), with its colour bar to the right.
-    const int scale = 256, top = 32;
-    ASSERT_GT(back.width, img.width * scale);
+    // The map is enlarged by a whole factor (core/image/sheet.h LayoutSheet) with its colour bar to
+    // the right.
+    ColourBar bar = DecibelBar(rangeDb, "intensity, 0 dB = 2");
+    const SheetLayout L = LayoutSheet({SheetTile{ToFalseColourDb(img, "intensity", rangeDb), ""}}, &bar);
+    const int scale = L.scale, left = L.tiles[0].x, top = L.tiles[0].y;
+    ASSERT_EQ(back.width, L.width);
     ASSERT_EQ(back.channels.size(), 3u);
     for (int x = 0; x < img.width; ++x) {
         int k = x < 10 ? x : 0;
         for (int c = 0; c < 3; ++c)
-            EXPECT_EQ(std::lround(back.At(x * scale + scale / 2, top + scale / 2, c) * 255.0), viridis[k][c])
+            EXPECT_EQ(std::lround(back.At(left + x * scale + scale / 2, top + scale / 2, c) * 255.0), viridis[k][c])
                 << "pixel " << x;
     }
     EXPECT_THROW(WriteFalseColorPng(Path("x.png"), img, "phase"), Error);

@@ -2,11 +2,12 @@
 // All-or-nothing output files (core/image/output_file.h): exact bytes on success; on a failed write —
 // simulated with a file-size limit (RLIMIT_FSIZE makes write(2) fail with EFBIG exactly where a
 // full disk fails with ENOSPC) — an error naming the file and nothing left behind, for raw files
-// and for every image writer (EXR, PNG, false-colour PNG, plot).
+// and for every image writer (EXR, PNG, false-colour PNG).
 
 #include <sys/resource.h>
 
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <string>
@@ -17,7 +18,6 @@
 #include "core/diagnostics.h"
 #include "core/image/image_io.h"
 #include "core/image/output_file.h"
-#include "core/image/plot.h"
 #include "support/stats.h"
 #include "support/temp_dir.h"
 
@@ -107,6 +107,41 @@ TEST_F(OutputFileTest, AFailedFileRemovesTheWholeSetAndKeepsOlderFiles) {
     EXPECT_EQ(Contents(Path("big.csv")), "old\n");
 }
 
+// A file written by another writer (a plot drawn by a child process) at the temporary path
+// StageWritten gives it: committed with the others, dropped when the writer declines, and
+// an error of the writer removes the whole set.
+TEST_F(OutputFileTest, FilesWrittenByAnotherWriterJoinTheSet) {
+    OutputFiles files;
+    files.Stage(Path("data.csv"), "x\n");
+    std::string seen;
+    EXPECT_TRUE(files.StageWritten(Path("plot.svg"), [&](const std::string &temp) {
+        seen = temp;
+        EXPECT_TRUE(std::filesystem::exists(temp));  // created empty, for the writer to fill
+        EXPECT_NE(temp, Path("plot.svg"));
+        std::ofstream(temp) << "<svg/>";
+        return true;
+    }));
+    EXPECT_FALSE(std::filesystem::exists(Path("plot.svg")));
+    // A writer that declines (e.g. matplotlib is missing): nothing staged, the rest kept.
+    EXPECT_FALSE(files.StageWritten(Path("other.png"), [](const std::string &) { return false; }));
+    files.Commit();
+    EXPECT_EQ(Contents(Path("plot.svg")), "<svg/>");
+    EXPECT_EQ(Contents(Path("data.csv")), "x\n");
+    EXPECT_FALSE(std::filesystem::exists(seen));
+    EXPECT_EQ(Listing().size(), 2u);
+
+    OutputFiles failing;
+    failing.Stage(Path("a.csv"), "new\n");
+    EXPECT_THROW(failing.StageWritten(Path("b.png"),
+                                      [](const std::string &temp) -> bool {
+                                          std::ofstream(temp) << "partial";
+                                          throw Error("cannot write 'b.png': the plot failed");
+                                      }),
+                 Error);
+    failing.Commit();  // nothing left to commit
+    EXPECT_EQ(Listing().size(), 2u) << "a temporary or a partial file was left";
+}
+
 TEST_F(OutputFileTest, DirectoryTargetsAreRefused) {
     EXPECT_THROW(WriteFileAtomically(dir_.string() + "/", "x"), Error);
     EXPECT_THROW(WriteFileAtomically(Path("missing/a.csv"), "x"), Error);
@@ -122,12 +157,6 @@ TEST_F(OutputFileTest, ImagesThatDoNotFitAreErrorsAndLeaveNothing) {
     ExpectTooLarge(Path("n.png"), [&] { WritePng(Path("n.png"), img); });
     ExpectTooLarge(Path("n.exr"), [&] { WriteExr(Path("n.exr"), img); });
     ExpectTooLarge(Path("f.png"), [&] { WriteFalseColorPng(Path("f.png"), img, "intensity"); });
-    PlotSeries s;
-    for (int i = 0; i < 200; ++i) {
-        s.x.push_back(i);
-        s.y.push_back(std::sin(0.3 * i) * i);
-    }
-    ExpectTooLarge(Path("p.png"), [&] { WritePlotPng(Path("p.png"), {s}); });
     EXPECT_TRUE(Listing().empty());
 }
 

@@ -1,0 +1,441 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — `phasor compare` (compare.h, docs/compare.md). The scene is parsed once and built once
+// per integrator (any integrator of the registry, or one the scene defines by name: a new
+// integrator joins without changes here). Each run renders in-process with the render loop's own
+// cancellation: at the end of a time budget, or on Ctrl-C. Between the render loop's passes the
+// film is resolved at roughly geometric sample counts for the convergence plot. Every output is
+// staged at the end and committed together (core/image/output_file.h).
+
+#include "app/compare.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <mutex>
+#include <optional>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "app/compare_report.h"
+#include "app/plot.h"
+#include "app/profile.h"
+#include "app/render_common.h"
+#include "core/image/image_io.h"
+
+namespace phasor {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Samples per pixel asked of a sampling integrator in an equal-time run: far more than any budget
+// reaches (the budget stops it), and not a perfect square, so that detectors do not lay a lattice
+// over the pixel (detector.h StratifiedPixelSample) that a stopped render would only partly visit.
+constexpr int TimeModeSpp = (1 << 25) + 1;
+
+// Sets `stop` when the time budget is spent (budget > 0) or a stop signal arrived, polling every
+// 5 ms from its own thread, so that a render is stopped within a pixel's batch of the deadline.
+class Watchdog {
+  public:
+    explicit Watchdog(double budget)
+        : deadline_(Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget))) {
+        thread_ = std::thread([this, budget] {
+            std::unique_lock<std::mutex> lock(mutex_);
+            while (!done_) {
+                cv_.wait_for(lock, std::chrono::milliseconds(5));
+                if (StopFlag().load() || (budget > 0 && Clock::now() >= deadline_)) stop_.store(true);
+            }
+        });
+    }
+    ~Watchdog() {
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            done_ = true;
+        }
+        cv_.notify_all();
+        thread_.join();
+    }
+    const std::atomic<bool> *Flag() const { return &stop_; }
+
+  private:
+    Clock::time_point deadline_;
+    std::atomic<bool> stop_{false};
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    bool done_ = false;
+    std::thread thread_;
+};
+
+// A file name from an integrator's name (letters, digits, '_' and '-' kept).
+std::string FileStem(const std::string &name) {
+    std::string s;
+    for (char c : name) s += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
+    return s.empty() ? "run" : s;
+}
+
+// Every integrator a name may pick: the registry's plug-ins and the scene's named integrators.
+std::vector<std::string> IntegratorChoices(const SceneDesc &desc) {
+    std::vector<std::string> names = Registry<Integrator>::Names();
+    for (const SceneEntity &e : desc.entities)
+        if (e.keyword == "Integrator" && !e.name.empty() &&
+            std::find(names.begin(), names.end(), e.name) == names.end())
+            names.push_back(e.name);
+    return names;
+}
+
+// What the runs share: the reference when it is known before they render (an image, or the
+// reference run rendered first; then each snapshot is compared at once and its pixels dropped),
+// and the memory left for snapshots whose reference is not known yet.
+struct SnapshotContext {
+    const std::vector<double> *reference = nullptr;
+    double bytesLeft = 0;
+};
+
+// Renders one run (the scene already built for its integrator) and fills `run`.
+void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int index, int count, double budget,
+               SnapshotContext &snap) {
+    const Integrator &integrator = scene.GetIntegrator();
+    const Detector &det = scene.GetDetector();
+    run.deterministic = integrator.Deterministic();
+    RenderOptions opt = OptionsFor(scene, o);
+    const bool timed = budget > 0 && !run.deterministic;  // rs takes no samples: it runs to the end
+    if (timed) opt.spp = TimeModeSpp;
+    run.sppRequested = opt.spp;
+    Watchdog watchdog(timed ? budget : 0);
+    opt.cancel = watchdog.Flag();
+
+    const std::string label = "[" + std::to_string(index) + "/" + std::to_string(count) + "] " + run.name;
+    const bool bar = !o.quiet && isatty(2);
+    std::function<void(int, int)> progress;
+    if (bar)
+        progress = ProgressBar(label, run.deterministic, (long long)det.Width() * det.Height(), timed ? budget : 0);
+    if (!timed) opt.warn = [&](const std::string &w) { std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n"; };
+
+    Film film(det.Width(), det.Height(), det.Response());
+    // Snapshots of `intensity` at roughly geometric sample counts (×1.5), taken between passes;
+    // the time they take is left out of the times reported.
+    const auto start = Clock::now();
+    double snapshotCost = 0;
+    int next = 1;
+    const double pixels = double(det.Width()) * det.Height();
+    // (the reference run itself needs none)
+    const bool snapshots = !run.deterministic && !run.isReferenceRun;
+    opt.progress = [&](int done, int total) {
+        if (progress) progress(done, total);
+        if (!snapshots || run.snapshotsCut || done < next) return;
+        if (!snap.reference && snap.bytesLeft < pixels * sizeof(float)) {
+            run.snapshotsCut = true;
+            return;
+        }
+        const auto t0 = Clock::now();
+        const Image img = film.Resolve();
+        CompareSnapshot s;
+        s.spp = done;
+        s.seconds = std::chrono::duration<double>(t0 - start).count() - snapshotCost;
+        const std::vector<double> values = ChannelValues(img, "intensity");
+        if (snap.reference) {
+            s.metrics = ErrorMetrics(values, *snap.reference);
+        } else {
+            s.intensity.assign(values.begin(), values.end());
+            snap.bytesLeft -= pixels * sizeof(float);
+        }
+        run.snapshots.push_back(std::move(s));
+        next = std::max(done + 1, int(std::ceil(done * 1.5)));
+        snapshotCost += std::chrono::duration<double>(Clock::now() - t0).count();
+    };
+
+    RenderStats st;
+    try {
+        st = integrator.Render(scene, film, opt);
+    } catch (const Error &e) {
+        if (bar) std::cerr << "\n";
+        run.status = CompareRun::Status::Failed;
+        run.error = e.Message();
+        std::cerr << label << ": failed:\n";
+        PrintError(e);
+        return;
+    }
+    if (bar) std::cerr << "\n";
+    run.seconds = std::max(0.0, st.seconds - snapshotCost);
+    run.sppReached = st.sppReached;
+    run.work = st.work;
+    // A run stopped by its time budget is complete; one stopped by a signal is not.
+    const bool interrupted = st.cancelled && StopFlag().load();
+    if (!st.hasImage) {  // rs stopped before it had anything honest to show
+        run.status = CompareRun::Status::Interrupted;
+        std::cerr << label << ": interrupted (" << st.work << "); no image\n";
+        return;
+    }
+    run.status = interrupted ? CompareRun::Status::Interrupted : CompareRun::Status::Done;
+    Image img = film.Resolve();
+    StampMetadata(img, scene, o.scene, opt, st);
+    if (timed) img.metadata["phasor:time_budget_seconds"] = std::to_string(budget);
+    run.intensity = ChannelValues(img, "intensity");
+    run.variance = img.ChannelIndex("variance") >= 0 ? ChannelValues(img, "variance") : std::vector<double>{};
+    if (snapshots && (run.snapshots.empty() || run.snapshots.back().spp != st.sppReached)) {
+        CompareSnapshot last;
+        last.spp = st.sppReached;
+        last.seconds = run.seconds;
+        if (snap.reference) last.metrics = ErrorMetrics(run.intensity, *snap.reference);
+        else last.intensity.assign(run.intensity.begin(), run.intensity.end());  // (the image is kept anyway)
+        run.snapshots.push_back(std::move(last));
+    }
+    if (run.snapshotsCut)
+        std::cerr << "warning: " << run.name << ": the convergence plot stops at " << run.snapshots.back().spp
+                  << " spp (its snapshots would not fit in memory; give --reference to compare them at once)\n";
+    run.image = std::move(img);
+    if (!o.quiet) {
+        std::cerr << label << ": " << (interrupted ? "interrupted: " : "");
+        if (run.deterministic)
+            std::cerr << st.work;
+        else
+            std::cerr << st.sppReached << " spp";
+        std::cerr << " in " << FormatDuration(run.seconds) << (timed ? " (the time budget)" : "");
+        if (!run.deterministic && run.seconds > 0)
+            std::fprintf(stderr, " (%.3g samples/s)", double(st.sppReached) * det.Width() * det.Height() / run.seconds);
+        std::cerr << "\n";
+        PrintRenderWarnings(scene, st, *run.image);
+    }
+}
+
+}  // namespace
+
+int RunCompare(const CliOptions &o) {
+    const CliOptions::CompareOptions &c = o.compare;
+    const std::string dir = !o.output.empty() ? o.output : "out/" + fs::path(o.scene).stem().string() + "_compare";
+    // The scene, parsed once.
+    Diagnostics diag(o.strict);
+    std::optional<SceneDesc> desc;
+    desc = ParseScene(o, diag);
+    if (!desc || diag.HasErrors()) {
+        if (desc)
+            BuildScene(o, *desc, diag, "");  // report the build's errors too
+        else {
+            diag.Print(std::cerr, Colour());
+            std::cerr << diag.ErrorCount() << " error" << (diag.ErrorCount() == 1 ? "" : "s") << " in '" << o.scene
+                      << "'\n";
+        }
+        return 1;
+    }
+    // Every name must pick an integrator, before anything is rendered. `all`: every integrator of
+    // the registry, in its order (a new integrator joins the comparison by being registered).
+    const std::vector<std::string> choices = IntegratorChoices(*desc);
+    const std::vector<std::string> integrators =
+        c.integrators == std::vector<std::string>{"all"} ? Registry<Integrator>::Names() : c.integrators;
+    std::vector<std::string> names = integrators;
+    if (!c.referenceIntegrator.empty()) names.push_back(c.referenceIntegrator);
+    for (const std::string &n : names)
+        if (std::find(choices.begin(), choices.end(), n) == choices.end()) {
+            const std::string sug = Suggest(n, choices);
+            std::cerr << "error: unknown integrator '" << n << "'"
+                      << (sug.empty() ? "" : "; did you mean '" + sug + "'?") << " (integrators:";
+            for (const std::string &k : choices) std::cerr << " " << k;
+            std::cerr << ")\n";
+            return 1;
+        }
+
+    // A reference image, read and checked before rendering (its size once the detector is known).
+    CompareReference ref;
+    std::optional<Image> refImage;
+    if (!c.reference.empty()) {
+        try {
+            refImage = ReadImage(c.reference);
+            ref.values = ChannelValues(*refImage, "intensity");
+        } catch (const Error &e) {
+            std::cerr << "error: reference '" << c.reference << "': " << e.Message() << "\n";
+            return 1;
+        }
+    }
+
+    // The output directory, created and tried before anything is rendered; removed again (if it
+    // was made here and is still empty) when nothing is written.
+    std::error_code ec;
+    const bool dirExisted = fs::exists(dir, ec);
+    struct RemoveIfEmpty {
+        std::string dir;
+        bool keep;
+        ~RemoveIfEmpty() {
+            std::error_code e;
+            if (!keep && fs::is_empty(dir, e)) fs::remove(dir, e);
+        }
+    } cleanup{dir, dirExisted};
+    try {
+        CheckWritable((fs::path(dir) / "index.html").string());
+    } catch (const Error &e) {
+        PrintError(e);
+        return 1;
+    }
+
+    std::vector<CompareRun> runs;
+    if (!c.referenceIntegrator.empty()) {
+        CompareRun r;
+        r.name = c.referenceIntegrator;
+        r.file = "reference_" + FileStem(r.name);
+        r.isReferenceRun = true;
+        runs.push_back(std::move(r));
+    }
+    for (const std::string &n : integrators) {
+        CompareRun r;
+        r.name = n;
+        r.file = FileStem(n);
+        runs.push_back(std::move(r));
+    }
+    if (!o.quiet) {
+        std::cerr << "compare: " << o.scene << " with";
+        for (const std::string &n : integrators) std::cerr << " " << n;
+        if (c.seconds > 0)
+            std::cerr << ", " << c.seconds << " s each";
+        else if (o.spp > 0)
+            std::cerr << ", " << o.spp << " spp each";
+        else
+            std::cerr << ", the scene's spp";
+        std::cerr << " -> " << dir << "/\n";
+    }
+
+    // Snapshots for the convergence plot: compared at once with a reference image; else kept
+    // (float per pixel) within a quarter of the available memory, at most 1 GB.
+    SnapshotContext snap;
+    snap.reference = refImage ? &ref.values : nullptr;
+    snap.bytesLeft = std::min(1e9, AvailableMemory() / 4);
+
+    InstallStopHandlers(!o.quiet);
+    int width = 0, height = 0, sceneSpp = 0;
+    bool radiometric = false;
+    std::string detectorName;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+        CompareRun &run = runs[i];
+        if (StopFlag().load()) break;  // the rest stay NotRun
+        Diagnostics d(o.strict);
+        auto scene = BuildScene(o, *desc, d, run.name);
+        if (!scene) {
+            run.status = CompareRun::Status::Failed;
+            for (const Diagnostic &x : d.All())
+                if (x.severity == Severity::Error) {
+                    run.error = x.message;
+                    break;
+                }
+            continue;
+        }
+        const Detector &det = scene->GetDetector();
+        if (width == 0) {
+            width = det.Width();
+            height = det.Height();
+            radiometric = det.Response().GetKind() == SensorResponse::Kind::Radiometric;
+            detectorName = det.name;
+            CliOptions plain = o;
+            plain.spp = -1;
+            sceneSpp = OptionsFor(*scene, plain).spp;
+            if (refImage && (refImage->width != width || refImage->height != height)) {
+                std::cerr << "error: reference '" << c.reference << "' is " << refImage->width << "x"
+                          << refImage->height << " pixels but detector '" << det.name << "' renders " << width << "x"
+                          << height << "\n";
+                RemoveStopHandlers();
+                return 1;
+            }
+            try {
+                CheckMemory(*scene);
+            } catch (const Error &e) {
+                PrintError(e);
+                RemoveStopHandlers();
+                return 1;
+            }
+        }
+        const double budget = run.isReferenceRun ? 0 : c.seconds;
+        CliOptions ro = o;
+        if (run.isReferenceRun) ro.spp = c.referenceSpp;  // 0: the scene's
+        RenderRun(run, *scene, ro, int(i) + 1, int(runs.size()), budget, snap);
+        if (run.isReferenceRun && run.image && run.status == CompareRun::Status::Done) snap.reference = &run.intensity;
+    }
+
+    // Nothing to show: every run failed (their errors are printed) or none finished.
+    const bool any = std::any_of(runs.begin(), runs.end(), [](const CompareRun &r) { return r.image.has_value(); });
+    if (!any) {
+        RemoveStopHandlers();
+        if (StopSignal()) {
+            std::cerr << "interrupted before any integrator finished; nothing written\n";
+            return StoppedStatus();
+        }
+        std::cerr << "error: no integrator could render '" << o.scene << "'; nothing written\n";
+        return 1;
+    }
+
+    // The reference: the image given, the reference run, else the best-converged run.
+    if (refImage) {
+        ref.description = "the image '" + c.reference + "'";
+        ref.name = "reference image";
+        ref.image = &*refImage;
+    }
+    ComputeErrors(runs, ref);
+
+    CompareReport report;
+    report.scene = o.scene;
+    report.dir = dir;
+    report.width = width;
+    report.height = height;
+    report.radiometric = radiometric;
+    report.detector = detectorName;
+    report.mode = c.seconds > 0 ? "equal time: " + FormatSeconds(c.seconds) + " per integrator"
+                  : o.spp > 0   ? "equal samples: " + std::to_string(o.spp) + " spp per integrator"
+                                : "equal samples: the scene's " + std::to_string(sceneSpp) + " spp per integrator";
+    report.stopped = StopSignal() != 0;
+    report.row = c.row;
+    report.column = c.column;
+    std::ostringstream cmd;
+    cmd << "phasor compare " << o.scene << " --integrators ";
+    for (std::size_t k = 0; k < c.integrators.size(); ++k) cmd << (k ? "," : "") << c.integrators[k];
+    if (c.seconds > 0) cmd << " --time " << c.seconds;
+    if (o.spp > 0) cmd << " --spp " << o.spp;
+    if (!c.reference.empty()) cmd << " --reference " << c.reference;
+    if (!c.referenceIntegrator.empty()) {
+        cmd << " --reference-integrator " << c.referenceIntegrator;
+        if (c.referenceSpp > 0) cmd << " --reference-spp " << c.referenceSpp;
+    }
+    for (const auto &[k, v] : o.defines) cmd << " -D " << k << "=" << v;
+    if (o.seed >= 0) cmd << " --seed " << o.seed;
+    if (!o.sampler.empty()) cmd << " --sampler " << o.sampler;
+    if (c.row >= 0) cmd << " --row " << c.row;
+    if (c.column >= 0) cmd << " --column " << c.column;
+    cmd << " -o " << dir;
+    report.command = cmd.str();
+
+    std::vector<std::string> written;
+    try {
+        OutputFiles files;
+        written = StageCompareOutputs(files, runs, ref, refImage ? &*refImage : nullptr, report);
+        files.Commit();
+    } catch (const Error &e) {
+        RemoveStopHandlers();
+        std::cerr << "error: " << e.Message() << "\n";
+        return 1;
+    }
+    RemoveStopHandlers();
+    const bool failed = std::any_of(runs.begin(), runs.end(),
+                                    [](const CompareRun &r) { return r.status == CompareRun::Status::Failed; });
+    if (!o.quiet) {
+        std::cerr << "reference: " << ref.description << "\n";
+        PrintSummary(std::cerr, runs);
+        std::cerr << "wrote " << (fs::path(dir) / "index.html").string() << " and " << written.size() - 1
+                  << " other files in " << dir << "/\n";
+    }
+    if (failed) {
+        std::cerr << "error: ";
+        bool first = true;
+        for (const CompareRun &r : runs)
+            if (r.status == CompareRun::Status::Failed) {
+                std::cerr << (first ? "" : ", ") << r.name;
+                first = false;
+            }
+        std::cerr << " failed (see above and the table)\n";
+    }
+    if (StopSignal()) return StoppedStatus();
+    return failed ? 1 : 0;
+}
+
+}  // namespace phasor
