@@ -36,8 +36,8 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
     static const std::vector<std::pair<std::string, Command>> commands = {
         {"render", Command::Render}, {"check", Command::Check},       {"format", Command::Format},
         {"list", Command::List},     {"describe", Command::Describe}, {"profile", Command::Profile},
-        {"help", Command::Help},     {"--help", Command::Help},       {"-h", Command::Help},
-        {"--version", Command::Version}};
+        {"probe", Command::Probe},   {"help", Command::Help},         {"--help", Command::Help},
+        {"-h", Command::Help},       {"--version", Command::Version}};
     auto known = std::find_if(commands.begin(), commands.end(), [&](const auto &c) { return c.first == cmd; });
     if (known == commands.end()) {
         std::vector<std::string> names;
@@ -106,7 +106,35 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
             if (a == "--x0") { p.x0 = d; p.hasX0 = true; }
             else if (a == "--pitch") { p.pitch = d; p.hasPitch = true; }
             else p.diffScale = d;
-        } else if (a == "--quiet" || a == "-q") o.quiet = true;
+        } else if (o.command == Command::Probe && (a == "--material" || a == "--theta" || a == "--phi" ||
+                                                    a == "--lambda" || a == "--csv" || a == "--plot")) {
+            if (!value(a, v)) return false;
+            auto &p = o.probe;
+            (a == "--material" ? p.material
+             : a == "--theta"  ? p.theta
+             : a == "--phi"    ? p.phi
+             : a == "--lambda" ? p.lambda
+             : a == "--csv"    ? p.csv
+                               : p.plot) = v;
+        } else if (o.command == Command::Probe && a == "--uv") {
+            std::string us, vs;
+            if (!value(a, us) || !value(a, vs)) {
+                err = "'--uv' needs two numbers (U V)";
+                return false;
+            }
+            if (!ParseDouble(us, o.probe.u) || !ParseDouble(vs, o.probe.v)) {
+                err = "'--uv' expects two finite numbers; got '" + us + " " + vs + "'";
+                return false;
+            }
+            o.probe.hasUv = true;
+        } else if (o.command == Command::Probe && a == "--samples") {
+            if (!value(a, v)) return false;
+            if (!ParseInt(v, o.probe.samples) || o.probe.samples < 1) {
+                err = "'--samples' expects a whole number ≥ 1; got '" + v + "'";
+                return false;
+            }
+        } else if (o.command == Command::Probe && a == "--ray") o.probe.rayOptics = true;
+        else if (a == "--quiet" || a == "-q") o.quiet = true;
         else if (a == "--strict") o.strict = true;
         else if (a == "--permissive") o.permissive = true;
         else if (a == "--markdown") o.markdown = true;
@@ -156,6 +184,16 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
                 return false;
             }
             if (p.hasX0 != p.hasPitch) { err = "'--x0' and '--pitch' go together"; return false; }
+            break;
+        }
+        case Command::Probe: {
+            const auto &p = o.probe;
+            if (positional.size() != 1) { err = "'probe' expects exactly one scene file"; return false; }
+            o.scene = positional[0];
+            for (const auto &[flag, text] : {std::pair<const char *, const std::string &>{"--material", p.material},
+                                             {"--theta", p.theta},
+                                             {"--lambda", p.lambda}})
+                if (text.empty()) { err = std::string("'probe' needs ") + flag; return false; }
             break;
         }
         default: break;

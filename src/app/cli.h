@@ -8,7 +8,7 @@
 
 namespace phasor {
 
-enum class Command { Help, Version, Render, Check, Format, List, Describe, Profile };
+enum class Command { Help, Version, Render, Check, Format, List, Describe, Profile, Probe };
 
 struct CliOptions {
     Command command = Command::Help;
@@ -32,6 +32,18 @@ struct CliOptions {
         double diffScale = 1;             // |a − b| is drawn magnified by this factor
         std::string title;
     } profile;
+
+    // `probe`: one kernel of a scene at one incidence and wavelength (app/probe.h). Quantities are
+    // kept as written ("550nm", "30deg") and parsed with the scene language's units by the command.
+    struct ProbeOptions {
+        std::string material;            // the material's scene name (with or without '@')
+        std::string theta, phi, lambda;  // quantity texts; phi "" = 0
+        bool hasUv = false;
+        double u = 0.5, v = 0.5;         // texture context (--uv)
+        long long samples = 100000;      // Monte-Carlo samples for the continuous lobes
+        bool rayOptics = false;          // --ray: ScatterQuery::rayOptics
+        std::string csv, plot;           // output paths ("" = not written; csv "-" = stdout)
+    } probe;
 };
 
 /// Fills `o` from argv; on a usage error returns false with a message in `err`.

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — the command-line program: render, check, format, list, describe, profile.
+// phasor — the command-line program: render, check, format, list, describe, profile, probe.
 #include <unistd.h>
 
 #include <algorithm>
@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "app/cli.h"
+#include "app/probe.h"
 #include "app/profile.h"
 #include "core/image/image_io.h"
 #include "core/render/registry.h"
@@ -71,6 +72,12 @@ const char *kUsageTail =
     "                      one row (default: the middle one) of a channel (default: intensity) of\n"
     "                      each image as CSV (stdout unless --csv/--plot) and/or a line plot; with\n"
     "                      two images also |a - b| and max |a - b| / max(b)\n"
+    "  probe SCENE --material NAME --theta ANGLE [--phi ANGLE] --lambda LENGTH [--uv U V]\n"
+    "        [--samples N] [--seed S] [--ray] [--csv FILE|-] [--plot FILE.png] [-D name=value ...]\n"
+    "                      one kernel of SCENE lit from (theta, phi) at wavelength lambda (e.g. 30deg,\n"
+    "                      550nm): reflectance R and transmittance T (power; continuous lobes by Monte\n"
+    "                      Carlo with a standard error), each near-delta lobe's direction and efficiency;\n"
+    "                      --ray: the ray-optics limit; --plot: the angular distribution\n"
     "  --version, --help\n";
 
 std::string Usage() {
@@ -442,6 +449,7 @@ int RunCommand(const CliOptions &o) {
         case Command::List: return List(o);
         case Command::Describe: return Describe(o);
         case Command::Profile: return RunProfile(o);
+        case Command::Probe: return RunProbe(o);
     }
     return 1;
 }

@@ -74,16 +74,6 @@ std::string IntegratorName(const std::string &desc) {
     return desc.substr(b, e == std::string::npos ? std::string::npos : e - b);
 }
 
-// Creates `path`'s directory if needed; throws Error("cannot write …").
-void MakeParentDirectory(const std::string &path) {
-    fs::path p(path);
-    std::error_code ec;
-    if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
-    if (ec)
-        throw Error("cannot write '" + path + "': cannot create directory '" + p.parent_path().string() +
-                    "': " + ec.message());
-}
-
 // x axis unit for a plot of positions in metres: a factor and its name.
 std::pair<double, std::string> LengthUnit(double maxAbs) {
     if (maxAbs >= 1) return {1, "m"};

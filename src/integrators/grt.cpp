@@ -35,6 +35,9 @@
 // emitters are measured by the mean ray (no footprint fraction at silhouettes).
 #include "core/render/path_common.h"
 #include "core/render/registry.h"
+#include "integrators/lobe_incidence.h"
+
+#include <mutex>
 
 namespace phasor {
 
@@ -114,6 +117,8 @@ class GrtIntegrator final : public PixelIntegrator {
                 ++stats.rays;
                 if (!scene.GetAccel().Occluded(Ray{g.o, inc->wi}, 0, inc->dist * (1 - 1e-7))) L += v;
             }
+            // …and through every listed lobe of a planar near-delta surface (D4a through lobes).
+            if (const LobeIncidence &lobes = Lobes(scene); !lobes.Empty()) L += lobes.Integrate(scene, *ds, g, wl, stats);
         } else {
             L += T * MeasureClosedForm(scene, g, nullptr, wl, stats);
         }
@@ -196,7 +201,10 @@ class GrtIntegrator final : public PixelIntegrator {
             // point and spot lights, the sun) are measured in closed form along each lobe, weighted
             // by its a_j — all of a grating's orders show their glints in one sample. The path then
             // follows one sampled lobe, which does not measure them again (closedFormDone).
-            if ((caps & CapNearDelta) && !spreadFree && hasClosedForm) {
+            // At a detector's first vertex on a surface LobeIncidence covers, this was integrated
+            // over the detector's directions already.
+            const bool lobesIntegrated = depth == 0 && ds->integratesIncidence && Lobes(scene).Covers(si->shape);
+            if ((caps & CapNearDelta) && !spreadFree && hasClosedForm && !lobesIntegrated) {
                 NearDeltaLobes lobes;
                 mat->ListNearDelta(q, lobes);
                 for (const NearDeltaLobe &lobe : lobes)
@@ -356,6 +364,13 @@ class GrtIntegrator final : public PixelIntegrator {
     }
 
     int maxDepth_, rrDepth_, lightSamples_;
+    /// D4a through listed lobes for the scene (an integrator belongs to one scene): built on first use.
+    const LobeIncidence &Lobes(const Scene &scene) const {
+        std::call_once(lobesOnce_, [&] { lobes_ = std::make_unique<const LobeIncidence>(scene); });
+        return *lobes_;
+    }
+    mutable std::once_flag lobesOnce_;
+    mutable std::unique_ptr<const LobeIncidence> lobes_;
 };
 
 PHASOR_EXPORT_PLUGIN(Integrator, GrtIntegrator)

@@ -3,13 +3,15 @@
 //
 // With c the coordinate along `axis` (u or v of the surface parameterisation, or the world
 // x, y or z of the point [m]), t = clamp((c − start)/(end − start), 0, 1) and the value is
-// value0 + t·(value1 − value0): value0 up to `start`, value1 from `end` on. The dimension is that
-// of value0 and value1 (e.g. `value0 = 100 nm` makes a length texture).
+// value0 + t·(value1 − value0): value0 up to `start`, value1 from `end` on (textures/linear_ramp.h,
+// shared with `uv_ramp`, which also takes a direction in uv). The dimension is that of value0 and
+// value1 (e.g. `value0 = 100 nm` makes a length texture).
 #include <memory>
 #include <sstream>
 
 #include "core/render/registry.h"
 #include "core/render/texture.h"
+#include "textures/linear_ramp.h"
 #include "textures/texture_common.h"
 
 namespace phasor {
@@ -18,7 +20,15 @@ class GradientTexture final : public ScalarTexture {
   public:
     /// `axis`: 0, 1 = u, v; 2, 3, 4 = world x, y, z. start, end in the axis' unit (m for world).
     GradientTexture(Dim dim, double value0, double value1, int axis, double start, double end)
-        : ScalarTexture(dim), v0_(value0), v1_(value1), axis_(axis), start_(start), end_(end) {}
+        : ScalarTexture(dim), axis_(axis) {
+        ramp_.value0 = value0;
+        ramp_.value1 = value1;
+        ramp_.world = axis >= 2;
+        static const Vec3 directions[5] = {{1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+        ramp_.axis = directions[axis];
+        ramp_.start = start;
+        ramp_.end = end;
+    }
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -62,30 +72,25 @@ class GradientTexture final : public ScalarTexture {
                                                  start, end);
     }
 
-    double EvalScalar(const TextureEvalContext &ctx) const override {
-        const double c = axis_ == 0 ? ctx.uv.x : axis_ == 1 ? ctx.uv.y : ctx.p[axis_ - 2];
-        const double t = Clamp((c - start_) / (end_ - start_), 0, 1);
-        return v0_ + t * (v1_ - v0_);
-    }
+    double EvalScalar(const TextureEvalContext &ctx) const override { return ramp_.Eval(ctx); }
 
-    double MinValue() const override { return std::min(v0_, v1_); }
-    double MaxValue() const override { return std::max(v0_, v1_); }
+    double MinValue() const override { return ramp_.MinValue(); }
+    double MaxValue() const override { return ramp_.MaxValue(); }
 
     std::string ToString() const override {
         static const char *names[] = {"u", "v", "x", "y", "z"};
         const Dim cd = axis_ >= 2 ? Dim::Length() : Dim::None();
         std::ostringstream os;
-        os << "GradientTexture[ value0 = " << Value::Number(v0_, GetDim()).ToString()
-           << ", value1 = " << Value::Number(v1_, GetDim()).ToString() << ", axis = " << names[axis_]
-           << ", start = " << Value::Number(start_, cd).ToString() << ", end = " << Value::Number(end_, cd).ToString()
-           << " ]";
+        os << "GradientTexture[ value0 = " << Value::Number(ramp_.value0, GetDim()).ToString()
+           << ", value1 = " << Value::Number(ramp_.value1, GetDim()).ToString() << ", axis = " << names[axis_]
+           << ", start = " << Value::Number(ramp_.start, cd).ToString()
+           << ", end = " << Value::Number(ramp_.end, cd).ToString() << " ]";
         return os.str();
     }
 
   private:
-    double v0_, v1_;
-    int axis_;
-    double start_, end_;
+    int axis_;  // 0, 1 = u, v; 2, 3, 4 = world x, y, z
+    LinearRamp ramp_;
 };
 
 PHASOR_EXPORT_PLUGIN(Texture, GradientTexture)

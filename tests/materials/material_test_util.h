@@ -1,15 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
-// Shared helpers for the material tests: building a kernel through the registry (the same
-// look-up → validate → create → report-unused protocol a scene uses), fixture objects presets may
-// refer to, wavelengths and directions.
+// Shared helpers for the material tests and the kernel benchmarks (bench/kernel_bench.cpp):
+// building a kernel through the registry (the same look-up → validate → create → report-unused
+// protocol a scene uses), fixture objects presets may refer to, wavelengths and directions, and the
+// incident generalized ray of footprint-aware kernels.
 #pragma once
 
 #include <memory>
 #include <string>
 
 #include "core/diagnostics.h"
+#include "core/render/genray.h"
 #include "core/render/material.h"
 #include "core/render/registry.h"
+#include "core/render/shape.h"
 
 namespace phasor::test {
 
@@ -20,8 +23,11 @@ inline constexpr const char *UnderTestName = "under_test";
 /// that needs another object names one of these):
 ///   @contract_checker  texture  checkerboard(color0 = 0.1, color1 = 0.9, scale = 4)
 ///   @contract_half     texture  constant(value = 0.5)
+///   @contract_ramp     texture  gradient(value0 = 0.1, value1 = 0.9) along u over [0, 1]: dimensionless
 ///   @contract_gold     material conductor(ior = "Au")
 ///   @contract_glass    material dielectric(ior = 1.5)
+///   @contract_aluminium material conductor(ior = "Al")
+///   @contract_matte    material diffuse(reflectance = 0.6)
 ///   @contract_film     material thin_film(ior = "Cu2O", thickness = 150 nm)  (a coating)
 ///   @contract_stack    material multilayer(layers = [layer("MgF2", 100 nm), layer(2.1, 65 nm)])  (a coating)
 ///   @contract_thickness texture gradient(value0 = 80 nm, value1 = 250 nm) along u (a length)
@@ -36,6 +42,8 @@ inline void AddFixtures(SceneDesc &desc) {
     };
     add("Material", "conductor", "contract_gold", ParamDict().Set("ior", Value::String("Au")));
     add("Material", "dielectric", "contract_glass", ParamDict().Set("ior", Value::Number(1.5)));
+    add("Material", "conductor", "contract_aluminium", ParamDict().Set("ior", Value::String("Al")));
+    add("Material", "diffuse", "contract_matte", ParamDict().Set("reflectance", Value::Number(0.6)));
     add("Material", "thin_film", "contract_film",
         ParamDict().Set("ior", Value::String("Cu2O")).Set("thickness", Value::Number(150e-9, Dim::Length())));
     auto layer = [](Value ior, double d) {
@@ -61,7 +69,49 @@ inline void AddFixtures(SceneDesc &desc) {
     half.name = "contract_half";
     half.params.Set("value", Value::Number(0.5));
     desc.entities.push_back(half);
+    add("Texture", "gradient", "contract_ramp", ParamDict().Set("value0", Value::Number(0.1)).Set("value1", Value::Number(0.9)));
 }
+
+/// A scene of a few entities (plus the fixtures, when asked), built at once; keeps the diagnostics.
+struct MiniScene {
+    SceneDesc desc;
+    Diagnostics diag;
+    /// Adds the fixtures of AddFixtures.
+    MiniScene &WithFixtures() {
+        AddFixtures(desc);
+        return *this;
+    }
+    MiniScene &Add(const std::string &keyword, const std::string &type, const std::string &name, ParamDict p) {
+        SceneEntity e;
+        e.keyword = keyword;
+        e.type = type;
+        e.name = name;
+        e.params = std::move(p);
+        desc.entities.push_back(std::move(e));
+        return *this;
+    }
+    /// Builds everything; returns the object named `name` (nullptr if it failed).
+    template <typename T>
+    std::shared_ptr<T> Build(const std::string &name) {
+        BuildContext ctx(desc, diag);
+        ctx.BuildAll();
+        for (const auto &o : ctx.All<T>())
+            if (const SceneEntity *e = ctx.EntityOf(o.get()); e && e->name == name) return o;
+        return nullptr;
+    }
+    /// The first error's message ("" if none).
+    std::string FirstError() const {
+        for (const Diagnostic &d : diag.All())
+            if (d.severity == Severity::Error) return d.message;
+        return "";
+    }
+    /// The latest error's message ("" if none).
+    std::string LastError() const {
+        for (auto it = diag.All().rbegin(); it != diag.All().rend(); ++it)
+            if (it->severity == Severity::Error) return it->message;
+        return "";
+    }
+};
 
 /// Builds one object of family T (keyword "Material", "Texture", …) from `params` in a scene that
 /// also holds the fixtures. Returns nullptr if building failed; `diag` receives every diagnostic.
@@ -119,5 +169,43 @@ inline Vec3 DirectionFromCosTheta(double cosTheta, double phi) {
 
 /// Uniform direction on the sphere from two uniform numbers.
 inline Vec3 UniformSphere(double u1, double u2) { return DirectionFromCosTheta(1 - 2 * u1, 2 * Pi * u2); }
+
+/// The plate a footprint-aware kernel is queried on: the plane z = 0 with identity to_world, so
+/// local, world and plate coordinates coincide.
+class ContractPlate final : public Shape {
+  public:
+    ContractPlate() { name = "contract_plate"; }
+    SurfaceInteraction Interaction(const Ray &, double, unsigned, double, double) const override {
+        return {};
+    }
+    Bounds3 Bounds() const override { return {}; }
+    double Area() const override { return 0; }
+    ShapeSample Sample(const Vec2 &) const override { return {}; }
+    std::string ToString() const override { return "rectangle (contract plate)"; }
+    bool IsPlanar() const override { return true; }
+};
+
+/// The incident GR of footprint-aware kernels: β [m] and ρ at the hit, the same for every
+/// wavelength; the hit point near the plate's origin (the presets place openings there).
+inline constexpr double ContractBeta = 0.5e-6, ContractRho = 0.5;
+inline const Vec3 ContractHit(0.3e-6, -0.4e-6, 0);
+
+/// Points q at a GR arriving along −wi at si.p (wave regime).
+inline void AttachFootprint(ScatterQuery &q, SpectralGenRay &gr, SurfaceInteraction &si, const ContractPlate &plate) {
+    si.n = Vec3(0, 0, 1);
+    si.shading = Frame();
+    si.shape = &plate;
+    gr.o = si.p;
+    gr.d = -q.wi;
+    gr.count = q.wl->Count();
+    for (int i = 0; i < gr.count; ++i) {
+        gr.k[i] = 2 * Pi * q.etaOutside / q.wl->lambda[i];
+        gr.beta2[i] = ContractBeta * ContractBeta;
+        gr.rho[i] = ContractRho;
+    }
+    q.rayOptics = false;
+    q.gr = &gr;
+    q.si = &si;
+}
 
 }  // namespace phasor::test

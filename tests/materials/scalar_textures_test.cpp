@@ -1,10 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
-// Textures with dimensions (src/core/render/texture.h, src/core/textures): `constant` by value kind,
-// `gradient`, `noise`, `scale`, `mix`; the constant-or-texture accessors
+// Textures with dimensions (src/core/render/texture.h, src/textures): `constant` by value kind,
+// `gradient`, `uv_ramp`, `noise`, `scale`, `mix`; the constant-or-texture accessors
 // BuildContext::GetFloatTexture / GetSpectrumTexture and their dimension and range checks; the
 // angle → tangent rule; diffuse's reflectance driven by a scalar texture.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "material_test_util.h"
@@ -12,42 +13,6 @@
 
 namespace phasor::test {
 namespace {
-
-// A scene of a few entities, built at once; keeps the diagnostics.
-struct MiniScene {
-    SceneDesc desc;
-    Diagnostics diag;
-    MiniScene &Add(const std::string &keyword, const std::string &type, const std::string &name, ParamDict p) {
-        SceneEntity e;
-        e.keyword = keyword;
-        e.type = type;
-        e.name = name;
-        e.params = std::move(p);
-        desc.entities.push_back(std::move(e));
-        return *this;
-    }
-    /// Builds everything; returns the object named `name` (nullptr if it failed).
-    template <typename T>
-    std::shared_ptr<T> Build(const std::string &name) {
-        BuildContext ctx(desc, diag);
-        ctx.BuildAll();
-        for (const auto &o : ctx.All<T>())
-            if (const SceneEntity *e = ctx.EntityOf(o.get()); e && e->name == name) return o;
-        return nullptr;
-    }
-    /// The first error's message ("" if none).
-    std::string FirstError() const {
-        for (const Diagnostic &d : diag.All())
-            if (d.severity == Severity::Error) return d.message;
-        return "";
-    }
-    /// The latest error's message ("" if none).
-    std::string LastError() const {
-        for (auto it = diag.All().rbegin(); it != diag.All().rend(); ++it)
-            if (it->severity == Severity::Error) return it->message;
-        return "";
-    }
-};
 
 std::shared_ptr<const ScalarTexture> Scalar(const std::shared_ptr<Texture> &t) {
     return std::dynamic_pointer_cast<const ScalarTexture>(t);
@@ -61,7 +26,7 @@ TextureEvalContext AtP(const Vec3 &p) {
 }
 
 TEST(ScalarTextures, AreRegistered) {
-    for (const char *n : {"constant", "checkerboard", "gradient", "noise", "scale", "mix"})
+    for (const char *n : {"constant", "checkerboard", "gradient", "uv_ramp", "noise", "scale", "mix", "bitmap"})
         EXPECT_NE(Registry<Texture>::Find(n), nullptr) << n;
 }
 
@@ -125,6 +90,81 @@ TEST(ScalarTextures, GradientDimensionErrors) {
     EXPECT_FALSE(world.Build<Texture>("g"));
     EXPECT_NE(world.FirstError().find("'start' along axis \"z\" must be a length"), std::string::npos)
         << world.FirstError();
+}
+
+// uv_ramp: along u at angle 0 and along v at 90 deg it is gradient's ramp along u and v (the
+// same values, bit for bit); at 30 deg the coordinate is u·cos 30° + v·sin 30° (by hand below).
+TEST(ScalarTextures, UvRampAlongADirectionInUv) {
+    auto ramp = [](double angleDeg) {
+        return ParamDict()
+            .Set("value0", Value::Number(50e-9, Dim::Length()))
+            .Set("value1", Value::Number(250e-9, Dim::Length()))
+            .Set("angle", Value::Number(angleDeg * Pi / 180, Dim::Angle()))
+            .Set("start", Value::Number(0.2))
+            .Set("end", Value::Number(0.7));
+    };
+    auto gradient = [](const char *axis) {
+        return ParamDict()
+            .Set("value0", Value::Number(50e-9, Dim::Length()))
+            .Set("value1", Value::Number(250e-9, Dim::Length()))
+            .Set("axis", Value::String(axis))
+            .Set("start", Value::Number(0.2))
+            .Set("end", Value::Number(0.7));
+    };
+    MiniScene s;
+    s.Add("Texture", "uv_ramp", "r0", ramp(0))
+        .Add("Texture", "uv_ramp", "r90", ramp(90))
+        .Add("Texture", "uv_ramp", "r30", ramp(30))
+        .Add("Texture", "gradient", "gu", gradient("u"))
+        .Add("Texture", "gradient", "gv", gradient("v"));
+    auto r0 = Scalar(s.Build<Texture>("r0")), r90 = Scalar(s.Build<Texture>("r90")), r30 = Scalar(s.Build<Texture>("r30"));
+    auto gu = Scalar(s.Build<Texture>("gu")), gv = Scalar(s.Build<Texture>("gv"));
+    ASSERT_TRUE(r0 && r90 && r30 && gu && gv) << s.FirstError();
+    EXPECT_EQ(r30->GetDim(), Dim::Length());
+    for (double u : {-0.5, 0.1, 0.3, 0.45, 0.69, 1.3})
+        for (double v : {-0.2, 0.25, 0.6, 0.9}) {
+            EXPECT_EQ(r0->EvalScalar(AtUv(u, v)), gu->EvalScalar(AtUv(u, v)));
+            EXPECT_EQ(r90->EvalScalar(AtUv(u, v)), gv->EvalScalar(AtUv(u, v)));
+            const double c = u * std::sqrt(3.0) / 2 + v / 2;
+            const double t = std::clamp((c - 0.2) / 0.5, 0.0, 1.0);
+            EXPECT_NEAR(r30->EvalScalar(AtUv(u, v)), 50e-9 + t * 200e-9, 1e-21) << u << ", " << v;
+        }
+    EXPECT_EQ(r30->MinValue(), 50e-9);
+    EXPECT_EQ(r30->MaxValue(), 250e-9);
+
+    MiniScene bad;
+    bad.Add("Texture", "uv_ramp", "r",
+            ParamDict().Set("value0", Value::Number(0)).Set("value1", Value::Number(1)).Set("start", Value::Number(0.5)).Set("end", Value::Number(0.5)));
+    EXPECT_FALSE(bad.Build<Texture>("r"));
+    EXPECT_NE(bad.FirstError().find("'end' must differ from 'start'"), std::string::npos) << bad.FirstError();
+}
+
+// A scalar texture drives any constant-or-texture parameter of its dimension: noise and a scaled
+// noise as mix's weight (dimensionless), as they drive diffuse's reflectance (below) and an angle
+// or a thickness (FloatTextureAccessor).
+TEST(ScalarTextures, NoiseAndScaleDriveAMixWeight) {
+    MiniScene s;
+    s.WithFixtures()
+        .Add("Texture", "noise", "n", ParamDict().Set("offset", Value::Number(0.5)).Set("amplitude", Value::Number(0.4)))
+        .Add("Texture", "scale", "half", ParamDict().Set("tex", Value::Ref("n")).Set("factor", Value::Number(0.5)))
+        .Add("Material", "mix", "m1",
+             ParamDict().Set("a", Value::Ref("contract_gold")).Set("b", Value::Ref("contract_matte")).Set("weight", Value::Ref("n")))
+        .Add("Material", "mix", "m2",
+             ParamDict().Set("a", Value::Ref("contract_gold")).Set("b", Value::Ref("contract_matte")).Set("weight", Value::Ref("half")));
+    auto n = Scalar(s.Build<Texture>("n"));
+    auto m1 = s.Build<Material>("m1"), m2 = s.Build<Material>("m2");
+    ASSERT_TRUE(n && m1 && m2) << s.FirstError();
+    const SampledWavelengths wl = TestWavelengths(550e-9);
+    ScatterQuery q;
+    q.wi = Vec3(0, 0, 1);
+    q.wl = &wl;
+    for (int i = 0; i < 20; ++i) {
+        q.tex.uv = Vec2(0.37 * i, 0.11 * i);
+        // Eval towards the normal: the matte child's share only (the gold mirror has no density).
+        const double w = n->EvalScalar(q.tex), factor = 0.5;
+        EXPECT_NEAR(m1->Eval(q, Vec3(0, 0, 1))[0], w * 0.6 / Pi, 1e-15);
+        EXPECT_NEAR(m2->Eval(q, Vec3(0, 0, 1))[0], factor * w * 0.6 / Pi, 1e-15);
+    }
 }
 
 std::shared_ptr<const ScalarTexture> Noise(ParamDict p, MiniScene &s) {

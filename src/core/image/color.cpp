@@ -136,6 +136,7 @@ struct ColorState {
     std::string key;  // the $OCIO value the config was loaded for ("" = built-in)
     OCIO::ConstConfigRcPtr config;
     std::map<std::pair<std::string, std::string>, OCIO::ConstCPUProcessorRcPtr> processors;
+    std::map<std::string, OCIO::ConstCPUProcessorRcPtr> toLinear;  // by source colour space
 };
 
 ColorState &State() {
@@ -172,17 +173,24 @@ OCIO::ConstConfigRcPtr LoadConfig(const std::string &key) {
     }
 }
 
-OCIO::ConstCPUProcessorRcPtr GetProcessor(const std::string &display, const std::string &view) {
-    ColorState &st = State();
-    std::lock_guard<std::mutex> lock(st.mutex);
+// The config for the current $OCIO, (re)loaded when it changed. Caller holds the mutex.
+void EnsureConfig(ColorState &st) {
     std::string key = EnvConfigPath();
     if (!st.loaded || key != st.key) {
         st.processors.clear();
+        st.toLinear.clear();
         st.loaded = false;
         st.config = LoadConfig(key);
         st.key = key;
         st.loaded = true;
     }
+}
+
+OCIO::ConstCPUProcessorRcPtr GetProcessor(const std::string &display, const std::string &view) {
+    ColorState &st = State();
+    std::lock_guard<std::mutex> lock(st.mutex);
+    EnsureConfig(st);
+    const std::string &key = st.key;
     auto it = st.processors.find({display, view});
     if (it != st.processors.end()) return it->second;
 
@@ -211,6 +219,47 @@ OCIO::ConstCPUProcessorRcPtr GetProcessor(const std::string &display, const std:
     }
 }
 
+// The processor from colour space `name` to the scene_linear role.
+OCIO::ConstCPUProcessorRcPtr GetToLinearProcessor(const std::string &name) {
+    ColorState &st = State();
+    std::lock_guard<std::mutex> lock(st.mutex);
+    EnsureConfig(st);
+    auto it = st.toLinear.find(name);
+    if (it != st.toLinear.end()) return it->second;
+    const std::string configName = st.key.empty() ? std::string("built-in") : "'" + st.key + "'";
+    if (!st.config->getColorSpace(name.c_str())) {
+        std::string names;
+        for (int i = 0; i < st.config->getNumColorSpaces(); ++i)
+            names += std::string(names.empty() ? "" : ", ") + st.config->getColorSpaceNameByIndex(i);
+        throw Error("unknown colour space '" + name + "' in the " + configName + " OpenColorIO config (it has: " +
+                    names + ")");
+    }
+    try {
+        OCIO::ConstProcessorRcPtr proc = st.config->getProcessor(name.c_str(), OCIO::ROLE_SCENE_LINEAR);
+        OCIO::ConstCPUProcessorRcPtr cpu = proc->getOptimizedCPUProcessor(OCIO::OPTIMIZATION_LOSSLESS);
+        st.toLinear.emplace(name, cpu);
+        return cpu;
+    } catch (const OCIO::Exception &e) {
+        throw Error("cannot convert colour space '" + name + "' to scene_linear with the " + configName +
+                    " OpenColorIO config: " + e.what());
+    }
+}
+
+// Applies `cpu` to packed RGB triples in rows of bounded length (PackedImageDesc takes `long`
+// dimensions).
+void ApplyPacked(const OCIO::ConstCPUProcessorRcPtr &cpu, float *rgb, std::size_t numPixels, const char *what) {
+    constexpr std::size_t Chunk = 1 << 20;
+    try {
+        for (std::size_t start = 0; start < numPixels; start += Chunk) {
+            std::size_t n = std::min(Chunk, numPixels - start);
+            OCIO::PackedImageDesc desc(rgb + 3 * start, long(n), 1, 3);
+            cpu->apply(desc);
+        }
+    } catch (const OCIO::Exception &e) {
+        throw Error(std::string("OpenColorIO ") + what + " failed: " + e.what());
+    }
+}
+
 }  // namespace
 
 namespace detail {
@@ -223,17 +272,7 @@ void ApplyDisplayTransformInPlace(float *rgb, std::size_t numPixels, const Displ
         const float gain = float(std::exp2(opt.exposure));
         for (std::size_t i = 0; i < 3 * numPixels; ++i) rgb[i] *= gain;
     }
-    // Process in rows of bounded length (PackedImageDesc takes `long` dimensions).
-    constexpr std::size_t Chunk = 1 << 20;
-    try {
-        for (std::size_t start = 0; start < numPixels; start += Chunk) {
-            std::size_t n = std::min(Chunk, numPixels - start);
-            OCIO::PackedImageDesc desc(rgb + 3 * start, long(n), 1, 3);
-            cpu->apply(desc);
-        }
-    } catch (const OCIO::Exception &e) {
-        throw Error(std::string("OpenColorIO display transform failed: ") + e.what());
-    }
+    ApplyPacked(cpu, rgb, numPixels, "display transform");
 }
 
 }  // namespace detail
@@ -242,6 +281,12 @@ Vec3 ApplyDisplayTransform(const Vec3 &linearRgb, const DisplayOptions &opt) {
     float rgb[3] = {float(linearRgb.x), float(linearRgb.y), float(linearRgb.z)};
     detail::ApplyDisplayTransformInPlace(rgb, 1, opt);
     return {rgb[0], rgb[1], rgb[2]};
+}
+
+void ConvertToSceneLinear(float *rgb, std::size_t numPixels, const std::string &colorspace) {
+    OCIO::ConstCPUProcessorRcPtr cpu = GetToLinearProcessor(colorspace);
+    if (numPixels == 0 || cpu->isNoOp()) return;
+    ApplyPacked(cpu, rgb, numPixels, "colour space conversion");
 }
 
 std::string ColorConfigDescription() {

@@ -71,13 +71,14 @@ void ViridisColor(double t, uint8_t rgb[3]) {
     for (int c = 0; c < 3; ++c)
         rgb[c] = uint8_t(std::lround(Lerp(f, Viridis[i][c], Viridis[i + 1][c])));
 }
-Vec3 ViridisDisplay(double t) {  // the same colour in [0, 1] (the colour bar)
+
+}  // namespace
+
+Vec3 ViridisDisplay(double t) {
     uint8_t c[3];
     ViridisColor(t, c);
     return Vec3(c[0], c[1], c[2]) / 255.0;
 }
-
-}  // namespace
 
 namespace detail {
 
@@ -170,7 +171,7 @@ std::string ReadErrorReason(std::string text) {
 
 }  // namespace
 
-Image ReadImage(const std::string &path) {
+Image ReadImage(const std::string &path, std::string *pixelFormat) {
     StderrCapture libpngMessages;
     auto fail = [&](const std::string &oiioError) {
         libpngMessages.Finish(false);
@@ -179,6 +180,7 @@ Image ReadImage(const std::string &path) {
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path);
     if (!in) fail(OIIO::geterror());
     const OIIO::ImageSpec &spec = in->spec();
+    if (pixelFormat) *pixelFormat = spec.format.c_str();
     Image img;
     img.width = spec.width;
     img.height = spec.height;

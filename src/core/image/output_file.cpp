@@ -108,4 +108,11 @@ void WriteFileAtomically(const std::string &path, std::string_view bytes) {
     files.Commit();
 }
 
+void MakeParentDirectory(const std::string &path) {
+    const fs::path p(path);
+    std::error_code ec;
+    if (p.has_parent_path()) fs::create_directories(p.parent_path(), ec);
+    if (ec) Fail(path, "cannot create directory '" + p.parent_path().string() + "': " + ec.message());
+}
+
 }  // namespace phasor

@@ -48,4 +48,8 @@ class OutputFiles {
 /// Writes one file all or nothing: OutputFiles::Stage + Commit.
 void WriteFileAtomically(const std::string &path, std::string_view bytes);
 
+/// Creates the directory `path` is to be written in (and its parents) if missing; throws
+/// phasor::Error("cannot write 'PATH': cannot create directory …") on failure.
+void MakeParentDirectory(const std::string &path);
+
 }  // namespace phasor

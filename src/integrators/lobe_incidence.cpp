@@ -1,0 +1,226 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — D4a through listed near-delta lobes (lobe_incidence.h).
+#include "integrators/lobe_incidence.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/render/light.h"
+#include "core/render/material.h"
+
+namespace phasor {
+
+namespace {
+
+// Newton's method on r(u) (lobe_incidence.h): converged when |r| < ResidualTol [rad], far below
+// any GR's angular spread (≥ 1e-7 rad for a metre-sized pixel); central differences of step
+// StepH [rad] (truncation ~StepH²·r''' and round-off ~1e-16/StepH, both ≲ 1e-10 relative).
+constexpr double ResidualTol = 1e-11;
+constexpr double StepH = 1e-5;
+constexpr int MaxIterations = 30;
+constexpr double MaxStep = 0.25;  // [rad] per Newton step
+
+/// The state at one detector direction: the hit, the lobe's exit direction and the source.
+struct LobeState {
+    SurfaceInteraction si;
+    std::array<double, NumWavelengths> weight{};  // a_j(λ_i) of the lobe at this hit
+    GrIncidence inc;                               // the light at p (towards the source: inc.wi)
+    Vec3 wo;                                       // the lobe's exit direction at wavelength `i` (world)
+};
+
+/// What is solved: one light through one lobe (by id) of one shape, at carried wavelength `i`
+/// (for a lobe whose direction does not depend on λ, i = 0 serves every wavelength).
+struct LobeTarget {
+    const Scene &scene;
+    const Shape *shape;
+    const Light *light;
+    int id;
+    int i;
+    Vec3 o;                     // the detector sample's origin
+    const SpectralGenRay &g;    // its GR (footprint at the detector)
+    const SampledWavelengths &wl;
+
+    /// The state along direction `dir` from o; false if the ray does not reach the shape first, the
+    /// lobe is not listed there, or no light arrives at p.
+    bool Evaluate(const Vec3 &dir, LobeState *st, PathStats &stats) const {
+        ++stats.rays;
+        auto si = scene.Intersect(Ray{o, dir});
+        if (!si || si->shape != shape || !si->material) return false;
+        // The GR as it meets the surface: the detector's footprint, placed at the hit (a source
+        // that varies in space, a Gaussian beam, is seen through the pixel's own footprint).
+        SpectralGenRay gp = g;
+        gp.o = si->p;
+        gp.d = dir;
+        ScatterQuery q;
+        q.wi = si->shading.ToLocal(-dir);
+        q.wl = &wl;
+        q.rayOptics = false;
+        q.tex = TextureEvalContext(*si, std::sqrt(g.beta2[0]));
+        q.gr = &gp;
+        q.si = &*si;
+        NearDeltaLobes lobes;
+        si->material->ListNearDelta(q, lobes);
+        const NearDeltaLobe *lobe = nullptr;
+        for (const NearDeltaLobe &l : lobes)
+            if (l.id == id) lobe = &l;
+        if (!lobe || !(lobe->weight[i] > 0)) return false;
+        auto inc = light->IncidenceOnGR(gp, wl);
+        if (!inc) return false;
+        st->si = *si;
+        for (int k = 0; k < wl.Count(); ++k) st->weight[k] = lobe->weight[k];
+        st->inc = *inc;
+        st->wo = si->shading.ToWorld(lobe->wo[i]);
+        return true;
+    }
+
+    /// r = ω_j − s in the plane ⊥ `perp.n` (a frame fixed during one Newton step).
+    static Vec2 Residual(const LobeState &st, const Frame &perp) {
+        const Vec3 d = st.wo - st.inc.wi;
+        return Vec2(Dot(d, perp.s), Dot(d, perp.t));
+    }
+
+    /// ∂r/∂u at dir by central differences, u = (a, b) ↦ normalize(dir + a·T.s + b·T.t) (unit
+    /// speed at 0: solid-angle coordinates). False if a neighbour misses.
+    bool Jacobian(const Vec3 &dir, const Frame &T, const Frame &perp, double J[2][2], PathStats &stats) const {
+        for (int c = 0; c < 2; ++c) {
+            const Vec3 axis = c == 0 ? T.s : T.t;
+            LobeState plus, minus;
+            if (!Evaluate(Normalize(dir + axis * StepH), &plus, stats) ||
+                !Evaluate(Normalize(dir - axis * StepH), &minus, stats))
+                return false;
+            const Vec2 d = (Residual(plus, perp) - Residual(minus, perp)) / (2 * StepH);
+            J[0][c] = d.x;
+            J[1][c] = d.y;
+        }
+        return true;
+    }
+
+    /// Newton from `seed`: the solution's state and |det ∂r/∂u| there; false if none is found.
+    bool Solve(const Vec3 &seed, LobeState *st, double *absDet, PathStats &stats) const {
+        Vec3 dir = seed;
+        for (int it = 0; it < MaxIterations; ++it) {
+            LobeState cur;
+            if (!Evaluate(dir, &cur, stats)) return false;
+            const Frame perp = Frame::FromNormal(cur.inc.wi);
+            const Frame T = Frame::FromNormal(dir);
+            double J[2][2];
+            if (!Jacobian(dir, T, perp, J, stats)) return false;
+            const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
+            if (!(std::abs(det) > 1e-300) || !std::isfinite(det)) return false;
+            const Vec2 r = Residual(cur, perp);
+            if (Length(r) < ResidualTol) {
+                *st = cur;
+                *absDet = std::abs(det);
+                return true;
+            }
+            // δ = −J⁻¹ r, limited so that a far seed approaches in bounded steps.
+            Vec2 delta(-(J[1][1] * r.x - J[0][1] * r.y) / det, -(-J[1][0] * r.x + J[0][0] * r.y) / det);
+            const double len = Length(delta);
+            if (len > MaxStep) delta = delta * (MaxStep / len);
+            dir = Normalize(dir + T.s * delta.x + T.t * delta.y);
+        }
+        return false;
+    }
+};
+
+/// Directions from o towards the shape to start Newton from: its bounds' centre, then a few
+/// points spread over it (a plate with a hole in the middle).
+std::vector<Vec3> Seeds(const Shape &shape, const Vec3 &o) {
+    std::vector<Vec3> seeds;
+    const Bounds3 b = shape.Bounds();
+    auto add = [&](const Vec3 &p) {
+        const Vec3 d = p - o;
+        if (LengthSquared(d) > 0) seeds.push_back(Normalize(d));
+    };
+    add(b.Center());
+    for (const Vec2 &u : {Vec2(0.5, 0.5), Vec2(0.2, 0.2), Vec2(0.8, 0.8), Vec2(0.2, 0.8), Vec2(0.8, 0.2)})
+        add(shape.Sample(u).p);
+    return seeds;
+}
+
+}  // namespace
+
+LobeIncidence::LobeIncidence(const Scene &scene) {
+    SampledWavelengths wl;
+    wl.lambda[0] = 550e-9;  // Capabilities do not depend on λ for any kernel; one is needed for the query
+    wl.pdf[0] = 1;
+    for (const auto &shape : scene.Shapes()) {
+        const Material *m = shape->material;
+        if (!m || !shape->IsPlanar() || m->IsFootprintAware()) continue;
+        ScatterQuery q;
+        q.wi = Vec3(0, 0, 1);
+        q.wl = &wl;
+        q.rayOptics = false;
+        if (m->Capabilities(q) & CapNearDelta) shapes_.push_back(shape.get());
+    }
+}
+
+bool LobeIncidence::Covers(const Shape *shape) const {
+    return std::find(shapes_.begin(), shapes_.end(), shape) != shapes_.end();
+}
+
+SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSample &ds, const SpectralGenRay &g,
+                                         const SampledWavelengths &wl, PathStats &stats) const {
+    SampledSpectrum sum(0.0);
+    const Detector &detector = scene.GetDetector();
+    for (const Shape *shape : shapes_) {
+        const std::vector<Vec3> seeds = Seeds(*shape, ds.ray.o);
+        for (const Light *light : scene.Lights()) {
+            if (!light->MeasuredInClosedForm()) continue;
+            // The lobes listed where the first seed that reaches the shape hits it; each is then
+            // followed by its id (a planar kernel lists the same ids over the surface).
+            NearDeltaLobes seedLobes;
+            Vec3 seed;
+            bool found = false;
+            for (const Vec3 &d : seeds) {
+                ++stats.rays;
+                auto si = scene.Intersect(Ray{ds.ray.o, d});
+                if (!si || si->shape != shape) continue;
+                SpectralGenRay gp = g;
+                gp.o = si->p;
+                gp.d = d;
+                ScatterQuery q;
+                q.wi = si->shading.ToLocal(-d);
+                q.wl = &wl;
+                q.rayOptics = false;
+                q.tex = TextureEvalContext(*si, std::sqrt(g.beta2[0]));
+                q.gr = &gp;
+                q.si = &*si;
+                si->material->ListNearDelta(q, seedLobes);
+                seed = d;
+                found = true;
+                break;
+            }
+            if (!found) continue;
+            for (const NearDeltaLobe &lobe : seedLobes) {
+                bool uniform = !(lobe.flags & ScatterDispersive);
+                for (int i = 1; i < wl.Count(); ++i) uniform = uniform && lobe.wo[i] == lobe.wo[0];
+                // One solve serves every wavelength of a lobe whose direction does not depend on λ;
+                // a dispersive lobe is solved per carried wavelength, each along its own direction.
+                for (int i = 0; i < (uniform ? 1 : wl.Count()); ++i) {
+                    const LobeTarget target{scene, shape, light, lobe.id, i, ds.ray.o, g, wl};
+                    LobeState st;
+                    double absDet = 0;
+                    if (!target.Solve(seed, &st, &absDet, stats)) continue;
+                    ++stats.rays;
+                    const Vec3 s = st.inc.wi;
+                    const bool blocked = std::isinf(st.inc.dist) ? scene.OccludedDirection(st.si, s)
+                                                                 : scene.Occluded(st.si, st.si.p + s * st.inc.dist);
+                    if (blocked) continue;
+                    // (1): E_det = a_j·E_p/|det ∂r/∂u|, arriving at o from the hit.
+                    GrIncidence inc;
+                    inc.irradiance = SampledSpectrum(0.0);
+                    for (int k = 0; k < wl.Count(); ++k)
+                        if (uniform || k == i) inc.irradiance[k] = st.weight[k] * st.inc.irradiance[k] / absDet;
+                    inc.wi = Normalize(st.si.p - ds.ray.o);
+                    inc.dist = Length(st.si.p - ds.ray.o) + st.inc.dist;
+                    inc.angularVariance = st.inc.angularVariance;
+                    sum += detector.IntegrateIncidence(ds, inc);
+                }
+            }
+        }
+    }
+    return sum;
+}
+
+}  // namespace phasor

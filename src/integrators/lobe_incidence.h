@@ -1,0 +1,61 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — theory §0 D4a extended through listed near-delta lobes (issue 12, "a screen behind a
+// mirror, film or grating"), for detectors that integrate closed-form sources analytically over
+// their directions (`virtual_plane`).
+//
+// A sensor-plane GR facing a plane wave directly is integrated in closed form (D4a). Facing the
+// same wave through a mirror, a thin film or a grating, the sampled directions would have to land
+// inside the GR's ~1e-3 rad lobe by chance (a screen behind a mirror read 0 at 64 spp). Here every
+// listed lobe of every *planar* shape with a near-delta kernel is integrated analytically instead:
+// for a light, a shape and a lobe j, Newton's method finds the detector direction u* whose ray
+// reaches the shape at p and leaves through lobe j exactly towards the light (towards the
+// direction Light::IncidenceOnGR gives at p: fixed for plane waves and distant sources, towards
+// the point for point and spot lights, the local wavefront normal of a Gaussian beam). With the
+// residual r(u) = ω_j(u) − s(p(u)) (exit direction minus source direction, in the plane ⊥ s, u
+// in solid-angle coordinates at the detector) the source's radiance seen by the detector is
+// a_j·E_p·δ²(r(u)), so its integral over the detector's directions is
+//     E_det = a_j(λ)·E_p(λ) / |det ∂r/∂u|                                      (1)
+// arriving from u*, which the detector then weighs like a direct source (cosθ, acceptance; D4a).
+// (1) is exact: for a mirror |det| = 1 (a plane wave) or ((R+d)/R)² (a point source at R from the
+// mirror, d from the screen: the image source's I/(R+d)²); for a grating order it is the
+// anamorphic factor cosθ_det/cosθ_src of flux conservation. The Jacobian is taken by central
+// differences (error ~1e-12 relative on planar shapes, where r is smooth).
+//
+// Scope: planar shapes (Shape::IsPlanar: rectangle, disk), where the solution for a lobe is
+// unique, so every pixel sample finds the same one and the estimate stays unbiased; footprint-
+// aware kernels (the aperture) are excluded (they integrate their own lobes). A dispersive lobe is
+// solved per carried wavelength. Only the first vertex is covered: light reaching the sensor
+// through two near-delta vertices is still found by the sampled path (D14 at its second vertex).
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/render/detector.h"
+#include "core/render/pixel_integrator.h"
+#include "core/render/scene.h"
+
+namespace phasor {
+
+class LobeIncidence {
+  public:
+    /// Collects the scene's planar shapes whose kernel lists near-delta lobes for a generalized ray.
+    explicit LobeIncidence(const Scene &scene);
+
+    /// True if no shape qualifies (nothing to integrate).
+    bool Empty() const { return shapes_.empty(); }
+    /// True if `shape` is integrated here: the sampled path must not measure closed-form sources
+    /// through its listed lobes at the first vertex again (D14), or they would count twice.
+    bool Covers(const Shape *shape) const;
+
+    /// The pixel value (the detector's IntegrateIncidence units) of every closed-form light seen
+    /// from the sample's origin through one listed lobe of a covered shape, each unoccluded
+    /// (detector → p → light). `g` is the sample's GR at its origin (footprint per wavelength).
+    SampledSpectrum Integrate(const Scene &scene, const DetectorGrSample &ds, const SpectralGenRay &g,
+                              const SampledWavelengths &wl, PathStats &stats) const;
+
+  private:
+    std::vector<const Shape *> shapes_;
+};
+
+}  // namespace phasor

@@ -1,0 +1,210 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — `mix`: a weighted blend of two kernels, f = (1 − w)·f_a + w·f_b (pbrt-v4's
+// MixMaterial, Mitsuba 3's blendbsdf: weight 0 gives the first kernel, `a`; weight 1 the second, `b`).
+//
+// Models a surface made of two kinds of patches finer than the footprint but much coarser than the
+// wavelength — scratches or corrosion spots on a metal, dust on a mirror — that scatter
+// independently: their responses add in intensity (an incoherent, area-weighted mixture; light
+// scattered by one patch kind does not interfere with the other's). The weight w ∈ [0, 1] is a
+// constant or a dimensionless texture evaluated at the hit (ScatterQuery::tex), so it may vary over
+// the surface. Every quantity is the weighted sum of the children's: Eval and Pdf are
+// (1 − w)·(…)_a + w·(…)_b, so the mixture's pdf is Σ w_i pdf_i (one-sample MIS over the two
+// children, theory §3.1); Sample picks child a with probability 1 − w and b with probability w
+// (from u0, which is then rescaled for the child) and, for a continuous lobe, weights the sample
+// by the mixture's f·|cosθo|/pdf (so the weight is the same whichever child produced wo).
+// Near-delta lobes: the children's listed lobes, each with weight and probability scaled by its
+// child's share; lobe ids are remapped to stay unique — a's id j becomes 2j, b's becomes 2j + 1
+// (continuous lobes too), and EvalLobe maps them back (the Jones matrix scaled by √share, so its
+// Mueller matrix is share × the child's). Capabilities are the union over the children with a
+// non-zero share at the query. Footprint-aware children (`aperture`) are refused: their lobes
+// depend on the incident generalized ray in a way a scalar blend does not represent.
+// Valid wherever both children are; reciprocal if both are.
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "core/diagnostics.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
+
+namespace phasor {
+
+namespace {
+constexpr double OneMinusEpsilon = 0x1.fffffffffffffp-1;  // the largest double below 1
+}  // namespace
+
+class MixMaterial final : public Material {
+  public:
+    MixMaterial(std::shared_ptr<const Material> a, std::shared_ptr<const Material> b, FloatTexture weight)
+        : a_(std::move(a)), b_(std::move(b)), weight_(std::move(weight)) {}
+
+    static const Schema &GetSchema() {
+        static const Schema s{
+            "material",
+            "mix",
+            "blend of two kernels, f = (1 − weight)·f_a + weight·f_b (weight 0: a; 1: b), constant or textured",
+            {
+                P::Ref("a", "material", "the kernel where weight = 0").Required(),
+                P::Ref("b", "material", "the kernel where weight = 1").Required(),
+                P::FloatTexture("weight", "share w of 'b' in [0, 1] (a number or a dimensionless texture); a has 1 − w")
+                    .Default(Value::Number(0.5))
+                    .Min(0)
+                    .Max(1),
+                P::Ref("weight_texture", "texture",
+                       "the same as weight = @texture (a dimensionless scalar texture in [0, 1]); not together "
+                       "with 'weight'")
+                    .Min(0)
+                    .Max(1),
+            }};
+        return s;
+    }
+
+    static std::unique_ptr<Material> Create(const ParamDict &d, BuildContext &ctx) {
+        if (d.Has("weight") && d.Has("weight_texture"))
+            throw Error(d.Loc("weight_texture"), "give 'weight' or 'weight_texture', not both");
+        auto child = [&](const char *name) {
+            std::shared_ptr<const Material> m = ctx.GetRef<Material>(d, name);
+            if (m->IsFootprintAware())
+                throw Error(d.Loc(name), std::string("'") + name + "' is footprint-aware (" + m->ToString() +
+                                             "): mix cannot blend a kernel whose lobes depend on the incident "
+                                             "generalized ray's footprint");
+            return m;
+        };
+        std::shared_ptr<const Material> a = child("a"), b = child("b");
+        FloatTexture w = ctx.GetFloatTexture(d, d.Has("weight_texture") ? "weight_texture" : "weight");
+        return std::make_unique<MixMaterial>(std::move(a), std::move(b), std::move(w));
+    }
+
+    /// Presets for the contract suite (fixtures of tests/materials/material_test_util.h). Two keep
+    /// its run time down; the end points w = 0 and 1 and a mix of two continuous kernels are tested
+    /// against the children themselves (tests/materials/mix_test.cpp).
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(2);
+        // Two metals under a textured weight (a ramp over u from 0.1 to 0.9): two lobes in the same
+        // direction.
+        p[0].Set("a", Value::Ref("contract_gold"))
+            .Set("b", Value::Ref("contract_aluminium"))
+            .Set("weight_texture", Value::Ref("contract_ramp"));
+        // Glass (reflection and refraction) and a diffuser: near-delta and continuous lobes, with a
+        // texture given as 'weight'.
+        p[1].Set("a", Value::Ref("contract_glass")).Set("b", Value::Ref("contract_matte")).Set("weight", Value::Ref("contract_half"));
+        return p;
+    }
+
+    unsigned Capabilities(const ScatterQuery &q) const override {
+        const double w = Weight(q);
+        return (w < 1 ? a_->Capabilities(q) : 0u) | (w > 0 ? b_->Capabilities(q) : 0u);
+    }
+
+    /// a's lobes (ids 2j) and b's (ids 2j + 1), weights and probabilities times the child's share,
+    /// merged in id order; a child with share 0 lists nothing.
+    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
+        const double w = Weight(q);
+        if (w < 1) a_->ListNearDelta(q, out);
+        for (int k = 0; k < out.count; ++k) Scale(out.lobe[k], false, 1 - w);
+        if (!(w > 0)) return;
+        NearDeltaLobes lb;
+        b_->ListNearDelta(q, lb);
+        // Merge b's lobes in from the back (both lists are in id order).
+        int ia = out.count - 1, ib = lb.count - 1;
+        for (int k = 0; k < lb.count; ++k) out.Add();
+        for (int k = out.count - 1; ib >= 0; --k) {
+            if (ia >= 0 && out.lobe[ia].id > MixId(lb.lobe[ib].id, true)) {
+                out.lobe[k] = out.lobe[ia--];
+            } else {
+                out.lobe[k] = lb.lobe[ib--];
+                Scale(out.lobe[k], true, w);
+            }
+        }
+    }
+
+    /// The child's response, times its share (the Jones matrix times √share).
+    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
+        const bool isB = (lobe & 1) != 0;
+        const double share = isB ? Weight(q) : 1 - Weight(q);
+        if (!(share > 0)) return std::nullopt;
+        std::optional<LobeResponse> r = (isB ? b_ : a_)->EvalLobe(q, (lobe - int(isB)) / 2, wo);
+        if (!r) return std::nullopt;
+        const Complex amp(std::sqrt(share), 0);
+        for (int i = 0; i < q.wl->Count(); ++i) {
+            r->mueller[i] = r->mueller[i] * share;
+            r->jones[i] = r->jones[i] * amp;
+            r->coherence.incoherent[i] = r->coherence.incoherent[i] * share;
+        }
+        return r;
+    }
+
+    bool IsReciprocal() const override { return a_->IsReciprocal() && b_->IsReciprocal(); }
+
+    void CheckShape(const Shape &shape) const override {
+        a_->CheckShape(shape);
+        b_->CheckShape(shape);
+    }
+
+    std::string ToString() const override {
+        std::ostringstream os;
+        os << "MixMaterial[ a = " << a_->ToString() << ", b = " << b_->ToString() << ", weight = " << weight_.ToString()
+           << " ]";
+        return os.str();
+    }
+
+  private:
+    /// w at the query, in [0, 1] (the accessor checked the texture's range; the clamp only guards
+    /// against rounding and a NaN from a texture, which counts as 0).
+    double Weight(const ScatterQuery &q) const {
+        const double w = weight_.Eval(q.tex);
+        return w > 0 ? std::min(w, 1.0) : 0.0;
+    }
+
+    /// The mixture's id of child lobe `id` (a: 2·id, b: 2·id + 1).
+    static int MixId(int id, bool isB) { return 2 * id + int(isB); }
+
+    /// A child's listed lobe as the mixture's: id remapped, weight and probability times `share`.
+    static void Scale(NearDeltaLobe &l, bool isB, double share) {
+        l.id = MixId(l.id, isB);
+        l.weight *= share;
+        l.prob *= share;
+    }
+
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
+        const double w = Weight(q);
+        // Child b with probability w, a with 1 − w; u0 rescaled to [0, 1) within the choice.
+        const bool isB = w >= 1 || (w > 0 && u0 >= 1 - w);
+        const double share = isB ? w : 1 - w;
+        const double uc = std::min((isB ? u0 - (1 - w) : u0) / share, OneMinusEpsilon);
+        std::optional<ScatterSample> s = (isB ? b_ : a_)->Sample(q, std::max(uc, 0.0), u);
+        if (!s) return std::nullopt;
+        s->lobe = MixId(s->lobe, isB);
+        if (s->flags & ScatterNearDelta) {
+            s->pdf *= share;  // the lobe's probability in the mixture; a_j·share / (p_j·share) = a_j/p_j
+            return s;
+        }
+        // A continuous direction: the mixture's density and value there (either child may reach wo).
+        const double pdf = PdfContinuous(q, s->wo);
+        if (!(pdf > 0)) return std::nullopt;
+        s->weight = EvalContinuous(q, s->wo) * (std::abs(s->wo.z) / pdf);
+        s->pdf = pdf;
+        return s;
+    }
+
+    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
+        const double w = Weight(q);
+        SampledSpectrum f(0.0);
+        if (w < 1) f += a_->Eval(q, wo) * (1 - w);
+        if (w > 0) f += b_->Eval(q, wo) * w;
+        return f;
+    }
+
+    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
+        const double w = Weight(q);
+        return (w < 1 ? (1 - w) * a_->Pdf(q, wo) : 0.0) + (w > 0 ? w * b_->Pdf(q, wo) : 0.0);
+    }
+
+    std::shared_ptr<const Material> a_, b_;
+    FloatTexture weight_;  // w: b's share, dimensionless, in [0, 1]
+};
+
+PHASOR_EXPORT_PLUGIN(Material, MixMaterial)
+
+}  // namespace phasor

@@ -1,0 +1,227 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — `two_sided`: one reflecting kernel on both faces of a sheet, or a different one on each
+// (Mitsuba 3's twosided).
+//
+// A query from the side the shading normal points to (wi.z ≥ 0) goes to `front` unchanged. A query
+// from below (wi.z < 0) goes to `back` mirrored through the tangent plane: the child sees
+// wi' = (wi.x, wi.y, −wi.z) in its usual upper hemisphere, and every direction it returns (sampled
+// wo, listed lobe directions) and every direction it is asked about is mirrored the same way, so
+// the back face is the mirror image of the child's surface (for the isotropic and groove-symmetric
+// kernels of theory §4 the same surface). Tangential quantities (a lobe's shift, a film's shear)
+// are unchanged by the mirror. Polarisation: in the s/p basis of core/polarization.h,
+// ŝ = n̂ × k̂ maps to the mirror image of ŝ but p̂ = k̂ × ŝ to minus the mirror image of p̂ (a mirror
+// reverses handedness), so the back's Jones matrix J becomes D·J·D with D = diag(1, −1) and its
+// Mueller matrix M becomes M_D·M·M_D with M_D = diag(1, 1, −1, −1) (S2 and S3 change sign);
+// diagonal responses (Fresnel, diffuse) are unchanged. With `material` alone, front and back are
+// the same kernel.
+// Children must not transmit (as in Mitsuba, whose twosided refuses transmitting BSDFs): light
+// that crossed the sheet would meet the other face's kernel from its own side, so a transmitting
+// front and back would not describe one consistent sheet. Create probes each child over incident
+// directions on both sides, wavelengths 400–700 nm and a few uvs (listed lobes, samples across
+// the lobe choice, Eval across the surface) and refuses one that sends light through; footprint-
+// aware kernels (`aperture`) transmit and are refused as well. Reciprocal if its children are.
+#include <array>
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+#include "core/diagnostics.h"
+#include "core/render/material.h"
+#include "core/render/registry.h"
+
+namespace phasor {
+
+namespace {
+
+/// The mirror image through the tangent plane (z → −z).
+Vec3 Mirror(const Vec3 &v) { return {v.x, v.y, -v.z}; }
+
+/// The mirror's change of s/p basis on a Jones matrix, D·J·D with D = diag(1, −1).
+Jones MirrorBasis(const Jones &j) {
+    Jones r = j;
+    r.m[0][1] = -j.m[0][1];
+    r.m[1][0] = -j.m[1][0];
+    return r;
+}
+
+/// The same on a Mueller matrix, M_D·M·M_D with M_D = diag(1, 1, −1, −1).
+Mueller MirrorBasis(const Mueller &m) {
+    Mueller r = m;
+    for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b)
+            if ((a >= 2) != (b >= 2)) r.m[a][b] = -m.m[a][b];
+    return r;
+}
+
+/// A description of the first way the probe finds `m` sending light through the surface, or ""
+/// if it finds none (see the file comment).
+std::string FindTransmission(const Material &m) {
+    if (m.IsFootprintAware()) return "it is footprint-aware (an aperture transmits)";
+    SampledWavelengths wl;
+    for (int i = 0; i < NumWavelengths; ++i) {
+        wl.lambda[i] = 400e-9 + 300e-9 * i / std::max(1, NumWavelengths - 1);
+        wl.pdf[i] = 1 / 300e-9;
+    }
+    constexpr std::array<double, 6> cosines = {1, 0.6, 0.15, -0.15, -0.6, -1};
+    constexpr std::array<double, 2> phis = {0.3, 2.4};
+    const std::array<Vec2, 2> uvs = {Vec2(0.13, 0.61), Vec2(0.77, 0.29)};
+    for (const double c : cosines)
+        for (const double phi : phis)
+            for (const Vec2 &uv : uvs) {
+                ScatterQuery q;
+                const double s = std::sqrt(std::max(0.0, 1 - c * c));
+                q.wi = Vec3(s * std::cos(phi), s * std::sin(phi), c);
+                q.wl = &wl;
+                q.tex.uv = uv;
+                NearDeltaLobes lobes;
+                m.ListNearDelta(q, lobes);
+                for (const NearDeltaLobe &l : lobes)
+                    if (l.flags & ScatterTransmission) return "it lists a transmitted lobe";
+                for (int k = 0; k < 16; ++k)
+                    for (int j = 0; j < 2; ++j) {
+                        auto smp = m.Sample(q, (k + 0.5) / 16, Vec2(0.25 + 0.5 * j, 0.5));
+                        if (smp && ((smp->flags & ScatterTransmission) || smp->wo.z * q.wi.z < 0))
+                            return "it samples directions through the surface";
+                    }
+                for (int k = 0; k < 8; ++k) {
+                    const double a = 2 * Pi * (k + 0.5) / 8, cz = k % 2 ? 0.3 : 0.9, sz = std::sqrt(1 - cz * cz);
+                    const Vec3 wo(sz * std::cos(a), sz * std::sin(a), c > 0 ? -cz : cz);
+                    if (!m.Eval(q, wo).IsZero()) return "it scatters into the far side (Eval)";
+                }
+            }
+    return "";
+}
+
+}  // namespace
+
+class TwoSidedMaterial final : public Material {
+  public:
+    TwoSidedMaterial(std::shared_ptr<const Material> front, std::shared_ptr<const Material> back)
+        : front_(std::move(front)), back_(std::move(back)) {}
+
+    static const Schema &GetSchema() {
+        static const Schema s{
+            "material",
+            "two_sided",
+            "a reflecting kernel on both faces of a sheet (or one per face); from below it is mirrored",
+            {
+                P::Ref("material", "material", "the kernel on both faces (instead of 'front' and 'back')"),
+                P::Ref("front", "material", "the kernel on the face the shading normal points out of"),
+                P::Ref("back", "material", "the kernel on the other face, seen mirrored (with 'front')"),
+            }};
+        return s;
+    }
+
+    static std::unique_ptr<Material> Create(const ParamDict &d, BuildContext &ctx) {
+        const bool one = d.Has("material"), front = d.Has("front"), back = d.Has("back");
+        if (one && (front || back))
+            throw Error(d.Loc(front ? "front" : "back"), "give 'material' (both faces) or 'front' and 'back', not both");
+        if (!one && !(front && back))
+            throw Error(d.Loc(front ? "front" : back ? "back" : "material"),
+                        front || back ? std::string("'") + (front ? "front" : "back") + "' needs '" +
+                                            (front ? "back" : "front") + "' (or give 'material' for both faces)"
+                                      : "two_sided needs 'material' (both faces) or 'front' and 'back'");
+        auto child = [&](const char *name) {
+            std::shared_ptr<const Material> m = ctx.GetRef<Material>(d, name);
+            const std::string why = FindTransmission(*m);
+            if (!why.empty())
+                throw Error(d.Loc(name), std::string("'") + name + "' transmits: " + why + " (" + m->ToString() +
+                                             "); two_sided takes reflecting kernels only (a sheet whose faces are "
+                                             "seen from their own sides)");
+            return m;
+        };
+        if (one) {
+            std::shared_ptr<const Material> m = child("material");
+            return std::make_unique<TwoSidedMaterial>(m, m);
+        }
+        return std::make_unique<TwoSidedMaterial>(child("front"), child("back"));
+    }
+
+    /// Presets for the contract suite (fixtures of tests/materials/material_test_util.h).
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(2);
+        p[0].Set("material", Value::Ref("contract_gold"));
+        // A different kernel per face: a glint from above, a diffuser from below.
+        p[1].Set("front", Value::Ref("contract_gold")).Set("back", Value::Ref("contract_matte"));
+        return p;
+    }
+
+    unsigned Capabilities(const ScatterQuery &q) const override {
+        ScatterQuery local;
+        return Side(q, &local).Capabilities(local);
+    }
+
+    /// The child's lobes (same ids, shifts and indices), directions mirrored back for a query from below.
+    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
+        ScatterQuery local;
+        Side(q, &local).ListNearDelta(local, out);
+        if (!Below(q)) return;
+        for (int k = 0; k < out.count; ++k)
+            for (Vec3 &w : out.lobe[k].wo) w = Mirror(w);
+    }
+
+    /// The child's response; from below towards the mirrored wo, in the mirrored s/p basis.
+    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
+        ScatterQuery local;
+        const Material &m = Side(q, &local);
+        if (!Below(q)) return m.EvalLobe(local, lobe, wo);
+        std::optional<LobeResponse> r = m.EvalLobe(local, lobe, Mirror(wo));
+        if (!r) return std::nullopt;
+        for (int i = 0; i < q.wl->Count(); ++i) {
+            r->jones[i] = MirrorBasis(r->jones[i]);
+            r->mueller[i] = MirrorBasis(r->mueller[i]);
+            r->coherence.incoherent[i] = MirrorBasis(r->coherence.incoherent[i]);
+        }
+        return r;
+    }
+
+    bool IsReciprocal() const override { return front_->IsReciprocal() && back_->IsReciprocal(); }
+
+    void CheckShape(const Shape &shape) const override {
+        front_->CheckShape(shape);
+        if (back_ != front_) back_->CheckShape(shape);
+    }
+
+    std::string ToString() const override {
+        std::ostringstream os;
+        if (front_ == back_) os << "TwoSidedMaterial[ material = " << front_->ToString() << " ]";
+        else os << "TwoSidedMaterial[ front = " << front_->ToString() << ", back = " << back_->ToString() << " ]";
+        return os.str();
+    }
+
+  private:
+    static bool Below(const ScatterQuery &q) { return q.wi.z < 0; }
+
+    /// The kernel that answers q, and in `local` the query it is asked (mirrored from below).
+    const Material &Side(const ScatterQuery &q, ScatterQuery *local) const {
+        *local = q;
+        if (!Below(q)) return *front_;
+        local->wi = Mirror(q.wi);
+        return *back_;
+    }
+
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
+        ScatterQuery local;
+        std::optional<ScatterSample> s = Side(q, &local).Sample(local, u0, u);
+        if (s && Below(q)) s->wo = Mirror(s->wo);
+        return s;
+    }
+
+    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
+        ScatterQuery local;
+        const Material &m = Side(q, &local);
+        return m.Eval(local, Below(q) ? Mirror(wo) : wo);
+    }
+
+    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
+        ScatterQuery local;
+        const Material &m = Side(q, &local);
+        return m.Pdf(local, Below(q) ? Mirror(wo) : wo);
+    }
+
+    std::shared_ptr<const Material> front_, back_;  // the same object for `material`
+};
+
+PHASOR_EXPORT_PLUGIN(Material, TwoSidedMaterial)
+
+}  // namespace phasor

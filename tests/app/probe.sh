@@ -1,0 +1,169 @@
+#!/usr/bin/env bash
+# probe.sh PHASOR SCENE OUTDIR — `phasor probe` against references computed here, independently of
+# phasor's code (awk): Fresnel for a dielectric and for a conductor (the real-arithmetic form of the
+# complex Fresnel equations), a Lambertian albedo, Saunderson's total reflectance of `plastic` with
+# the hemispherical Fresnel integral by Simpson's rule. Also: the CSV's exact header and rows, `-`
+# for stdout, the texture context (--uv), --ray, the seed, the plot, and errors (exit status 1, a
+# message, no output file).
+set -u
+phasor=$1 scene=$2 out=$3/probe
+rm -rf "$out"; mkdir -p "$out"
+failures=0
+fail() { echo "FAIL: $*"; failures=$((failures + 1)); }
+
+# run ARGS…: `phasor probe SCENE ARGS…`, leaving $rc, $stdout, $stderr.
+run() {
+    "$phasor" probe "$scene" "$@" >"$out/.stdout" 2>"$out/.stderr"; rc=$?
+    stdout=$(cat "$out/.stdout"); stderr=$(cat "$out/.stderr")
+    rm -f "$out/.stdout" "$out/.stderr"
+}
+# field CSV ROW COL: one field of the CSV text in $stdout (ROW 1 = the header).
+field() { awk -F, -v r="$1" -v c="$2" 'NR == r { print $c }' <<<"$stdout"; }
+# near WHAT GOT EXPECTED TOL
+near() {
+    awk -v g="$2" -v e="$3" -v t="$4" 'BEGIN { d = g - e; if (d < 0) d = -d; exit !(g != "" && d <= t) }' ||
+        fail "$1: got '$2', expected $3 ± $4"
+}
+awkmath='
+function fresnel(mu, eta,   s2, ct, rs, rp) {   # unpolarised, dielectric, eta = n_t/n_i (Hecht 4.6)
+    s2 = (1 - mu * mu) / (eta * eta); if (s2 >= 1) return 1
+    ct = sqrt(1 - s2); rs = (mu - eta * ct) / (mu + eta * ct); rp = (eta * mu - ct) / (eta * mu + ct)
+    return (rs * rs + rp * rp) / 2
+}
+function conductor(mu, n, k,   s2, t0, ab, a, rs, rp) {  # from vacuum onto n + ik, real arithmetic
+    s2 = 1 - mu * mu; t0 = n * n - k * k - s2; ab = sqrt(t0 * t0 + 4 * n * n * k * k); a = sqrt((ab + t0) / 2)
+    rs = (ab + mu * mu - 2 * a * mu) / (ab + mu * mu + 2 * a * mu)
+    rp = rs * (mu * mu * ab + s2 * s2 - 2 * a * mu * s2) / (mu * mu * ab + s2 * s2 + 2 * a * mu * s2)
+    return (rs + rp) / 2
+}
+function diffusefresnel(eta,   n, h, i, t, mu, muc, s) {  # 2∫F(μ)μdμ, Simpson in t, μ = μc + (1 − μc)t²
+    muc = eta < 1 ? sqrt(1 - eta * eta) : 0; n = 20000; h = 1 / n; s = 0
+    for (i = 0; i <= n; i++) {
+        t = i * h; mu = muc + (1 - muc) * t * t
+        s += (i == 0 || i == n ? 1 : (i % 2 ? 4 : 2)) * fresnel(mu, eta) * mu * 2 * (1 - muc) * t
+    }
+    return muc * muc + 2 * s * h / 3
+}
+function atan2pi(y, x) { return atan2(y, x) }
+BEGIN { pi = atan2(0, -1); deg = pi / 180 }'
+calc() { awk "$awkmath"' BEGIN { printf "%.15g\n", '"$1"' }'; }
+
+# 1. Dielectric 1.5 at normal incidence: R = 0.04, T = 0.96 as power (the listed transmission weight
+#    0.96/1.5² is a radiance throughput); the CSV exactly.
+run --material glass --theta 0deg --lambda 550nm --csv "$out/glass0.csv" --quiet
+[[ $rc -eq 0 ]] || fail "glass 0deg: exit status $rc: $stderr"
+expected=$'kind,order,theta_o,phi_o,value,stderr\nR,,,,0.04,0\nT,,,,0.96,0\nlobe,0,0,0,0.04,0\nlobe,1,3.14159265358979,0,0.96,0'
+[[ "$(cat "$out/glass0.csv")" == "$expected" ]] || fail "glass0.csv is '$(cat "$out/glass0.csv")'"
+grep -q "R = 0.04" <<<"$stdout" && grep -q "transmission" <<<"$stdout" || fail "glass 0deg report: '$stdout'"
+
+# 2. Dielectric at oblique incidence, two indices: R = Fresnel, T = 1 − R, the lobes' angles from
+#    the law of reflection and Snell's law (φ_o = φ + 180°). `--csv -`: the CSV alone on stdout.
+for case in "1.5 60 0" "1.33 35 120" "2.42 75 -40"; do
+    read -r n th ph <<<"$case"
+    run --material glass --theta "${th}deg" --phi "${ph}deg" --lambda 633nm --csv - -D "n_glass=$n"
+    [[ $rc -eq 0 ]] || { fail "glass $case: exit status $rc: $stderr"; continue; }
+    [[ "$(field 1 0)" == "kind,order,theta_o,phi_o,value,stderr" ]] || fail "glass $case: header '$(field 1 0)'"
+    [[ $(wc -l <<<"$stdout") -eq 5 ]] || fail "glass $case: stdout is not the CSV alone: '$stdout'"
+    grep -q "R = " <<<"$stderr" || fail "glass $case: the report is not on stderr"
+    R=$(calc "fresnel(cos($th * deg), $n)")
+    near "glass $case R" "$(field 2 5)" "$R" 1e-10
+    near "glass $case T" "$(field 3 5)" "$(calc "1 - $R")" 1e-10
+    [[ "$(field 2 6),$(field 3 6)" == "0,0" ]] || fail "glass $case: stderr of exact sums not 0"
+    phio=$(calc "atan2(sin(($ph + 180) * deg), cos(($ph + 180) * deg))")
+    [[ "$(field 4 1),$(field 4 2)" == "lobe,0" && "$(field 5 1),$(field 5 2)" == "lobe,1" ]] ||
+        fail "glass $case: lobe rows '$stdout'"
+    near "glass $case reflected theta" "$(field 4 3)" "$(calc "$th * deg")" 1e-12
+    near "glass $case reflected phi" "$(field 4 4)" "$phio" 1e-12
+    near "glass $case refracted theta" "$(field 5 3)" "$(calc "pi - atan2(sin($th * deg) / $n, sqrt(1 - (sin($th * deg) / $n)^2))")" 1e-12
+    near "glass $case refracted phi" "$(field 5 4)" "$phio" 1e-12
+    near "glass $case lobe sum" "$(calc "$(field 4 5) + $(field 5 5)")" 1 1e-12
+done
+
+# 3. Conductor n + ik = 0.2 + 3.4i, and 1.8 + 0.4i: R at 45° and 80° (real-arithmetic Fresnel), no T.
+for case in "0.2 3.4 45 30" "1.8 0.4 80 -90"; do
+    read -r n k th ph <<<"$case"
+    run --material metal --theta "${th}deg" --phi "${ph}deg" --lambda 500nm --csv - -D "n_metal=$n+${k}i"
+    [[ $rc -eq 0 ]] || { fail "metal $case: exit status $rc: $stderr"; continue; }
+    near "metal $case R" "$(field 2 5)" "$(calc "conductor(cos($th * deg), $n, $k)")" 1e-10
+    [[ "$(field 3 5)" == 0 && $(wc -l <<<"$stdout") -eq 4 ]] || fail "metal $case: T or lobes: '$stdout'"
+    near "metal $case lobe phi" "$(field 4 4)" "$(calc "atan2(sin(($ph + 180) * deg), cos(($ph + 180) * deg))")" 1e-12
+done
+
+# 4. Lambertian: R = albedo exactly (the cosine-sampled weight is constant: standard error 0), T = 0;
+#    a textured albedo follows --uv (checkerboard of scale 2: 0.1 at (0.1, 0.1), 0.9 at (0.6, 0.1)).
+run --material matte --theta 20deg --lambda 450nm --csv - -D albedo=0.37
+[[ "$(field 2 0)" == "R,,,,0.37,0" && "$(field 3 0)" == "T,,,,0,0" && $(wc -l <<<"$stdout") -eq 3 ]] ||
+    fail "matte: '$stdout' $stderr"
+for uv in "0.1 0.1 0.1" "0.6 0.1 0.9"; do
+    read -r u v want <<<"$uv"
+    run --material checked --theta 10deg --lambda 500nm --uv "$u" "$v" --csv -
+    [[ "$(field 2 5)" == "$want" ]] || fail "checked at uv ($u, $v): R = '$(field 2 5)', expected $want"
+done
+
+# 5. plastic: Saunderson's total reflectance F + (1 − F)ρ(1 − F̄in)/(1 − ρF̄in) by Monte Carlo, within
+#    4 standard errors (+ 1e-6 for the reference's Simpson error); 1 for a white base.
+for case in "0.5 1.5 30" "1 1.5 70" "0.8 1.33 0"; do
+    read -r rho n th <<<"$case"
+    run --material paint --theta "${th}deg" --lambda 550nm --csv - -D "albedo=$rho" -D "n_glass=$n"
+    [[ $rc -eq 0 ]] || { fail "paint $case: exit status $rc: $stderr"; continue; }
+    ref=$(calc "fresnel(cos($th * deg), $n) + (1 - fresnel(cos($th * deg), $n)) * $rho * (1 - diffusefresnel(1 / $n)) / (1 - $rho * diffusefresnel(1 / $n))")
+    se=$(field 2 6)
+    awk -v s="$se" 'BEGIN { exit !(s > 0 && s < 0.01) }' || fail "paint $case: standard error '$se'"
+    near "paint $case R" "$(field 2 5)" "$ref" "$(calc "4 * $se + 1e-6")"
+    near "paint $case specular lobe" "$(field 4 5)" "$(calc "fresnel(cos($th * deg), $n)")" 1e-12
+done
+# The seed: the same seed gives the same digits, another seed other digits (of the same value).
+run --material paint --theta 30deg --lambda 550nm --csv - --seed 7; a=$stdout
+run --material paint --theta 30deg --lambda 550nm --csv - --seed 7; [[ "$stdout" == "$a" ]] || fail "seed 7 twice differs"
+run --material paint --theta 30deg --lambda 550nm --csv - --seed 8; [[ "$stdout" != "$a" ]] || fail "seeds 7 and 8 agree"
+# --ray: a smooth interface is the same in the ray-optics limit.
+run --material glass --theta 40deg --lambda 550nm --csv - --ray; a=$stdout
+run --material glass --theta 40deg --lambda 550nm --csv -
+[[ "$stdout" == "$a" ]] || fail "--ray changed a smooth dielectric"
+
+# 6. The plot: a PNG, not empty, written together with the CSV.
+run --material paint --theta 45deg --phi 30deg --lambda 550nm --csv "$out/paint.csv" --plot "$out/sub/paint.png" --quiet
+[[ $rc -eq 0 && -s "$out/paint.csv" ]] || fail "plot run: exit status $rc: $stderr"
+[[ "$(head -c 4 "$out/sub/paint.png" | od -An -tx1 | tr -d ' ')" == 89504e47 ]] || fail "paint.png is not a PNG"
+[[ $(stat -c %s "$out/sub/paint.png") -gt 10000 ]] || fail "paint.png is suspiciously small"
+
+# 7. Errors: exit status 1, the message, and no output file (not even a temporary one).
+check_error() {  # check_error REGEX ARGS…
+    local regex=$1; shift
+    run "$@" --csv "$out/err.csv" --plot "$out/err.png"
+    [[ $rc -eq 1 ]] || fail "$*: exit status $rc, expected 1"
+    grep -Eq -- "$regex" <<<"$stderr" || fail "$*: stderr '$stderr' does not match /$regex/"
+    [[ ! -e "$out/err.csv" && ! -e "$out/err.png" ]] || fail "$*: an output file was written"
+    if ls -A "$out" | grep -q tmp; then fail "$*: temporary file left: $(ls -A "$out")"; fi
+}
+check_error "^error: no material named 'glas' in '.*probe.wscene'; did you mean 'glass'\?" \
+    --material glas --theta 0deg --lambda 550nm
+check_error "^error: 'checks' .* is a Texture, not a Material; did you mean 'checked'\?" \
+    --material checks --theta 0deg --lambda 550nm
+check_error "^error: material 'slit' \(aperture\) is footprint-aware" --material slit --theta 0deg --lambda 550nm
+check_error "^error: '--lambda' expects a length such as 550nm; got '550', a number without a unit" \
+    --material glass --theta 0deg --lambda 550
+check_error "^error: '--lambda' .*got '550nmm' \(unknown unit 'nmm'; did you mean 'nm'\?\)" \
+    --material glass --theta 0deg --lambda 550nmm
+check_error "^error: '--theta' expects an angle such as 30deg; got '1um', a length" \
+    --material glass --theta 1um --lambda 550nm
+check_error "^error: '--theta' 90deg is grazing" --material glass --theta 90deg --lambda 550nm
+check_error "^error: '--theta' must lie in \[0deg, 180deg\]" --material glass --theta -5deg --lambda 550nm
+check_error "^error: '--lambda' must be positive" --material glass --theta 0deg --lambda -1nm
+check_error "error: '-D n_glas' does not override any Define in the scene; did you mean 'n_glass'\?" \
+    --material glass --theta 0deg --lambda 550nm -D n_glas=2
+check_error "probe.wscene:[0-9]+:[0-9]+: error: .*ior" --material glass --theta 0deg --lambda 550nm -D n_glass=-1
+# An unwritable plot: the CSV (staged first) must not appear either.
+run --material glass --theta 0deg --lambda 550nm --csv "$out/err.csv" --plot /proc/phasor-test/err.png
+[[ $rc -eq 1 ]] && grep -q "^error: cannot write '/proc/phasor-test/err.png'" <<<"$stderr" ||
+    fail "unwritable plot: exit status $rc, stderr '$stderr'"
+[[ ! -e "$out/err.csv" ]] || fail "unwritable plot: the CSV was written"
+# Usage errors (the command line alone).
+"$phasor" probe "$scene" --theta 0deg --lambda 550nm >/dev/null 2>"$out/.e"; rc=$?
+[[ $rc -eq 1 ]] && grep -q "^error: 'probe' needs --material" "$out/.e" || fail "missing --material: $rc $(cat "$out/.e")"
+"$phasor" probe "$scene" --material glass --theta 0deg --lambda 550nm --uv 0.5 >/dev/null 2>"$out/.e"; rc=$?
+[[ $rc -eq 1 ]] && grep -q "^error: '--uv' needs two numbers" "$out/.e" || fail "--uv with one number: $rc $(cat "$out/.e")"
+rm -f "$out/.e"
+
+[[ $failures -eq 0 ]] || { echo "$failures failure(s)"; exit 1; }
+echo "probe: all checks passed"

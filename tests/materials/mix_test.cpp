@@ -1,0 +1,251 @@
+// SPDX-License-Identifier: Apache-2.0
+// `mix`: the blend f = (1 − w)·f_a + w·f_b beyond the generic contract suite — the end points equal
+// the children, Eval/Pdf are the weighted sums (with a textured weight), the listed lobes of two
+// conductors against the Fresnel formula, id remapping with negative child ids, and bad input.
+#include <gtest/gtest.h>
+
+#include "material_test_util.h"
+#include "materials/fresnel.h"
+#include "support/stats.h"
+
+namespace phasor::test {
+namespace {
+
+std::shared_ptr<Material> Get(MiniScene &s, const std::string &name) {
+    auto m = s.Build<Material>(name);
+    EXPECT_TRUE(m) << s.FirstError();
+    return m;
+}
+
+ParamDict Mix(const char *a, const char *b, Value weight) {
+    return ParamDict().Set("a", Value::Ref(a)).Set("b", Value::Ref(b)).Set("weight", std::move(weight));
+}
+
+// Incident directions above and below the shading normal.
+const Vec3 Incidents[] = {DirectionFromCosTheta(0.9, 0.4), DirectionFromCosTheta(0.3, 2.0),
+                          DirectionFromCosTheta(-0.6, 4.0)};
+
+// w = 0 is `a` and w = 1 is `b`: every query answered as the child answers it. Eval, Pdf and the
+// near-delta samples are bit-identical (the other child's term is skipped, the share is exactly 1);
+// a continuous sample's weight is recomputed as f·|cosθo|/pdf, so it agrees to rounding (1e-14).
+TEST(Mix, EndPointsAreTheChildren) {
+    MiniScene s;
+    s.WithFixtures()
+        .Add("Material", "mix", "w0", Mix("contract_matte", "contract_gold", Value::Number(0)))
+        .Add("Material", "mix", "w1", Mix("contract_matte", "contract_gold", Value::Number(1)));
+    auto w0 = Get(s, "w0"), w1 = Get(s, "w1");
+    auto matte = Get(s, "contract_matte"), gold = Get(s, "contract_gold");
+    ASSERT_TRUE(w0 && w1 && matte && gold);
+    const SampledWavelengths wl = TestWavelengths(550e-9);
+    TestRng rng(7);
+    for (const auto &[mix, child, isB] : {std::tuple{w0, matte, false}, std::tuple{w1, gold, true}}) {
+        for (const Vec3 &wi : Incidents) {
+            ScatterQuery q;
+            q.wi = wi;
+            q.wl = &wl;
+            EXPECT_EQ(mix->Capabilities(q), child->Capabilities(q));
+            for (int i = 0; i < 100; ++i) {
+                const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
+                const SampledSpectrum fm = mix->Eval(q, wo), fc = child->Eval(q, wo);
+                for (int j = 0; j < NumWavelengths; ++j) ASSERT_EQ(fm[j], fc[j]);
+                ASSERT_EQ(mix->Pdf(q, wo), child->Pdf(q, wo));
+                const double u0 = rng.Uniform();
+                const Vec2 u(rng.Uniform(), rng.Uniform());
+                auto sm = mix->Sample(q, u0, u), sc = child->Sample(q, u0, u);
+                ASSERT_EQ(bool(sm), bool(sc));
+                if (!sm) continue;
+                EXPECT_EQ(sm->wo, sc->wo);
+                EXPECT_EQ(sm->pdf, sc->pdf);
+                EXPECT_EQ(sm->flags, sc->flags);
+                EXPECT_EQ(sm->lobe, 2 * sc->lobe + int(isB));
+                for (int j = 0; j < NumWavelengths; ++j)
+                    EXPECT_NEAR(sm->weight[j], sc->weight[j], 1e-14 * sc->weight[j]);
+            }
+            NearDeltaLobes lm, lc;
+            mix->ListNearDelta(q, lm);
+            child->ListNearDelta(q, lc);
+            ASSERT_EQ(lm.count, lc.count);
+            for (int k = 0; k < lc.count; ++k) {
+                EXPECT_EQ(lm.lobe[k].id, 2 * lc.lobe[k].id + int(isB));
+                EXPECT_EQ(lm.lobe[k].prob, lc.lobe[k].prob);
+                for (int j = 0; j < NumWavelengths; ++j) EXPECT_EQ(lm.lobe[k].weight[j], lc.lobe[k].weight[j]);
+                auto rm = mix->EvalLobe(q, lm.lobe[k].id, lm.lobe[k].wo[0]);
+                auto rc = child->EvalLobe(q, lc.lobe[k].id, lc.lobe[k].wo[0]);
+                ASSERT_TRUE(rm && rc);
+                EXPECT_EQ(rm->mueller[0].m[0][0], rc->mueller[0].m[0][0]);
+            }
+        }
+    }
+}
+
+// Eval = (1 − w)·f_a + w·f_b and Pdf = (1 − w)·p_a + w·p_b, with w read from a texture at the
+// query's uv: two Lambertian children (f = R/π, pdf = |cosθo|/π) under a ramp w = u.
+TEST(Mix, EvalAndPdfAreTheWeightedSums) {
+    MiniScene s;
+    s.Add("Material", "diffuse", "dark", ParamDict().Set("reflectance", Value::Number(0.2)))
+        .Add("Material", "diffuse", "light", ParamDict().Set("reflectance", Value::Number(0.8)))
+        .Add("Texture", "uv_ramp", "ramp", ParamDict().Set("value0", Value::Number(0)).Set("value1", Value::Number(1)))
+        .Add("Material", "mix", "m",
+             ParamDict().Set("a", Value::Ref("dark")).Set("b", Value::Ref("light")).Set("weight_texture", Value::Ref("ramp")));
+    auto m = Get(s, "m");
+    ASSERT_TRUE(m);
+    const SampledWavelengths wl = TestWavelengths(480e-9);
+    for (double u : {0.0, 0.15, 0.5, 0.9, 1.0}) {
+        ScatterQuery q;
+        q.wi = DirectionFromCosTheta(0.7, 0.3);
+        q.wl = &wl;
+        q.tex.uv = Vec2(u, 0.4);
+        const double w = u;  // the ramp
+        for (double c : {0.95, 0.4, 0.05}) {
+            const Vec3 wo = DirectionFromCosTheta(c, 2.5);
+            const double expected = ((1 - w) * 0.2 + w * 0.8) / Pi;
+            EXPECT_NEAR(m->Eval(q, wo)[0], expected, 1e-15) << "u = " << u;
+            EXPECT_NEAR(m->Pdf(q, wo), c / Pi, 1e-15);
+            EXPECT_EQ(m->Eval(q, DirectionFromCosTheta(-c, 2.5))[0], 0);  // no transmission
+        }
+        // Every sample's weight is the mixture's albedo (1 − w)·0.2 + w·0.8, whichever child drew it.
+        for (double u0 : {0.05, 0.5, 0.95}) {
+            auto smp = m->Sample(q, u0, Vec2(0.3, 0.6));
+            ASSERT_TRUE(smp);
+            EXPECT_NEAR(smp->weight[0], (1 - w) * 0.2 + w * 0.8, 1e-14);
+        }
+    }
+}
+
+// A mix of two metals lists both mirror lobes: ids 0 (a) and 1 (b), weights (1 − w)·R_a and
+// w·R_b with R the complex Fresnel reflectance (fresnel.h, tested against textbook values in
+// fresnel_test.cpp), probabilities 1 − w and w; EvalLobe gives √share·diag(r_s, r_p).
+TEST(Mix, ListsTheLobesOfTwoConductors) {
+    const Complex na(0.2, 3.0), nb(1.2, 7.26);
+    MiniScene s;
+    s.Add("Material", "conductor", "a", ParamDict().Set("ior", Value::ComplexNumber(na)))
+        .Add("Material", "conductor", "b", ParamDict().Set("ior", Value::ComplexNumber(nb)))
+        .Add("Material", "mix", "m", Mix("a", "b", Value::Number(0.25)));
+    auto m = Get(s, "m");
+    ASSERT_TRUE(m);
+    const SampledWavelengths wl = TestWavelengths(600e-9);
+    for (const Vec3 &wi : Incidents) {
+        ScatterQuery q;
+        q.wi = wi;
+        q.wl = &wl;
+        EXPECT_EQ(m->Capabilities(q), unsigned(CapNearDelta));
+        NearDeltaLobes lobes;
+        m->ListNearDelta(q, lobes);
+        ASSERT_EQ(lobes.count, 2);
+        const double cosI = std::abs(wi.z);
+        const double share[2] = {0.75, 0.25};
+        const Complex n[2] = {na, nb};
+        for (int k = 0; k < 2; ++k) {
+            const NearDeltaLobe &l = lobes.lobe[k];
+            EXPECT_EQ(l.id, k);
+            EXPECT_EQ(l.flags, unsigned(ScatterReflection | ScatterNearDelta));
+            EXPECT_LT(Length(l.wo[0] - ReflectLocal(wi)), 1e-15);
+            EXPECT_NEAR(l.prob, share[k], 1e-15);
+            for (int j = 0; j < NumWavelengths; ++j)
+                EXPECT_NEAR(l.weight[j], share[k] * FresnelConductor(cosI, n[k]), 1e-14);
+            auto r = m->EvalLobe(q, l.id, l.wo[0]);
+            ASSERT_TRUE(r && r->hasJones);
+            const FresnelCoefficients c = FresnelAmplitudes(cosI, 1.0, n[k]);
+            EXPECT_LT(std::abs(r->jones[0].m[0][0] - std::sqrt(share[k]) * c.rs), 1e-14);
+            EXPECT_LT(std::abs(r->jones[0].m[1][1] - std::sqrt(share[k]) * c.rp), 1e-14);
+            EXPECT_NEAR(r->mueller[0].m[0][0], l.weight[0], 1e-14);
+        }
+        EXPECT_FALSE(m->EvalLobe(q, 2, ReflectLocal(wi))) << "a's lobe 1 does not exist";
+        EXPECT_FALSE(m->EvalLobe(q, -1, ReflectLocal(wi))) << "b's lobe −1 does not exist";
+    }
+}
+
+// Children with negative lobe ids (a grating's orders −3 … 3): the mix lists them as 2j, its other
+// child's lobe as 2·0 + 1, in increasing id order, and maps every id back in EvalLobe and Sample.
+TEST(Mix, RemapsNegativeIdsAndKeepsTheirOrder) {
+    MiniScene s;
+    s.WithFixtures()
+        .Add("Material", "toy_grating", "g", ParamDict().Set("period", Value::Number(5e-6, Dim::Length())))
+        .Add("Material", "mix", "m", Mix("g", "contract_gold", Value::Number(0.4)));
+    auto m = Get(s, "m"), g = Get(s, "g");
+    ASSERT_TRUE(m && g);
+    const SampledWavelengths wl = TestWavelengths(550e-9);
+    ScatterQuery q;
+    q.wi = DirectionFromCosTheta(0.8, 0.2);
+    q.wl = &wl;
+    NearDeltaLobes lm, lg;
+    m->ListNearDelta(q, lm);
+    g->ListNearDelta(q, lg);
+    ASSERT_EQ(lm.count, lg.count + 1);
+    for (int k = 1; k < lm.count; ++k) EXPECT_LT(lm.lobe[k - 1].id, lm.lobe[k].id);
+    int fromGrating = 0;
+    for (const NearDeltaLobe &l : lm) {
+        if (l.id == 1) continue;  // gold's mirror lobe
+        ASSERT_EQ(l.id % 2, 0);
+        const NearDeltaLobe *src = nullptr;
+        for (const NearDeltaLobe &x : lg)
+            if (x.id == l.id / 2) src = &x;
+        ASSERT_NE(src, nullptr) << "mix lobe " << l.id;
+        ++fromGrating;
+        EXPECT_NEAR(l.weight[0], 0.6 * src->weight[0], 1e-15);
+        EXPECT_NEAR(l.prob, 0.6 * src->prob, 1e-15);
+        auto rm = m->EvalLobe(q, l.id, l.wo[0]);
+        auto rg = g->EvalLobe(q, src->id, src->wo[0]);
+        ASSERT_TRUE(rm && rg);
+        EXPECT_NEAR(rm->mueller[0].m[0][0], 0.6 * rg->mueller[0].m[0][0], 1e-15);
+    }
+    EXPECT_EQ(fromGrating, lg.count);
+    EXPECT_LT(lg.lobe[0].id, 0) << "the test needs negative child ids";
+    // Sample across u0: every sample is a listed lobe of the mix.
+    for (int k = 0; k < 64; ++k) {
+        auto smp = m->Sample(q, (k + 0.5) / 64, Vec2(0.5, 0.5));
+        ASSERT_TRUE(smp);
+        bool listed = false;
+        for (const NearDeltaLobe &l : lm) listed = listed || (l.id == smp->lobe && Length(l.wo[0] - smp->wo) < 1e-12);
+        EXPECT_TRUE(listed) << "sampled lobe " << smp->lobe;
+    }
+}
+
+// Bad input: both weights, a weight outside [0, 1] (number or texture), a texture of another
+// dimension, a footprint-aware child.
+TEST(Mix, BadInput) {
+    auto firstError = [](MiniScene &s) {
+        EXPECT_FALSE(s.Build<Material>("m"));
+        return s.FirstError();
+    };
+    {
+        MiniScene s;
+        s.WithFixtures().Add("Material", "mix", "m",
+                             Mix("contract_gold", "contract_matte", Value::Number(0.5)).Set("weight_texture", Value::Ref("contract_half")));
+        EXPECT_NE(firstError(s).find("give 'weight' or 'weight_texture', not both"), std::string::npos) << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.WithFixtures().Add("Material", "mix", "m", Mix("contract_gold", "contract_matte", Value::Number(1.5)));
+        EXPECT_NE(firstError(s).find("'weight' is out of range"), std::string::npos) << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.WithFixtures()
+            .Add("Texture", "noise", "wide", ParamDict().Set("offset", Value::Number(0.5)).Set("amplitude", Value::Number(0.8)))
+            .Add("Material", "mix", "m", Mix("contract_gold", "contract_matte", Value::Ref("wide")));
+        EXPECT_NE(firstError(s).find("'weight' must be ≥ 0 and ≤ 1 everywhere, but texture '@wide' ranges over"),
+                  std::string::npos)
+            << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.WithFixtures()
+            .Add("Texture", "constant", "thick", ParamDict().Set("value", Value::Number(1e-7, Dim::Length())))
+            .Add("Material", "mix", "m",
+                 ParamDict().Set("a", Value::Ref("contract_gold")).Set("b", Value::Ref("contract_matte")).Set("weight_texture", Value::Ref("thick")));
+        EXPECT_NE(firstError(s).find("texture '@thick' yields a length"), std::string::npos) << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.WithFixtures()
+            .Add("Material", "aperture", "slit",
+                 ParamDict().Set("rects", Value::List({Value::Number(-1e-6, Dim::Length()), Value::Number(-5e-5, Dim::Length()),
+                                                       Value::Number(1e-6, Dim::Length()), Value::Number(5e-5, Dim::Length())})))
+            .Add("Material", "mix", "m", Mix("slit", "contract_matte", Value::Number(0.5)));
+        EXPECT_NE(firstError(s).find("'a' is footprint-aware"), std::string::npos) << s.FirstError();
+    }
+}
+
+}  // namespace
+}  // namespace phasor::test

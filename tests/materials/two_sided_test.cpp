@@ -1,0 +1,260 @@
+// SPDX-License-Identifier: Apache-2.0
+// `two_sided` beyond the generic contract suite: a query from below is the back kernel's answer to
+// the mirrored query, mirrored back (listing, sampling, Eval, EvalLobe); the mirror's change of
+// the s/p basis on a Jones matrix with off-diagonal terms; refused transmitting children; bad input.
+//
+// Registers a test kernel, `test_rotator` (also run through the contract suite): another kernel's
+// lobes with the polarisation rotated by α after reflection — Jones R(α)·J, R(α) = [[cos α,
+// −sin α], [sin α, cos α]], which leaves every weight unchanged. Not a physical surface, only a
+// response with off-diagonal Jones terms.
+#include <gtest/gtest.h>
+
+#include <sstream>
+
+#include "material_test_util.h"
+#include "materials/fresnel.h"
+#include "support/stats.h"
+
+namespace phasor {
+
+class RotatorMaterial final : public Material {
+  public:
+    RotatorMaterial(std::shared_ptr<const Material> child, double angle) : child_(std::move(child)), angle_(angle) {}
+    static const Schema &GetSchema() {
+        static const Schema s{"material",
+                              "test_rotator",
+                              "test kernel: a near-delta kernel's lobes with the polarisation rotated by 'angle'",
+                              {P::Ref("material", "material", "the kernel whose lobes are rotated").Required(),
+                               P::Angle("angle", "rotation α").Default(Value::Number(0.3, Dim::Angle()))}};
+        return s;
+    }
+    static std::unique_ptr<Material> Create(const ParamDict &d, BuildContext &ctx) {
+        return std::make_unique<RotatorMaterial>(ctx.GetRef<Material>(d, "material"), d.GetNumber("angle"));
+    }
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(2);
+        p[0].Set("material", Value::Ref("contract_gold"));
+        p[1].Set("material", Value::Ref("contract_aluminium")).Set("angle", Value::Number(1.2, Dim::Angle()));
+        return p;
+    }
+    unsigned Capabilities(const ScatterQuery &q) const override { return child_->Capabilities(q); }
+    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override { child_->ListNearDelta(q, out); }
+    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
+        std::optional<LobeResponse> r = child_->EvalLobe(q, lobe, wo);
+        if (!r || !r->hasJones) return r;
+        Jones rot;
+        rot.m[0][0] = rot.m[1][1] = std::cos(angle_);
+        rot.m[0][1] = -std::sin(angle_);
+        rot.m[1][0] = std::sin(angle_);
+        for (int i = 0; i < q.wl->Count(); ++i) {
+            r->jones[i] = rot * r->jones[i];
+            r->mueller[i] = Mueller::FromJones(r->jones[i]);
+        }
+        return r;
+    }
+    std::string ToString() const override {
+        std::ostringstream os;
+        os << "RotatorMaterial[ material = " << child_->ToString() << ", angle = " << angle_ << " ]";
+        return os.str();
+    }
+
+  private:
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
+        return child_->Sample(q, u0, u);
+    }
+    std::shared_ptr<const Material> child_;
+    double angle_;
+};
+
+PHASOR_REGISTER_PLUGIN(Material, RotatorMaterial, "test_rotator");
+
+namespace test {
+namespace {
+
+Vec3 Mirror(const Vec3 &v) { return {v.x, v.y, -v.z}; }
+
+std::shared_ptr<Material> Get(MiniScene &s, const std::string &name) {
+    auto m = s.Build<Material>(name);
+    EXPECT_TRUE(m) << s.FirstError();
+    return m;
+}
+
+// From below, two_sided(material = M) answers what M answers for the mirrored query, mirrored
+// back; from above, what M answers. M is the toy grating (tests/materials/toy_grating_test.cpp):
+// many dispersive lobes with shifts along x, so a mirror that moved x or y would show.
+TEST(TwoSided, FromBelowIsTheKernelMirrored) {
+    MiniScene s;
+    s.Add("Material", "toy_grating", "g", ParamDict().Set("period", Value::Number(4e-6, Dim::Length())))
+        .Add("Material", "two_sided", "t", ParamDict().Set("material", Value::Ref("g")));
+    auto t = Get(s, "t"), g = Get(s, "g");
+    ASSERT_TRUE(t && g);
+    const SampledWavelengths wl = TestWavelengths(520e-9);
+    for (const Vec3 &up : {DirectionFromCosTheta(0.9, 0.3), DirectionFromCosTheta(0.35, 2.2)}) {
+        for (const bool below : {false, true}) {
+            ScatterQuery qt, qg;
+            qt.wl = qg.wl = &wl;
+            qg.wi = up;
+            qt.wi = below ? Mirror(up) : up;
+            auto map = [&](const Vec3 &w) { return below ? Mirror(w) : w; };
+            EXPECT_EQ(t->Capabilities(qt), g->Capabilities(qg));
+            NearDeltaLobes lt, lg;
+            t->ListNearDelta(qt, lt);
+            g->ListNearDelta(qg, lg);
+            ASSERT_EQ(lt.count, lg.count);
+            ASSERT_GT(lt.count, 3);
+            for (int k = 0; k < lt.count; ++k) {
+                const NearDeltaLobe &a = lt.lobe[k], &b = lg.lobe[k];
+                EXPECT_EQ(a.id, b.id);
+                EXPECT_EQ(a.flags, b.flags);
+                EXPECT_EQ(a.prob, b.prob);
+                EXPECT_EQ(a.shift.x, b.shift.x);
+                EXPECT_EQ(a.shift.y, b.shift.y);
+                for (int j = 0; j < NumWavelengths; ++j) {
+                    EXPECT_EQ(a.wo[j], map(b.wo[j])) << "lobe " << a.id << ", slot " << j;
+                    EXPECT_EQ(a.weight[j], b.weight[j]);
+                }
+                // Below, the lobe leaves on wi's (lower) side.
+                EXPECT_GT(a.wo[0].z * qt.wi.z, 0) << "lobe " << a.id << " on the wrong side";
+                auto ra = t->EvalLobe(qt, a.id, a.wo[0]);
+                auto rb = g->EvalLobe(qg, b.id, b.wo[0]);
+                ASSERT_TRUE(ra && rb);
+                EXPECT_EQ(ra->mueller[0].m[0][0], rb->mueller[0].m[0][0]);
+                EXPECT_FALSE(t->EvalLobe(qt, a.id, b.wo[0]) && below) << "answers towards the unmirrored direction";
+            }
+            for (int k = 0; k < 32; ++k) {
+                const double u0 = (k + 0.5) / 32;
+                auto st = t->Sample(qt, u0, Vec2(0.3, 0.7)), sg = g->Sample(qg, u0, Vec2(0.3, 0.7));
+                ASSERT_EQ(bool(st), bool(sg));
+                if (!st) continue;
+                EXPECT_EQ(st->wo, map(sg->wo));
+                EXPECT_EQ(st->lobe, sg->lobe);
+                EXPECT_EQ(st->pdf, sg->pdf);
+                EXPECT_EQ(st->weight[0], sg->weight[0]);
+            }
+        }
+    }
+}
+
+// front = gold, back = a diffuser: above, the gold mirror; below, the diffuser mirrored (Eval,
+// Pdf and samples on the lower side, no near-delta lobe).
+TEST(TwoSided, FrontAndBackAreDifferentKernels) {
+    MiniScene s;
+    s.WithFixtures().Add("Material", "two_sided", "t",
+                         ParamDict().Set("front", Value::Ref("contract_gold")).Set("back", Value::Ref("contract_matte")));
+    auto t = Get(s, "t"), gold = Get(s, "contract_gold"), matte = Get(s, "contract_matte");
+    ASSERT_TRUE(t && gold && matte);
+    const SampledWavelengths wl = TestWavelengths(650e-9);
+    ScatterQuery above;
+    above.wi = DirectionFromCosTheta(0.6, 1.0);
+    above.wl = &wl;
+    ScatterQuery below = above;
+    below.wi = Mirror(above.wi);
+
+    EXPECT_EQ(t->Capabilities(above), unsigned(CapNearDelta));
+    EXPECT_EQ(t->Capabilities(below), unsigned(CapContinuous));
+    NearDeltaLobes la, lgold, lb;
+    t->ListNearDelta(above, la);
+    gold->ListNearDelta(above, lgold);
+    t->ListNearDelta(below, lb);
+    ASSERT_EQ(la.count, 1);
+    EXPECT_EQ(la.lobe[0].weight[0], lgold.lobe[0].weight[0]);
+    EXPECT_EQ(lb.count, 0);
+
+    TestRng rng(3);
+    for (int i = 0; i < 200; ++i) {
+        const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
+        EXPECT_TRUE(t->Eval(above, wo).IsZero());
+        const double expected = wo.z < 0 ? 0.6 / Pi : 0.0;  // the diffuser, on the lower side only
+        EXPECT_NEAR(t->Eval(below, wo)[0], expected, 1e-15) << ToString(wo);
+        EXPECT_NEAR(t->Pdf(below, wo), wo.z < 0 ? -wo.z / Pi : 0.0, 1e-15);
+        auto smp = t->Sample(below, rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
+        ASSERT_TRUE(smp);
+        EXPECT_LT(smp->wo.z, 0);
+        EXPECT_NEAR(smp->weight[0], 0.6, 1e-15);
+    }
+}
+
+// The mirror reverses handedness: in the s/p basis p̂ = k̂ × ŝ maps to minus its mirror image, so
+// from below the back's Jones matrix J is seen as D·J·D, D = diag(1, −1). For the rotated gold
+// mirror J = R(α)·diag(r_s, r_p), so from below it is R(−α)·diag(r_s, r_p); the Mueller matrix
+// stays FromJones of the Jones matrix.
+TEST(TwoSided, MirrorChangesTheSignOfOffDiagonalJonesTerms) {
+    MiniScene s;
+    s.Add("Material", "conductor", "gold", ParamDict().Set("ior", Value::ComplexNumber(Complex(0.2, 3.0))))
+        .Add("Material", "test_rotator", "rot", ParamDict().Set("material", Value::Ref("gold")).Set("angle", Value::Number(0.4, Dim::Angle())))
+        .Add("Material", "two_sided", "t", ParamDict().Set("material", Value::Ref("rot")));
+    auto t = Get(s, "t");
+    ASSERT_TRUE(t);
+    const SampledWavelengths wl = TestWavelengths(550e-9);
+    ScatterQuery q;
+    q.wl = &wl;
+    const double c = std::cos(0.4), sn = std::sin(0.4);
+    for (const bool below : {false, true}) {
+        q.wi = DirectionFromCosTheta(below ? -0.7 : 0.7, 0.9);
+        auto r = t->EvalLobe(q, 0, ReflectLocal(q.wi));
+        ASSERT_TRUE(r && r->hasJones);
+        const FresnelCoefficients f = FresnelAmplitudes(0.7, 1.0, Complex(0.2, 3.0));
+        const double sign = below ? -1 : 1;  // rotation by ±α
+        EXPECT_LT(std::abs(r->jones[0].m[0][0] - c * f.rs), 1e-15);
+        EXPECT_LT(std::abs(r->jones[0].m[0][1] + sign * sn * f.rp), 1e-15);
+        EXPECT_LT(std::abs(r->jones[0].m[1][0] - sign * sn * f.rs), 1e-15);
+        EXPECT_LT(std::abs(r->jones[0].m[1][1] - c * f.rp), 1e-15);
+        const Mueller m = Mueller::FromJones(r->jones[0]);
+        for (int i = 0; i < 4; ++i)
+            for (int j = 0; j < 4; ++j) EXPECT_NEAR(r->mueller[0].m[i][j], m.m[i][j], 1e-15) << i << j;
+        EXPECT_NEAR(r->mueller[0].m[0][0], FresnelConductor(0.7, Complex(0.2, 3.0)), 1e-15);
+    }
+}
+
+// Children that send light through the surface are refused (Mitsuba's twosided does the same):
+// a dielectric, a mix holding one, an aperture. So are a missing or doubled face.
+TEST(TwoSided, BadInput) {
+    auto firstError = [](MiniScene &s) {
+        EXPECT_FALSE(s.Build<Material>("t"));
+        return s.FirstError();
+    };
+    {
+        MiniScene s;
+        s.WithFixtures().Add("Material", "two_sided", "t", ParamDict().Set("material", Value::Ref("contract_glass")));
+        EXPECT_NE(firstError(s).find("'material' transmits: it lists a transmitted lobe"), std::string::npos)
+            << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.WithFixtures()
+            .Add("Material", "mix", "dusty_glass",
+                 ParamDict().Set("a", Value::Ref("contract_matte")).Set("b", Value::Ref("contract_glass")).Set("weight", Value::Number(0.1)))
+            .Add("Material", "two_sided", "t",
+                 ParamDict().Set("front", Value::Ref("contract_gold")).Set("back", Value::Ref("dusty_glass")));
+        EXPECT_NE(firstError(s).find("'back' transmits: it lists a transmitted lobe (MixMaterial"), std::string::npos) << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.Add("Material", "aperture", "slit",
+              ParamDict().Set("rects", Value::List({Value::Number(-1e-6, Dim::Length()), Value::Number(-5e-5, Dim::Length()),
+                                                    Value::Number(1e-6, Dim::Length()), Value::Number(5e-5, Dim::Length())})))
+            .Add("Material", "two_sided", "t", ParamDict().Set("material", Value::Ref("slit")));
+        EXPECT_NE(firstError(s).find("'material' transmits: it is footprint-aware"), std::string::npos) << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.WithFixtures().Add("Material", "two_sided", "t", ParamDict().Set("front", Value::Ref("contract_gold")));
+        EXPECT_NE(firstError(s).find("'front' needs 'back'"), std::string::npos) << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.WithFixtures().Add("Material", "two_sided", "t",
+                             ParamDict().Set("material", Value::Ref("contract_gold")).Set("back", Value::Ref("contract_matte")));
+        EXPECT_NE(firstError(s).find("give 'material' (both faces) or 'front' and 'back', not both"), std::string::npos)
+            << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.Add("Material", "two_sided", "t", ParamDict());
+        EXPECT_NE(firstError(s).find("two_sided needs 'material'"), std::string::npos) << s.FirstError();
+    }
+}
+
+}  // namespace
+}  // namespace test
+}  // namespace phasor
