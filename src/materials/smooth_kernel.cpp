@@ -105,7 +105,10 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
     const double cosI = std::abs(q.wi.z);
     const double tangential = std::hypot(q.wi.x, q.wi.y);
     LobeResponse r;
-    r.hasJones = !q.rayOptics;
+    // A bare surface has one response, a Jones matrix in both regimes; a coated one in the
+    // ray-optics limit answers with the incoherent sum, which has none.
+    const bool coherent = !q.rayOptics || surface_.LayerCount() == 0;
+    r.hasJones = coherent;
     r.coherence.any = surface_.LayerCount() > 0;
     for (int i = 0; i < q.wl->Count(); ++i) {
         const Wave w = Sides(q, i);
@@ -128,8 +131,8 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
             j = Jones::Diagonal(c.ts * std::sqrt(ps), c.tp * std::sqrt(pp)) * Complex(1 / w.eta, 0);
             incoherent = Mueller::FromDiagonalSums(n.Ts, n.Tp, n.Tsp) * (1 / (w.eta * w.eta));
         }
-        if (q.rayOptics) {
-            r.mueller[i] = incoherent;  // the ray-optics limit is the incoherent sum: no Jones matrix
+        if (!coherent) {
+            r.mueller[i] = incoherent;  // the ray-optics limit of a coating: no Jones matrix
         } else {
             r.jones[i] = j;
             r.mueller[i] = Mueller::FromJones(j);

@@ -15,7 +15,7 @@
 //   * the ray-optics limit (rayOptics true: `ray`, spread-free GRs): the incoherent sum of the
 //     coating (multiple reflections inside each layer summed in power; design.md §4.1 "a film's
 //     incoherent sum"), a partially depolarising Mueller matrix without a Jones matrix. A bare
-//     surface has one response: both are the Fresnel equations.
+//     surface has one response in both regimes: the Fresnel equations, with their Jones matrix.
 // EvalLobe also fills LobeCoherence for a coated surface: `incoherent` (that incoherent sum)
 // and `shear`, the lateral shear of the coating's deepest reflection (2·d·tanθ_t for one film,
 // theory §4.4; LayerStackShear) along the incident wave's tangential direction of travel.
