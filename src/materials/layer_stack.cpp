@@ -36,7 +36,7 @@ namespace phasor {
 namespace {
 
 // A buffer of n elements on the stack for the common short stacks, on the heap beyond.
-template <typename T, std::size_t Small = 18>
+template <typename T, std::size_t Small = 10>
 class Scratch {
   public:
     explicit Scratch(std::size_t n) {
@@ -71,7 +71,8 @@ struct Media {
 
 // The s–p channels of a sum over waves of a_u·conj(a_v): ss, pp (real) and sp.
 struct Channels {
-    Complex ss, pp, sp;
+    double ss, pp;
+    Complex sp;
     static Channels Of(Complex s, Complex p) { return {std::norm(s), std::norm(p), s * std::conj(p)}; }
     Channels operator*(const Channels &o) const { return {ss * o.ss, pp * o.pp, sp * o.sp}; }
     Channels operator*(double a) const { return {ss * a, pp * a, sp * a}; }
@@ -80,10 +81,29 @@ struct Channels {
     Channels OneMinus() const { return {1.0 - ss, 1.0 - pp, 1.0 - sp}; }
 };
 
+// A bare interface (no layers): fresnel.h's amplitudes with the power factors — the response
+// both functions below reduce to, computed without the stack's bookkeeping (the hot path of
+// every uncoated conductor and dielectric).
+StackResponse Bare(Complex nIncident, Complex cosIncident, Complex nSubstrate) {
+    const FresnelCoefficients f = FresnelAmplitudes(nIncident, cosIncident, nSubstrate);
+    StackResponse out;
+    out.rs = f.rs;
+    out.rp = f.rp;
+    out.ts = f.ts;
+    out.tp = f.tp;
+    out.cosSubstrate = f.cosThetaT;
+    out.Rs = std::norm(f.rs);
+    out.Rp = std::norm(f.rp);
+    out.Ts = FresnelPowerFactorS(nIncident, cosIncident, nSubstrate, f.cosThetaT) * std::norm(f.ts);
+    out.Tp = FresnelPowerFactorP(nIncident, cosIncident, nSubstrate, f.cosThetaT) * std::norm(f.tp);
+    return out;
+}
+
 }  // namespace
 
 StackResponse LayerStackResponse(double lambda, Complex nIncident, Complex cosIncident,
                                  std::span<const Layer> layers, Complex nSubstrate) {
+    if (layers.empty()) return Bare(nIncident, cosIncident, nSubstrate);
     const std::size_t count = layers.size();
     const Media m(nIncident, cosIncident, layers, nSubstrate);
     Scratch<FresnelCoefficients> face(count + 1);  // face[j]: medium j → medium j+1
@@ -118,6 +138,11 @@ StackResponse LayerStackResponse(double lambda, Complex nIncident, Complex cosIn
 
 IncoherentStackResponse LayerStackIncoherent(double lambda, Complex nIncident, Complex cosIncident,
                                              std::span<const Layer> layers, Complex nSubstrate) {
+    if (layers.empty()) {
+        const StackResponse b = Bare(nIncident, cosIncident, nSubstrate);
+        const double scale = std::sqrt(std::max(0.0, b.Ts * b.Tp) / std::max(std::norm(b.ts) * std::norm(b.tp), 1e-300));
+        return {b.Rs, b.Rp, b.Ts, b.Tp, b.rs * std::conj(b.rp), b.ts * std::conj(b.tp) * scale};
+    }
     const std::size_t count = layers.size();
     const Media m(nIncident, cosIncident, layers, nSubstrate);
     // The layers summed in power (1-based indices into the media), top first.
@@ -167,11 +192,11 @@ IncoherentStackResponse LayerStackIncoherent(double lambda, Complex nIncident, C
     const std::size_t last = count + 1;
     const double ps = FresnelPowerFactorS(m.n[0], m.cosT[0], m.n[last], m.cosT[last]);
     const double pp = FresnelPowerFactorP(m.n[0], m.cosT[0], m.n[last], m.cosT[last]);
-    out.Rs = g.ss.real();
-    out.Rp = g.pp.real();
+    out.Rs = g.ss;
+    out.Rp = g.pp;
     out.Rsp = g.sp;
-    out.Ts = ps * t.ss.real();
-    out.Tp = pp * t.pp.real();
+    out.Ts = ps * t.ss;
+    out.Tp = pp * t.pp;
     out.Tsp = std::sqrt(std::max(0.0, ps * pp)) * t.sp;
     return out;
 }

@@ -22,6 +22,7 @@ SmoothKernel::Wave SmoothKernel::Sides(const ScatterQuery &q, int i) const {
     Wave w;
     const Complex sub = surface_.SubstrateIndex(q.wl->lambda[i]);
     if (!(sub.real() > 0) || !std::isfinite(sub.real()) || !std::isfinite(sub.imag())) return w;  // outside the data
+    w.substrate = sub;
     const bool inside = FromInside(q);
     w.nI = inside ? sub.real() : q.etaOutside;
     w.nT = inside ? q.etaOutside : sub.real();
@@ -35,11 +36,11 @@ SmoothKernel::Wave SmoothKernel::Evaluate(const ScatterQuery &q, int i) const {
     if (!w.ok) return w;
     const double lambda = q.wl->lambda[i], cosI = std::abs(q.wi.z);
     if (q.rayOptics) {
-        const IncoherentStackResponse r = surface_.IncoherentResponse(lambda, q.etaOutside, cosI, FromInside(q), q.tex);
+        const IncoherentStackResponse r = surface_.IncoherentResponse(lambda, q.etaOutside, cosI, FromInside(q), q.tex, w.substrate);
         w.R = r.R();
         w.T = transmits_ ? r.T() : 0;
     } else {
-        const StackResponse r = surface_.Response(lambda, q.etaOutside, cosI, FromInside(q), q.tex);
+        const StackResponse r = surface_.Response(lambda, q.etaOutside, cosI, FromInside(q), q.tex, w.substrate);
         w.R = r.R();
         w.T = transmits_ ? r.T() : 0;
     }
@@ -52,11 +53,24 @@ SmoothKernel::Wave SmoothKernel::Evaluate(const ScatterQuery &q, int i) const {
 }
 
 void SmoothKernel::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const {
-    if (q.wi.z == 0) return;
+    std::array<NearDeltaLobe, 2> lobes;
+    const int count = Lobes(q, lobes);
+    for (int k = 0; k < count; ++k) out.Add() = lobes[k];
+}
+
+std::optional<ScatterSample> SmoothKernel::SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const {
+    std::array<NearDeltaLobe, 2> lobes;
+    const int count = Lobes(q, lobes);
+    return SampleListedLobe(std::span<const NearDeltaLobe>(lobes.data(), count), u0);
+}
+
+int SmoothKernel::Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out) const {
+    if (q.wi.z == 0) return 0;
     const int count = q.wl->Count();
     std::array<Wave, NumWavelengths> w;
     for (int i = 0; i < count; ++i) w[i] = Evaluate(q, i);
-    if (!w[0].ok) return;
+    if (!w[0].ok) return 0;
+    int listed = 0;
 
     bool reflects = false, transmits = false;
     for (int i = 0; i < count; ++i) {
@@ -68,7 +82,7 @@ void SmoothKernel::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) con
     // Lobe probabilities ∝ the energy each carries at the hero.
     const double total = w[0].R + (transmits ? w[0].T : 0);
     if (reflects) {
-        NearDeltaLobe &r = out.Add();
+        NearDeltaLobe &r = out[listed++];
         r.id = 0;
         r.flags = ScatterReflection | ScatterNearDelta;
         r.wo.fill(ReflectLocal(q.wi));
@@ -79,7 +93,7 @@ void SmoothKernel::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) con
         }
     }
     if (transmits) {
-        NearDeltaLobe &t = out.Add();
+        NearDeltaLobe &t = out[listed++];
         t.id = 1;
         t.flags = ScatterTransmission | ScatterNearDelta | (dispersive_ ? ScatterDispersive : 0u);
         t.prob = total > 0 ? w[0].T / total : 0;
@@ -91,6 +105,7 @@ void SmoothKernel::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) con
             else t.wo[i] = hero;  // weight 0 at this companion (total internal reflection, no data)
         }
     }
+    return listed;
 }
 
 std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const {
@@ -114,8 +129,8 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
         const Wave w = Sides(q, i);
         if (!w.ok) continue;  // zero response
         const double lambda = q.wl->lambda[i];
-        const StackResponse c = surface_.Response(lambda, q.etaOutside, cosI, inside, q.tex);
-        const IncoherentStackResponse n = surface_.IncoherentResponse(lambda, q.etaOutside, cosI, inside, q.tex);
+        const StackResponse c = surface_.Response(lambda, q.etaOutside, cosI, inside, q.tex, w.substrate);
+        const IncoherentStackResponse n = surface_.IncoherentResponse(lambda, q.etaOutside, cosI, inside, q.tex, w.substrate);
         if (!std::isfinite(c.R() + c.T() + n.R() + n.T())) continue;  // as Evaluate: absorbed
         Jones j;
         Mueller incoherent;

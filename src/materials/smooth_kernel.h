@@ -33,6 +33,7 @@
 // rest, 1 − R − T, is absorbed by the substrate or the layers.
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -63,12 +64,17 @@ class SmoothKernel : public Material {
   protected:
     /// "Name[ substrate = …, coating = …, transmits|opaque ]" for ToString.
     std::string Describe(const std::string &name) const;
+    /// Picks lobe 0 or 1 ∝ its probability (ListNearDelta's lobes, without building a full list).
+    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override;
 
   private:
+    /// The (at most two) lobes of a query, as ListNearDelta lists them; returns their count.
+    int Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out) const;
     /// One carried wavelength of a query: the indices on wi's side and the far side, and the
     /// unpolarised R and T of the query's regime (coherent, or incoherent for rayOptics).
     struct Wave {
         bool ok = false;  // false: no valid index data here (the path is absorbed)
+        Complex substrate;  // the substrate's index at λ
         double nI = 1, nT = 1, eta = 1;
         double R = 0, T = 0;
     };

@@ -21,7 +21,7 @@ std::string Coating::ToString() const {
 template <typename F>
 auto SmoothSurface::WithLayers(double lambda, bool fromInside, const TextureEvalContext &tex, F &&f) const {
     // Short coatings (every film, most stacks) live on the stack; long ones on the heap.
-    constexpr int Small = 16;
+    constexpr int Small = 8;
     const int count = LayerCount();
     std::array<Layer, Small> small;
     std::vector<Layer> big(count > Small ? count : 0);
@@ -34,8 +34,8 @@ auto SmoothSurface::WithLayers(double lambda, bool fromInside, const TextureEval
 }
 
 StackResponse SmoothSurface::Response(double lambda, double etaOutside, double cosI, bool fromInside,
-                                      const TextureEvalContext &tex) const {
-    const Complex outside(etaOutside, 0), substrate = SubstrateIndex(lambda);
+                                      const TextureEvalContext &tex, Complex substrate) const {
+    const Complex outside(etaOutside, 0);
     return WithLayers(lambda, fromInside, tex, [&](std::span<const Layer> layers) {
         return LayerStackResponse(lambda, fromInside ? substrate : outside, Complex(cosI, 0), layers,
                                   fromInside ? outside : substrate);
@@ -43,8 +43,9 @@ StackResponse SmoothSurface::Response(double lambda, double etaOutside, double c
 }
 
 IncoherentStackResponse SmoothSurface::IncoherentResponse(double lambda, double etaOutside, double cosI,
-                                                          bool fromInside, const TextureEvalContext &tex) const {
-    const Complex outside(etaOutside, 0), substrate = SubstrateIndex(lambda);
+                                                          bool fromInside, const TextureEvalContext &tex,
+                                                          Complex substrate) const {
+    const Complex outside(etaOutside, 0);
     return WithLayers(lambda, fromInside, tex, [&](std::span<const Layer> layers) {
         return LayerStackIncoherent(lambda, fromInside ? substrate : outside, Complex(cosI, 0), layers,
                                     fromInside ? outside : substrate);
