@@ -6,29 +6,44 @@
 // (k_correlation_psd.h; parameters T [m²] and γ > 1, or a GGX-like roughness α_r with
 // T = (1 − α_r²)/(4 k̄² α_r²), k̄ = 2π/0.55 µm, theory §4.3) reflects light of wavenumber k
 // (in the medium it arrives from) into two lobes:
-//   * a specular near-delta lobe (id 0, listed): the coherent part α_spec·F(θ_i), with the
-//     Debye–Waller factor α_spec = exp(−(kσ_h(cosθ_i + cosθ_o))²) = exp(−(2kσ_h cosθ_i)²) at the
-//     mirror direction; Jones √α_spec·diag(r_s, r_p);
-//   * a continuous scattered lobe (id 1): theory §4.3's energy-normalised form
-//         f(wi → wo) = (1 − α_spec)·F(θ_i)·k²p_PSD(ζ)/V(θ_i, k²T),   ζ = k(wo∥ + wi∥)
-//     (wi, wo pointing away from the surface; the mirror direction has ζ = 0), where V is the PSD
-//     mass inside the visible disc (V = 0.96 / 0.88 / 0.49 at θ_i = 0 / 45 / 80° for α_r = 0.1):
+//   * a specular near-delta lobe (id 0, listed): the coherent part α_spec·F(θ), with the
+//     Debye–Waller factor α_spec = exp(−(kσ_h(cosθ_i + cosθ_o))²) = exp(−(2kσ_h cosθ)²) at the
+//     mirror direction (θ_i = θ_o = θ: the lobe is symmetric); Jones √α_spec·diag(r_s, r_p);
+//   * a continuous scattered lobe (id 1): theory §4.3's energy-normalised form, normalised for the
+//     light's incident direction,
+//         f(wi → wo) = (1 − α_spec(θ_o))·F(θ_o)·k²p_PSD(ζ)/V(θ_o, k²T),   ζ = k(wo∥ + wi∥)
+//     (wi, wo pointing away from the surface; the mirror direction has ζ = 0). wo is where the
+//     light comes from in a backward tracer (the sun, a lamp), wi where it goes (the camera), so
+//     θ_o is the light's angle of incidence: F, α_spec and V are those of the light. V is the PSD
+//     mass inside the visible disc (V = 0.96 / 0.88 / 0.49 at θ = 0 / 45 / 80° for α_r = 0.1):
 //     without 1/V the evanescent part of the PSD would be lost. V is tabulated per γ over
-//     (cosθ_i, ln k²T) (k_correlation_psd.h, error ≤ 2e-4, ≤ 2e-5 away from grazing).
-// So the kernel reflects exactly ∫(specular + scatter) = α_spec·F + (1 − α_spec)·F = F(θ_i) (D7):
-// the white furnace of a lossless substrate is exact. F is the substrate's unpolarised (coated)
-// reflectance R = (R_s + R_p)/2 at θ_i (materials/smooth_surface.h), so this holds per
-// wavelength; using F at the half vector instead (as Holzschuch–Pacanowski do) would break the
-// exact sum. The *polarisation* of the scattered lobe is that of the local facet: EvalLobe returns
-// Jones √(f|cosθo|/R(θ_h))·diag(r_s(θ_h), r_p(θ_h)) in the s/p frame of the plane through wi and wo
-// (θ_h = the angle between wi and the half vector), so M00 = f·|cosθo| exactly.
+//     (cosθ, ln k²T) (k_correlation_psd.h, error ≤ 2e-4, ≤ 2e-5 away from grazing).
+// Energy (D7), per incident direction. Light arriving from d leaves into the specular lobe
+// (α_spec(θ_d)·F(θ_d)) and into every wi with f(wi → d)·cosθ_i, whose integral over wi is
+// (1 − α_spec(θ_d))·F(θ_d)/V(θ_d)·∫ k²p_PSD d²(wi∥) = (1 − α_spec(θ_d))·F(θ_d): the surface
+// reflects exactly F(θ_d) of the light from any direction d — a sun, a laser, each direction of
+// an area light — and loses nothing else. The kernel is therefore not reciprocal (f depends on
+// θ_o alone besides ζ) and declares ConservesEnergyPerIncidentDirection(), as `grating` does: the
+// lobes of one *query* (what a camera at wi gathers from every direction) need not sum to
+// F(θ_i); a white furnace reads F only where F, α_spec and V vary little over the halo
+// (docs/kernels.md quantifies it). F is the substrate's unpolarised (coated) reflectance
+// R = (R_s + R_p)/2 (materials/smooth_surface.h), so this holds per wavelength; F at the half
+// vector (as Holzschuch–Pacanowski use it) would break the exact sum. The *polarisation* of the
+// scattered lobe is that of the local facet: EvalLobe returns Jones √(f|cosθo|/R(θ_h))·
+// diag(r_s(θ_h), r_p(θ_h)) in the s/p frame of the plane through wi and wo (θ_h = the angle between
+// wi and the half vector), so M00 = f·|cosθo| exactly.
 //
-// Sampling (theory §3.1, §4.3): the specular lobe with probability α_spec (hero wavelength; kept
-// within [0.01, 0.99] while both lobes carry something, so that neither is left to chance), else
-// Holzschuch–Pacanowski: the radius |ζ|/k by the inverse radial CDF restricted to the visible
-// bound 1 + sinθ_i (mass M), the azimuth uniform over the arc inside the visible disc (half-angle
-// φ_max), giving the solid-angle pdf (π/φ_max)·k²p_PSD(ζ)·cosθ_o/M, times the lobe's probability;
-// every sample propagates (the pdf integrates to that probability exactly).
+// Sampling (theory §3.1, §4.3), from the query's wi: the specular lobe with probability α_spec(θ_i)
+// (hero wavelength; kept within [0.01, 0.99] while both lobes carry something, so that neither is
+// left to chance), else Holzschuch–Pacanowski: the radius |ζ|/k by the inverse radial CDF
+// restricted to the visible bound 1 + sinθ_i (mass M), the azimuth uniform over the arc inside the
+// visible disc (half-angle φ_max), giving the solid-angle pdf (π/φ_max)·k²p_PSD(ζ)·cosθ_o/M, times
+// the lobe's probability; every sample propagates (the pdf integrates to that probability
+// exactly). The weight f·cosθ_o/pdf = (1 − α_spec(θ_o))·F(θ_o)·M(θ_i)·(φ_max/π)/(V(θ_o)·(1 − p_spec))
+// is finite and bounded (by F·M/(0.01·V), V > 0 for k²T > 0) but not by 1: the halo a camera at wi
+// sees is lit from directions θ_o whose 1 − α_spec(θ_o) may far exceed 1 − α_spec(θ_i), which sets
+// its sampling probability — most at a grazing wi on a very rough surface (the presets' largest
+// hero weight is 141, σ_h = 400 nm at cosθ_i = 5e-6; 5.6 for σ_h = 20 nm; docs/kernels.md).
 //
 // Frames and sides. Reflection only: transmission through a rough dielectric is out of scope
 // (the transmitted share 1 − F is lost). A path arriving from below the shading normal (wi.z < 0)
@@ -36,13 +51,11 @@
 // interface from inside — the substrate's inside response (total internal reflection included)
 // in a medium of index Re(n_substrate), whose wavenumber then sets k; for an absorbing substrate
 // (a `conductor`) the kernel is two-sided like `conductor`, mirrored onto wi's side.
-// The ray-optics limit is the same kernel (a rough surface stays rough; the specular lobe is then
-// a true delta).
-//
-// Non-reciprocal: the 1/V(θ_i) and F(θ_i) factors make f(wi → wo) ≠ f(wo → wi); that is the price
-// of the exact sum over wo (the integral a backward tracer samples). The flux a collimated source
-// at θ_s sends into all directions, ∫ f(wo ← ω_s) dω, is then F(θ_s) only where V, F and α_spec
-// vary little over the scattered lobe (docs/kernels.md quantifies it).
+// The ray-optics limit (ScatterQuery::rayOptics) is the same rough surface (the specular lobe is
+// then a true delta), whose F is the substrate's ray-optics response: for a coated substrate the
+// incoherent sum of the coating (SmoothSurface::IncoherentResponse, as `conductor` and
+// `dielectric` answer there), with Mueller matrices and no Jones matrix; a bare substrate answers
+// the same in both regimes.
 //
 // Validity: Harvey–Shack's smooth-surface regime, σ_h ≪ λ for the scattered lobe's shape (the
 // specular fraction is right for any σ_h with Gaussian heights); no shadowing or multiple
@@ -82,7 +95,8 @@ class HarveyShackMaterial final : public Material {
             "material",
             "harvey_shack",
             "randomly rough surface (Harvey–Shack, K-correlation PSD): a specular lobe exp(−(2kσ_h cosθ)²)·F "
-            "and a scattered halo (1 − that)·F over a conductor or dielectric substrate; reflects exactly F",
+            "and a scattered halo (1 − that)·F over a conductor or dielectric substrate; reflects exactly F of the "
+            "light from any direction",
             {
                 P::Length("sigma_h", "rms height σ_h of the surface (≥ 0; 0 is the smooth substrate)")
                     .Required()
@@ -169,13 +183,12 @@ class HarveyShackMaterial final : public Material {
         return CapNearDelta | (sigma_ > 0 ? CapContinuous : 0u);
     }
 
-    /// Lobe 0: the specular direction on wi's side, weight α_spec(λ)·F(λ), probability α_spec at
-    /// the hero (the same as Sample's).
+    /// Lobe 0: the specular direction on wi's side, weight α_spec(λ)·F(λ) at θ_i (= θ_o), probability
+    /// α_spec at the hero (the same as Sample's).
     void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
         Local l;
         if (!Prepare(q, &l)) return;
-        SampledSpectrum a;
-        for (int i = 0; i < l.count; ++i) a[i] = l.alpha[i] * l.F[i];
+        const SampledSpectrum a = SpecularWeight(q, l);
         if (a.IsZero()) return;
         NearDeltaLobe &d = out.Add();
         d.id = SpecularLobe;
@@ -186,47 +199,52 @@ class HarveyShackMaterial final : public Material {
         d.prob = l.pSpec;
     }
 
-    /// Lobe 0 (mirror direction): Jones √α_spec·diag(r_s, r_p) at θ_i. Lobe 1 (any wo on wi's side):
-    /// Jones √(f|cosθo|/R(θ_h))·diag(r_s, r_p)(θ_h) in the s/p frame of the plane through wi and wo,
-    /// or a depolariser of value f|cosθo| where R(θ_h) = 0.
+    /// Lobe 0 (mirror direction): √α_spec times the substrate's response at θ_i. Lobe 1 (any wo on
+    /// wi's side): the substrate's response at the facet angle θ_h, scaled so that M00 = f·|cosθo|
+    /// (a depolariser of that value where R(θ_h) = 0), in the s/p frame of the plane through wi and
+    /// wo. Jones matrices diag(r_s, r_p); in the ray-optics limit a coated substrate answers with its
+    /// incoherent Mueller matrix and no Jones matrix (SubstrateResponse).
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
         Local l;
         if (!Prepare(q, &l)) return std::nullopt;
         LobeResponse r;
+        r.hasJones = Coherent(q);
         if (lobe == SpecularLobe) {
             if (!SameDirection(wo, ReflectLocal(q.wi))) return std::nullopt;
-            r.hasJones = true;
             for (int i = 0; i < l.count; ++i) {
-                const StackResponse s = Response(q, l, i, l.cosI);
-                r.jones[i] = Jones::Diagonal(s.rs, s.rp) * Complex(std::sqrt(l.alpha[i]), 0);
-                r.mueller[i] = Mueller::FromJones(r.jones[i]);
+                const Facet s = SubstrateResponse(q, l, i, l.cosI);
+                const double a = Alpha(l, i, l.cosI);
+                r.jones[i] = s.jones * Complex(std::sqrt(a), 0);
+                r.mueller[i] = s.mueller * a;
             }
             return r;
         }
         if (lobe != ScatterLobe || !(sigma_ > 0)) return std::nullopt;
         const Vec3 o = l.ToUpper(wo);
         if (!(o.z > 0)) return std::nullopt;
-        const SampledSpectrum f = Scatter(l, o);
+        const SampledSpectrum f = Scatter(q, l, o);
         const Vec3 h = Normalize(l.wi + o);
         const double cosH = Clamp(Dot(l.wi, h), 0.0, 1.0);
-        r.hasJones = true;
         for (int i = 0; i < l.count; ++i) {
             const double value = f[i] * o.z;
-            const StackResponse s = Response(q, l, i, cosH);
-            if (s.R() > 0) {
-                r.jones[i] = Jones::Diagonal(s.rs, s.rp) * Complex(std::sqrt(value / s.R()), 0);
-                r.mueller[i] = Mueller::FromJones(r.jones[i]);
+            const Facet s = SubstrateResponse(q, l, i, cosH);
+            if (s.R > 0) {
+                r.jones[i] = s.jones * Complex(std::sqrt(value / s.R), 0);
+                r.mueller[i] = s.mueller * (value / s.R);
             } else {
                 r.hasJones = false;
                 r.mueller[i] = Mueller::Depolarizer(value);
             }
         }
         if (!r.hasJones)
-            for (int i = 0; i < l.count; ++i) r.mueller[i] = Mueller::Depolarizer(f[i] * o.z);
+            for (int i = 0; i < l.count; ++i) r.jones[i] = Jones();
         return r;
     }
 
-    bool IsReciprocal() const override { return false; }  // 1/V(θ_i), F(θ_i): see the file comment
+    /// f(wi → wo) depends on wo's angle (the light's) besides ζ: see the file comment.
+    bool IsReciprocal() const override { return false; }
+    /// The light from one direction is reflected with exactly F (specular + halo).
+    bool ConservesEnergyPerIncidentDirection() const override { return true; }
 
     std::string ToString() const override {
         std::ostringstream os;
@@ -236,52 +254,96 @@ class HarveyShackMaterial final : public Material {
         return os.str();
     }
 
-    /// The PSD mass inside the visible disc, V(θ_i, k²T), as the kernel uses it (the table).
+    /// The PSD mass inside the visible disc, V(θ, k²T), as the kernel uses it (the table).
     double VisibleMass(double cosTheta, double t) const { return table_->Eval(cosTheta, t); }
 
   private:
     static constexpr int SpecularLobe = 0, ScatterLobe = 1;
 
-    /// The query as the kernel sees it: wi mirrored onto the upper side, per carried wavelength
-    /// the medium's index n and k²T, α_spec, F(θ_i) and V.
+    /// The query as the kernel sees it: wi mirrored onto the upper side and, per carried wavelength,
+    /// the medium's index n and t = k²T (k = 2πn/λ, the wavenumber of the light on wi's side, which
+    /// is also the light's: reflection only).
     struct Local {
         Vec3 wi;             // wi with z > 0
         bool flip = false;   // wi.z < 0 in the shading frame
         bool inside = false; // seen from inside a transparent substrate
         double cosI = 0, s = 0;
         int count = 0;
-        std::array<double, NumWavelengths> n{}, t{}, alpha{}, F{}, V{};
-        double pSpec = 1;    // probability of the specular lobe (SpecularProbability)
+        std::array<double, NumWavelengths> n{}, k{}, t{};
+        double pSpec = 1;    // probability of the specular lobe (SpecularProbability of α_spec(θ_i))
         Vec3 ToUpper(const Vec3 &w) const { return flip ? Vec3(w.x, w.y, -w.z) : w; }
         Vec3 FromUpper(const Vec3 &w) const { return ToUpper(w); }
     };
 
-    StackResponse Response(const ScatterQuery &q, const Local &l, int i, double cosTheta) const {
-        return surface_->Response(q.wl->lambda[i], q.etaOutside, std::max(cosTheta, 1e-300), l.inside, q.tex);
-    }
-
-    /// False if wi is grazing (cosθ_i = 0: nothing arrives). With pdfOnly, only what ScatterPdf
-    /// reads (the hero's k²T and the lobe probability), not F and V (Pdf is called ~10× as often).
-    bool Prepare(const ScatterQuery &q, Local *l, bool pdfOnly = false) const {
+    /// False if wi is grazing (cosθ_i = 0: nothing arrives). With heroOnly, only the hero's n and t
+    /// (what ScatterPdf reads; Pdf is called ~10× as often as the rest).
+    bool Prepare(const ScatterQuery &q, Local *l, bool heroOnly = false) const {
         if (!(q.wi.z != 0)) return false;
         l->flip = q.wi.z < 0;
         l->inside = l->flip && transparent_;
         l->wi = l->ToUpper(q.wi);
         l->cosI = std::min(1.0, l->wi.z);
         l->s = std::min(1.0, std::hypot(l->wi.x, l->wi.y));
-        l->count = pdfOnly ? 1 : q.wl->Count();
+        l->count = heroOnly ? 1 : q.wl->Count();
         for (int i = 0; i < l->count; ++i) {
             const double lambda = q.wl->lambda[i];
             l->n[i] = l->inside ? surface_->SubstrateIndex(lambda).real() : q.etaOutside;
-            const double k = 2 * Pi * l->n[i] / lambda;
-            l->t[i] = k * k * corrT_;
-            l->alpha[i] = std::exp(-Sqr(2 * k * sigma_ * l->cosI));  // theory §4.3 Debye–Waller
-            if (pdfOnly) continue;
-            l->F[i] = Response(q, *l, i, l->cosI).R();
-            l->V[i] = sigma_ > 0 ? std::max(table_->Eval(l->cosI, l->t[i]), 1e-300) : 1;
+            l->k[i] = 2 * Pi * l->n[i] / lambda;
+            l->t[i] = l->k[i] * l->k[i] * corrT_;
         }
-        l->pSpec = SpecularProbability(l->alpha[0]);
+        l->pSpec = SpecularProbability(Alpha(*l, 0, l->cosI));
         return true;
+    }
+
+    /// α_spec = exp(−(2kσ_h cosθ)²) at wavelength slot i for light at cosθ (theory §4.3, Debye–Waller
+    /// at the mirror direction); 1 − α_spec is OneMinusAlpha (no cancellation for small kσ_h).
+    double Alpha(const Local &l, int i, double cosTheta) const {
+        return std::exp(-Sqr(2 * l.k[i] * sigma_ * cosTheta));
+    }
+    double OneMinusAlpha(const Local &l, int i, double cosTheta) const {
+        return -std::expm1(-Sqr(2 * l.k[i] * sigma_ * cosTheta));
+    }
+
+    /// The regime's answer is coherent (a Jones matrix): always for a bare substrate, and for a
+    /// coated one except in the ray-optics limit (the incoherent sum of its layers).
+    bool Coherent(const ScatterQuery &q) const { return !q.rayOptics || surface_->LayerCount() == 0; }
+
+    /// The substrate's unpolarised reflectance F for light at cosθ on wi's side, wavelength slot i,
+    /// in the query's regime (coherent, or incoherent for a coated substrate in the ray-optics limit).
+    double Reflectance(const ScatterQuery &q, const Local &l, int i, double cosTheta) const {
+        const double c = std::max(cosTheta, 1e-300), lambda = q.wl->lambda[i];
+        return Coherent(q) ? surface_->Response(lambda, q.etaOutside, c, l.inside, q.tex).R()
+                           : surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, q.tex).R();
+    }
+
+    /// The substrate's reflection at cosθ as a lobe response: R, its Mueller matrix, and (coherent
+    /// regime) the Jones matrix diag(r_s, r_p) it comes from.
+    struct Facet {
+        double R = 0;
+        Jones jones;
+        Mueller mueller;
+    };
+    Facet SubstrateResponse(const ScatterQuery &q, const Local &l, int i, double cosTheta) const {
+        const double c = std::max(cosTheta, 1e-300), lambda = q.wl->lambda[i];
+        Facet f;
+        if (Coherent(q)) {
+            const StackResponse s = surface_->Response(lambda, q.etaOutside, c, l.inside, q.tex);
+            f.R = s.R();
+            f.jones = Jones::Diagonal(s.rs, s.rp);
+            f.mueller = Mueller::FromJones(f.jones);
+        } else {
+            const IncoherentStackResponse s = surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, q.tex);
+            f.R = s.R();
+            f.mueller = Mueller::FromDiagonalSums(s.Rs, s.Rp, s.Rsp);
+        }
+        return f;
+    }
+
+    /// The specular lobe's weight α_spec(θ_i)·F(θ_i) per carried wavelength.
+    SampledSpectrum SpecularWeight(const ScatterQuery &q, const Local &l) const {
+        SampledSpectrum a(0.0);
+        for (int i = 0; i < l.count; ++i) a[i] = Alpha(l, i, l.cosI) * Reflectance(q, l, i, l.cosI);
+        return a;
     }
 
     /// Least probability of a lobe that carries anything (0 < α_spec < 1 at the hero).
@@ -296,13 +358,16 @@ class HarveyShackMaterial final : public Material {
         return Clamp(alpha, MinLobeProbability, 1 - MinLobeProbability);
     }
 
-    /// f of the scattered lobe towards o (upper side) per wavelength [1/sr]: D7's
-    /// (1 − α_spec)·F·k²p_PSD(ζ)/V with k²p_PSD(ζ) = p(ξ), ξ = wo∥ + wi∥ (k_correlation_psd.h).
-    SampledSpectrum Scatter(const Local &l, const Vec3 &o) const {
+    /// f of the scattered lobe towards o (upper side: the light's direction) per wavelength [1/sr]:
+    /// (1 − α_spec(θ_o))·F(θ_o)·k²p_PSD(ζ)/V(θ_o, k²T) with k²p_PSD(ζ) = p(ξ), ξ = wo∥ + wi∥
+    /// (k_correlation_psd.h).
+    SampledSpectrum Scatter(const ScatterQuery &q, const Local &l, const Vec3 &o) const {
         SampledSpectrum f(0.0);
         const double r2 = Sqr(o.x + l.wi.x) + Sqr(o.y + l.wi.y);
-        for (int i = 0; i < l.count; ++i)
-            f[i] = (1 - l.alpha[i]) * l.F[i] * table_->Psd().Density(l.t[i], r2) / l.V[i];
+        for (int i = 0; i < l.count; ++i) {
+            const double v = std::max(table_->Eval(o.z, l.t[i]), 1e-300);
+            f[i] = OneMinusAlpha(l, i, o.z) * Reflectance(q, l, i, o.z) * table_->Psd().Density(l.t[i], r2) / v;
+        }
         return f;
     }
 
@@ -327,7 +392,7 @@ class HarveyShackMaterial final : public Material {
         if (u0 < l.pSpec) {
             // The specular lobe, chosen with probability p_spec ≈ α_spec(λ_hero): weight α_spec(λ)F(λ)/p_spec.
             s.wo = ReflectLocal(q.wi);
-            for (int i = 0; i < l.count; ++i) s.weight[i] = l.alpha[i] * l.F[i] / l.pSpec;
+            s.weight = SpecularWeight(q, l) / l.pSpec;
             s.pdf = l.pSpec;
             s.lobe = SpecularLobe;
             s.flags = ScatterReflection | ScatterNearDelta;
@@ -348,10 +413,9 @@ class HarveyShackMaterial final : public Material {
         const Vec3 o(ox, oy, std::sqrt(z2));
         const double pdf = ScatterPdf(l, o);
         if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
-        const SampledSpectrum f = Scatter(l, o);
         s.wo = l.FromUpper(o);
         s.pdf = pdf;
-        s.weight = f * (o.z / pdf);
+        s.weight = Scatter(q, l, o) * (o.z / pdf);
         s.lobe = ScatterLobe;
         s.flags = ScatterReflection | ScatterDiffuse;
         return s;
@@ -362,7 +426,7 @@ class HarveyShackMaterial final : public Material {
         if (!(sigma_ > 0) || !Prepare(q, &l)) return SampledSpectrum(0.0);
         const Vec3 o = l.ToUpper(wo);
         if (!(o.z > 0)) return SampledSpectrum(0.0);
-        return Scatter(l, o);
+        return Scatter(q, l, o);
     }
 
     double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
