@@ -18,7 +18,13 @@
 // Mueller matrix is share × the child's). Capabilities are the union over the children with a
 // non-zero share at the query. Footprint-aware children (`aperture`) are refused: their lobes
 // depend on the incident generalized ray in a way a scalar blend does not represent.
-// Valid wherever both children are; reciprocal if both are.
+// Valid wherever both children are. Energy (CombinedEnergySense, core/render/material.h): f and
+// every listed lobe are (1 − w)·(child a's) + w·(child b's) with w fixed at the hit, so the mix is
+// reciprocal if both children are, and conserves energy per incident direction (the light from a
+// direction d leaves with (1 − w)·E_a(d) + w·E_b(d) ≤ 1) if each child is reciprocal or conserves
+// it per incident direction — a grating and a conductor, a grating and a rough surface — and per
+// query likewise. A child that conserves energy only per query beside one that conserves it only
+// per incident direction is refused: their mix bounds neither.
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -36,8 +42,12 @@ constexpr double OneMinusEpsilon = 0x1.fffffffffffffp-1;  // the largest double 
 
 class MixMaterial final : public Material {
   public:
+    /// The children must have a combined energy sense (CombinedEnergySense; Create checks it).
     MixMaterial(std::shared_ptr<const Material> a, std::shared_ptr<const Material> b, FloatTexture weight)
-        : a_(std::move(a)), b_(std::move(b)), weight_(std::move(weight)) {}
+        : a_(std::move(a)), b_(std::move(b)), weight_(std::move(weight)) {
+        const Material *children[] = {a_.get(), b_.get()};
+        sense_ = CombinedEnergySense(children).value_or(EnergySense::PerQuery);
+    }
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -72,15 +82,21 @@ class MixMaterial final : public Material {
             return m;
         };
         std::shared_ptr<const Material> a = child("a"), b = child("b");
+        const Material *children[] = {a.get(), b.get()};
+        if (!CombinedEnergySense(children))
+            throw Error(d.Loc("b"), std::string("'a' ") + Describe(EnergySenseOf(*a)) + " (" + a->ToString() + ") but 'b' " +
+                                        Describe(EnergySenseOf(*b)) + " (" + b->ToString() +
+                                        "): their mix would bound neither what one direction gathers nor what the "
+                                        "light from one direction leaves with");
         FloatTexture w = ctx.GetFloatTexture(d, d.Has("weight_texture") ? "weight_texture" : "weight");
         return std::make_unique<MixMaterial>(std::move(a), std::move(b), std::move(w));
     }
 
-    /// Presets for the contract suite (fixtures of tests/materials/material_test_util.h). Two keep
+    /// Presets for the contract suite (fixtures of tests/materials/material_test_util.h). Three keep
     /// its run time down; the end points w = 0 and 1 and a mix of two continuous kernels are tested
     /// against the children themselves (tests/materials/mix_test.cpp).
     static std::vector<ParamDict> TestPresets() {
-        std::vector<ParamDict> p(2);
+        std::vector<ParamDict> p(3);
         // Two metals under a textured weight (a ramp over u from 0.1 to 0.9): two lobes in the same
         // direction.
         p[0].Set("a", Value::Ref("contract_gold"))
@@ -89,6 +105,11 @@ class MixMaterial final : public Material {
         // Glass (reflection and refraction) and a diffuser: near-delta and continuous lobes, with a
         // texture given as 'weight'.
         p[1].Set("a", Value::Ref("contract_glass")).Set("b", Value::Ref("contract_matte")).Set("weight", Value::Ref("contract_half"));
+        // A grating and a rough surface, both conserving energy per incident direction (the suite's
+        // EnergyPerIncidentDirection: listed orders, a glint and a halo), under a textured weight.
+        p[2].Set("a", Value::Ref("contract_grating"))
+            .Set("b", Value::Ref("contract_rough"))
+            .Set("weight_texture", Value::Ref("contract_ramp"));
         return p;
     }
 
@@ -135,7 +156,8 @@ class MixMaterial final : public Material {
         return r;
     }
 
-    bool IsReciprocal() const override { return a_->IsReciprocal() && b_->IsReciprocal(); }
+    bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
+    bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
 
     void CheckShape(const Shape &shape) const override {
         a_->CheckShape(shape);
@@ -203,6 +225,7 @@ class MixMaterial final : public Material {
 
     std::shared_ptr<const Material> a_, b_;
     FloatTexture weight_;  // w: b's share, dimensionless, in [0, 1]
+    EnergySense sense_ = EnergySense::Reciprocal;  // CombinedEnergySense of a and b
 };
 
 PHASOR_EXPORT_PLUGIN(Material, MixMaterial)

@@ -19,7 +19,12 @@
 // front and back would not describe one consistent sheet. Create probes each child over incident
 // directions on both sides, wavelengths 400–700 nm and a few uvs (listed lobes, samples across
 // the lobe choice, Eval across the surface) and refuses one that sends light through; footprint-
-// aware kernels (`aperture`) transmit and are refused as well. Reciprocal if its children are.
+// aware kernels (`aperture`) transmit and are refused as well. Energy (CombinedEnergySense, core/
+// render/material.h): light from a direction d and every query that gathers it lie on one side, so
+// each face keeps its child's sense: reciprocal if both children are, per incident direction if each
+// is reciprocal or per incident direction (a grating on one face, a rough surface on the other), per
+// query likewise; children that conserve energy only per query and only per incident direction
+// are refused (one declaration cannot describe both faces).
 #include <array>
 #include <cmath>
 #include <memory>
@@ -96,8 +101,12 @@ std::string FindTransmission(const Material &m) {
 
 class TwoSidedMaterial final : public Material {
   public:
+    /// The children must have a combined energy sense (CombinedEnergySense; Create checks it).
     TwoSidedMaterial(std::shared_ptr<const Material> front, std::shared_ptr<const Material> back)
-        : front_(std::move(front)), back_(std::move(back)) {}
+        : front_(std::move(front)), back_(std::move(back)) {
+        const Material *children[] = {front_.get(), back_.get()};
+        sense_ = CombinedEnergySense(children).value_or(EnergySense::PerQuery);
+    }
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -134,15 +143,25 @@ class TwoSidedMaterial final : public Material {
             std::shared_ptr<const Material> m = child("material");
             return std::make_unique<TwoSidedMaterial>(m, m);
         }
-        return std::make_unique<TwoSidedMaterial>(child("front"), child("back"));
+        std::shared_ptr<const Material> f = child("front"), b = child("back");
+        const Material *children[] = {f.get(), b.get()};
+        if (!CombinedEnergySense(children))
+            throw Error(d.Loc("back"), std::string("'front' ") + Describe(EnergySenseOf(*f)) + " (" + f->ToString() +
+                                           ") but 'back' " + Describe(EnergySenseOf(*b)) + " (" + b->ToString() +
+                                           "): one kernel cannot declare both (Material::"
+                                           "ConservesEnergyPerIncidentDirection)");
+        return std::make_unique<TwoSidedMaterial>(f, b);
     }
 
     /// Presets for the contract suite (fixtures of tests/materials/material_test_util.h).
     static std::vector<ParamDict> TestPresets() {
-        std::vector<ParamDict> p(2);
+        std::vector<ParamDict> p(3);
         p[0].Set("material", Value::Ref("contract_gold"));
         // A different kernel per face: a glint from above, a diffuser from below.
         p[1].Set("front", Value::Ref("contract_gold")).Set("back", Value::Ref("contract_matte"));
+        // Kernels that conserve energy per incident direction on both faces: a rough surface above,
+        // a grating (mirrored) below.
+        p[2].Set("front", Value::Ref("contract_rough")).Set("back", Value::Ref("contract_grating"));
         return p;
     }
 
@@ -175,7 +194,8 @@ class TwoSidedMaterial final : public Material {
         return r;
     }
 
-    bool IsReciprocal() const override { return front_->IsReciprocal() && back_->IsReciprocal(); }
+    bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
+    bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
 
     void CheckShape(const Shape &shape) const override {
         front_->CheckShape(shape);
@@ -220,6 +240,7 @@ class TwoSidedMaterial final : public Material {
     }
 
     std::shared_ptr<const Material> front_, back_;  // the same object for `material`
+    EnergySense sense_ = EnergySense::Reciprocal;  // CombinedEnergySense of front and back
 };
 
 PHASOR_EXPORT_PLUGIN(Material, TwoSidedMaterial)

@@ -20,6 +20,7 @@
 #include "core/numerics/gauss_legendre.h"
 #include "materials/fresnel.h"
 #include "materials/k_correlation_psd.h"
+#include "energy_test_util.h"
 #include "material_test_util.h"
 #include "support/stats.h"
 
@@ -61,85 +62,6 @@ double BruteVisibleMass(double gamma, double t, double s) {
         }
     }
     return v;
-}
-
-// ∫ g(w) d²u over the unit disc of a direction's tangential part u = (w.x, w.y), w on the side
-// `sign` (±1) of the surface (d²u = |cosθ_w| dω_w), for a g that peaks at u = centre: Gauss–Legendre
-// in polar coordinates about `centre`, the radius on panels doubling from `core` (resolving a peaked
-// halo) with a cos-map at each panel (so the square-root ends of the visible arc at ρ = 1 ∓ |centre|
-// cost nothing), the azimuth over the part of each ring inside the unit disc (found by bisection on
-// the ring, not by the kernel's formula).
-template <typename G>
-SampledSpectrum IntegrateDisc(const Vec2 &centre, double sign, double core, G &&g) {
-    const double s = std::hypot(centre.x, centre.y);
-    const double phiI = s > 0 ? std::atan2(-centre.y, -centre.x) : 0;  // towards the disc's centre
-    std::vector<double> edges = {0};
-    for (double r = core; r < 1 + s; r *= 2) edges.push_back(r);
-    if (s < 1 && s > 0) edges.push_back(1 - s);
-    edges.push_back(1 + s);
-    std::sort(edges.begin(), edges.end());
-    const GaussLegendreRule &gr = GaussLegendre(16), &gp = GaussLegendre(32);
-    SampledSpectrum total(0.0);
-    for (std::size_t e = 0; e + 1 < edges.size(); ++e) {
-        const double a = edges[e], b = edges[e + 1];
-        if (b <= a) continue;
-        for (int i = 0; i < gr.n; ++i) {
-            const double tau = 0.5 * Pi * (1 + gr.x[i]), dtau = 0.5 * Pi * gr.w[i];
-            const double rho = a + 0.5 * (b - a) * (1 - std::cos(tau)), drho = 0.5 * (b - a) * std::sin(tau) * dtau;
-            // The half-arc inside the disc about the direction to its centre: |centre + ρ e^{iφ}| < 1.
-            auto visible = [&](double dphi) {
-                const double phi = phiI + dphi;
-                return Sqr(centre.x + rho * std::cos(phi)) + Sqr(centre.y + rho * std::sin(phi)) < 1;
-            };
-            double h;
-            if (visible(Pi)) h = Pi;
-            else if (!visible(0)) continue;
-            else {
-                double lo = 0, hi = Pi;
-                for (int it = 0; it < 60; ++it) (visible(0.5 * (lo + hi)) ? lo : hi) = 0.5 * (lo + hi);
-                h = 0.5 * (lo + hi);
-            }
-            SampledSpectrum ring(0.0);
-            for (int j = 0; j < gp.n; ++j) {
-                const double phi = phiI + h * gp.x[j];
-                const double ux = centre.x + rho * std::cos(phi), uy = centre.y + rho * std::sin(phi);
-                ring += g(Vec3(ux, uy, sign * SafeSqrt(1 - ux * ux - uy * uy))) * (h * gp.w[j]);
-            }
-            total += ring * (rho * drho);
-        }
-    }
-    return total;
-}
-
-// What a camera at q.wi gathers through the halo: ∫ Eval(q, wo)·|cosθo| dωo over wi's hemisphere
-// (the backward integral Sample estimates), per carried wavelength.
-SampledSpectrum BackwardHalo(const Material &m, const ScatterQuery &q, double core) {
-    return IntegrateDisc(Vec2(-q.wi.x, -q.wi.y), q.wi.z > 0 ? 1 : -1, core,
-                         [&](const Vec3 &wo) { return m.Eval(q, wo); });
-}
-
-// What the halo sends out of the light arriving from d: ∫ Eval(q(w), d)·|cosθ_w| dω_w over the
-// directions w on d's side (q(w) = q with wi = w), per carried wavelength.
-SampledSpectrum ForwardHalo(const Material &m, const ScatterQuery &q, const Vec3 &d, double core) {
-    ScatterQuery qw = q;
-    return IntegrateDisc(Vec2(-d.x, -d.y), d.z > 0 ? 1 : -1, core, [&](const Vec3 &w) {
-        qw.wi = w;
-        return m.Eval(qw, d);
-    });
-}
-
-// The specular share of the light from d: the listed lobes of the query at d's mirror direction
-// that point back at d, per carried wavelength.
-SampledSpectrum SpecularFrom(const Material &m, const ScatterQuery &q, const Vec3 &d) {
-    ScatterQuery qm = q;
-    qm.wi = ReflectLocal(d);
-    NearDeltaLobes lobes;
-    m.ListNearDelta(qm, lobes);
-    SampledSpectrum a(0.0);
-    for (const NearDeltaLobe &l : lobes)
-        for (int i = 0; i < q.wl->Count(); ++i)
-            if (SameDirection(l.wo[i], d)) a[i] += l.weight[i];
-    return a;
 }
 
 std::shared_ptr<Material> Build(const std::string &type, const ParamDict &p) {
@@ -335,9 +257,10 @@ TEST(HarveyShack, ReflectsExactlyFOfTheLightFromEachDirection) {
         for (double theta : {0.0, 30.0, 60.0, 80.0, 88.0})
             for (bool below : {false, true}) {
                 const ScatterQuery q = Query(wl, theta, 1.1, below);  // q.wi = d, the light's direction
-                const SampledSpectrum spec = SpecularFrom(*hs, q, q.wi), scatter = ForwardHalo(*hs, q, q.wi, c.core);
+                const SampledSpectrum scatter = ContinuousFrom(*hs, q, q.wi, c.core);
                 for (int i = 0; i < wl.Count(); ++i) {
                     const double F = SmoothReflectance(smooth, q, i);
+                    const SampledSpectrum spec(ListedEnergyFrom(*hs, q, i).energy);
                     const double share = F - spec[i];  // (1 − α_spec)·F
                     EXPECT_NEAR(spec[i] + scatter[i], F, 3.5e-4 * share + 1e-7)
                         << hs->ToString() << "\nlight from θ " << theta << (below ? " below" : "") << ", λ "
@@ -373,7 +296,7 @@ TEST(HarveyShack, SampledLightFromOneDirectionCarriesF) {
             for (bool below : {false, true}) {
                 const ScatterQuery q = Query(wl, theta, 2.0, below);
                 const double F = SmoothReflectance(*c.smooth, q);
-                const double spec = SpecularFrom(*hs, q, q.wi)[0];
+                const double spec = ListedEnergyFrom(*hs, q, 0).energy;
                 ScatterQuery qw = q;
                 std::vector<double> w;
                 for (int i = 0; i < 50000; ++i) {
@@ -417,7 +340,7 @@ TEST(HarveyShack, SampledWeightsAverageTheirIntegral) {
                 const ScatterQuery q = Query(wl, theta, 0.7, below);
                 NearDeltaLobes lobes;
                 hs->ListNearDelta(q, lobes);
-                const double expected = (lobes.count ? lobes.lobe[0].weight[0] : 0.0) + BackwardHalo(*hs, q, c.core)[0];
+                const double expected = (lobes.count ? lobes.lobe[0].weight[0] : 0.0) + ContinuousAlbedo(*hs, q, c.core)[0];
                 std::vector<double> w;
                 for (int i = 0; i < 50000; ++i) {
                     auto s = hs->Sample(q, rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
@@ -443,7 +366,7 @@ TEST(HarveyShack, NormalIncidenceTotalIntegratedScatter) {
             auto hs = Build("harvey_shack", RoughT("contract_gold", sigma, kkT / (k * k)));
             const ScatterQuery q = Query(wl, 0);
             const double F = SmoothReflectance(*gold, q);
-            const double tis = ForwardHalo(*hs, q, q.wi, 0.05 / std::sqrt(kkT))[0] / F;
+            const double tis = ContinuousFrom(*hs, q, q.wi, 0.05 / std::sqrt(kkT))[0] / F;
             const double expected = Sqr(4 * Pi * sigma / Lambda);
             EXPECT_NEAR(tis / expected, 1, 0.05) << "σ_h = λ/" << Lambda / sigma << ", k²T = " << kkT;
             EXPECT_NEAR(tis, -std::expm1(-expected), 2e-4 * tis) << "the exact Debye–Waller share";
@@ -501,11 +424,11 @@ TEST(HarveyShack, RayOpticsLimitOfACoatedSubstrateIsTheIncoherentSum) {
         EXPECT_FALSE(sc->hasJones);
         EXPECT_NEAR(sc->mueller[0].m[0][0], hs->Eval(ray, off)[0] * off.z, 1e-12 * sc->mueller[0].m[0][0]);
         // Energy of the light from this direction: F of the regime.
-        const SampledSpectrum specR = SpecularFrom(*hs, ray, ray.wi), haloR = ForwardHalo(*hs, ray, ray.wi, 0.02);
-        const SampledSpectrum specW = SpecularFrom(*hs, wave, wave.wi), haloW = ForwardHalo(*hs, wave, wave.wi, 0.02);
-        const double shareR = sr.lobe[0].weight[0] - specR[0], shareW = sw.lobe[0].weight[0] - specW[0];
-        EXPECT_NEAR(specR[0] + haloR[0], sr.lobe[0].weight[0], 3.5e-4 * shareR + 1e-7) << "ray optics, θ " << theta;
-        EXPECT_NEAR(specW[0] + haloW[0], sw.lobe[0].weight[0], 3.5e-4 * shareW + 1e-7) << "wave regime, θ " << theta;
+        const double specR = ListedEnergyFrom(*hs, ray, 0).energy, haloR = ContinuousFrom(*hs, ray, ray.wi, 0.02)[0];
+        const double specW = ListedEnergyFrom(*hs, wave, 0).energy, haloW = ContinuousFrom(*hs, wave, wave.wi, 0.02)[0];
+        const double shareR = sr.lobe[0].weight[0] - specR, shareW = sw.lobe[0].weight[0] - specW;
+        EXPECT_NEAR(specR + haloR, sr.lobe[0].weight[0], 3.5e-4 * shareR + 1e-7) << "ray optics, θ " << theta;
+        EXPECT_NEAR(specW + haloW, sw.lobe[0].weight[0], 3.5e-4 * shareW + 1e-7) << "wave regime, θ " << theta;
     }
     EXPECT_GT(largest, 0.05) << "the film's coherent and incoherent reflectances should differ here";
     RecordProperty("largest_coherent_minus_incoherent", std::to_string(largest));

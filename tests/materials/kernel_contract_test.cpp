@@ -34,6 +34,7 @@
 #include "core/render/genray.h"
 #include "core/render/sampling.h"
 #include "core/render/shape.h"
+#include "energy_test_util.h"
 #include "material_test_util.h"
 #include "support/stats.h"
 
@@ -102,35 +103,6 @@ struct Moments {
 
 // The values added so far are equal up to rounding (relative spread ≤ 1e-12).
 bool Constant(const Moments &m) { return m.m2 <= 1e-24 * m.mean * m.mean * m.n; }
-
-// The energy of the light arriving from d = q.wi that leaves through listed near-delta lobes, at
-// wavelength slot j, for a kernel that lists per query what arrives *at* wi
-// (Material::ConservesEnergyPerIncidentDirection): the light from d goes into every direction o that
-// some lobe of q reaches at λ_j (the outgoing candidates), and of each query at o the lobes that
-// point back at d at λ_j carry it (their radiance factor (n_in/n_out)² undone).
-struct ListedForward {
-    double energy = 0;
-    int outgoing = 0;  // the number of outgoing candidates
-};
-ListedForward ListedEnergyFrom(const Material &m, const ScatterQuery &q, int j) {
-    NearDeltaLobes lobes;
-    m.ListNearDelta(q, lobes);
-    std::vector<Vec3> outs;
-    for (const NearDeltaLobe &l : lobes)
-        if (l.weight[j] > 0 && std::none_of(outs.begin(), outs.end(), [&](const Vec3 &o) { return SameDirection(o, l.wo[j]); }))
-            outs.push_back(l.wo[j]);
-    ListedForward f;
-    f.outgoing = int(outs.size());
-    for (const Vec3 &o : outs) {
-        ScatterQuery back = q;
-        back.wi = o;
-        NearDeltaLobes from;
-        m.ListNearDelta(back, from);
-        for (const NearDeltaLobe &l : from)
-            if (l.weight[j] > 0 && SameDirection(l.wo[j], q.wi)) f.energy += l.weight[j] * l.Eta(j) * l.Eta(j);
-    }
-    return f;
-}
 
 // Energy carried by one sample at wavelength slot i: a_j/p_j with the radiance scaling (η_i/η_t)²
 // undone on transmission, so that it measures power, not radiance. Uses the hero's η, so it is

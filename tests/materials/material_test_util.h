@@ -34,6 +34,10 @@ inline constexpr const char *UnderTestName = "under_test";
 ///   @contract_film     material thin_film(ior = "Cu2O", thickness = 150 nm)  (a coating)
 ///   @contract_stack    material multilayer(layers = [layer("MgF2", 100 nm), layer(2.1, 65 nm)])  (a coating)
 ///   @contract_thickness texture gradient(value0 = 80 nm, value1 = 250 nm) along u (a length)
+///   @contract_grating  material grating(substrate = @contract_gold, period = 1.6 um, height = 0.1 um,
+///                      max_order = 5)   (energy per incident direction, listed orders)
+///   @contract_rough    material harvey_shack(substrate = @contract_gold, sigma_h = 20 nm,
+///                      alpha_r = 0.1)   (energy per incident direction, a glint and a halo)
 inline void AddFixtures(SceneDesc &desc) {
     auto add = [&](const char *keyword, const char *type, const char *name, const ParamDict &params) {
         SceneEntity e;
@@ -65,6 +69,17 @@ inline void AddFixtures(SceneDesc &desc) {
     };
     add("Material", "multilayer", "contract_stack",
         ParamDict().Set("layers", Value::List({layer(Value::String("MgF2"), 100e-9), layer(Value::Number(2.1), 65e-9)})));
+    add("Material", "grating", "contract_grating",
+        ParamDict()
+            .Set("substrate", Value::Ref("contract_gold"))
+            .Set("period", Value::Number(1.6e-6, Dim::Length()))
+            .Set("height", Value::Number(0.1e-6, Dim::Length()))
+            .Set("max_order", Value::Integer(5)));
+    add("Material", "harvey_shack", "contract_rough",
+        ParamDict()
+            .Set("substrate", Value::Ref("contract_gold"))
+            .Set("sigma_h", Value::Number(20e-9, Dim::Length()))
+            .Set("alpha_r", Value::Number(0.1)));
     add("Texture", "gradient", "contract_thickness",
         ParamDict()
             .Set("value0", Value::Number(80e-9, Dim::Length()))

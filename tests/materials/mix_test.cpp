@@ -1,9 +1,12 @@
 // SPDX-License-Identifier: Apache-2.0
 // `mix`: the blend f = (1 − w)·f_a + w·f_b beyond the generic contract suite — the end points equal
 // the children, Eval/Pdf are the weighted sums (with a textured weight), the listed lobes of two
-// conductors against the Fresnel formula, id remapping with negative child ids, and bad input.
+// conductors against the Fresnel formula, id remapping with negative child ids, the energy sense the
+// children share (a grating and a rough surface on gold reflect F of the light from each direction,
+// and so does their mix), and bad input.
 #include <gtest/gtest.h>
 
+#include "energy_test_util.h"
 #include "material_test_util.h"
 #include "materials/fresnel.h"
 #include "support/stats.h"
@@ -201,8 +204,59 @@ TEST(Mix, RemapsNegativeIdsAndKeepsTheirOrder) {
     }
 }
 
+// The mix declares the energy sense its children share (CombinedEnergySense): reciprocal children
+// give a reciprocal mix; a kernel that conserves energy per incident direction (grating,
+// harvey_shack) with another such or a reciprocal one gives one that does; the per-query toy
+// grating (toy_grating_test.cpp) with a reciprocal kernel one that conserves it per query.
+TEST(Mix, DeclaresTheEnergySenseOfItsChildren) {
+    MiniScene s;
+    s.WithFixtures()
+        .Add("Material", "toy_grating", "toy", ParamDict())
+        .Add("Material", "mix", "metals", Mix("contract_gold", "contract_matte", Value::Number(0.5)))
+        .Add("Material", "mix", "grating_gold", Mix("contract_grating", "contract_gold", Value::Number(0.3)))
+        .Add("Material", "mix", "grating_rough", Mix("contract_grating", "contract_rough", Value::Number(0.3)))
+        .Add("Material", "mix", "toy_gold", Mix("toy", "contract_gold", Value::Number(0.3)));
+    const std::pair<const char *, EnergySense> expected[] = {{"metals", EnergySense::Reciprocal},
+                                                             {"grating_gold", EnergySense::PerIncidentDirection},
+                                                             {"grating_rough", EnergySense::PerIncidentDirection},
+                                                             {"toy_gold", EnergySense::PerQuery}};
+    for (const auto &[name, sense] : expected) {
+        auto m = Get(s, name);
+        ASSERT_TRUE(m);
+        EXPECT_EQ(int(EnergySenseOf(*m)), int(sense)) << name << ": " << Describe(EnergySenseOf(*m));
+    }
+}
+
+// A grating and a rough surface on gold each reflect F_gold(θ) of the light arriving from any
+// direction (their own tests); so does their mix at w = 0.3, in the sense it declares: the light
+// from d leaves through the listed lobes that point back at d (orders and glint) and the halo's
+// ∫ f(w → d)·cosθ_w dω_w (a deterministic quadrature), per carried wavelength. Tolerance: the
+// rough surface's V table (≤ 3.5e-4 of its halo share, harvey_shack_test.cpp) and the quadrature.
+TEST(Mix, GratingAndRoughSurfaceReflectFOfTheLightFromEachDirection) {
+    MiniScene s;
+    s.WithFixtures().Add("Material", "mix", "m", Mix("contract_grating", "contract_rough", Value::Number(0.3)));
+    auto m = Get(s, "m"), gold = Get(s, "contract_gold");
+    ASSERT_TRUE(m && gold);
+    const SampledWavelengths wl = TestWavelengths(550e-9);
+    for (const Vec3 &d : Incidents) {
+        ScatterQuery q;
+        q.wi = d;
+        q.wl = &wl;
+        q.rayOptics = false;
+        NearDeltaLobes ref;
+        gold->ListNearDelta(q, ref);
+        ASSERT_EQ(ref.count, 1);
+        const SampledSpectrum halo = ContinuousFrom(*m, q, d, 0.02);
+        for (int i = 0; i < wl.Count(); ++i) {
+            const double listed = ListedEnergyFrom(*m, q, i).energy, F = ref.lobe[0].weight[i];
+            EXPECT_NEAR(listed + halo[i], F, 3.5e-4 * F + 1e-7)
+                << "light from " << ToString(d) << ", slot " << i << ": listed " << listed << " + halo " << halo[i];
+        }
+    }
+}
+
 // Bad input: both weights, a weight outside [0, 1] (number or texture), a texture of another
-// dimension, a footprint-aware child.
+// dimension, a footprint-aware child, children that conserve energy in different senses.
 TEST(Mix, BadInput) {
     auto firstError = [](MiniScene &s) {
         EXPECT_FALSE(s.Build<Material>("m"));
@@ -244,6 +298,17 @@ TEST(Mix, BadInput) {
                                                        Value::Number(1e-6, Dim::Length()), Value::Number(5e-5, Dim::Length())})))
             .Add("Material", "mix", "m", Mix("slit", "contract_matte", Value::Number(0.5)));
         EXPECT_NE(firstError(s).find("'a' is footprint-aware"), std::string::npos) << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.WithFixtures()
+            .Add("Material", "toy_grating", "toy", ParamDict())
+            .Add("Material", "mix", "m", Mix("toy", "contract_grating", Value::Number(0.5)));
+        EXPECT_NE(firstError(s).find("'a' conserves energy per query (ToyGratingMaterial"), std::string::npos)
+            << s.FirstError();
+        EXPECT_NE(s.FirstError().find("but 'b' conserves energy per incident direction (GratingMaterial"),
+                  std::string::npos)
+            << s.FirstError();
     }
 }
 

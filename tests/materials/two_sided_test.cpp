@@ -11,6 +11,7 @@
 
 #include <sstream>
 
+#include "energy_test_util.h"
 #include "material_test_util.h"
 #include "materials/fresnel.h"
 #include "support/stats.h"
@@ -206,8 +207,57 @@ TEST(TwoSided, MirrorChangesTheSignOfOffDiagonalJonesTerms) {
     }
 }
 
+// The faces keep their kernels' energy sense (CombinedEnergySense): reciprocal faces a reciprocal
+// sheet; a grating below and gold above, or a rough surface above and a grating below, a sheet that
+// conserves energy per incident direction; the per-query toy grating on both faces one per query.
+// The light arriving from d on either face leaves with F_gold(θ_d) (listed lobes pointing back at d
+// plus the halo's ∫ f(w → d)·cosθ_w dω_w, by quadrature; tolerance as in mix_test.cpp).
+TEST(TwoSided, FacesKeepTheirEnergySense) {
+    MiniScene s;
+    s.WithFixtures()
+        .Add("Material", "toy_grating", "toy", ParamDict())
+        .Add("Material", "two_sided", "metal", ParamDict().Set("material", Value::Ref("contract_gold")))
+        .Add("Material", "two_sided", "gold_grating",
+             ParamDict().Set("front", Value::Ref("contract_gold")).Set("back", Value::Ref("contract_grating")))
+        .Add("Material", "two_sided", "rough_grating",
+             ParamDict().Set("front", Value::Ref("contract_rough")).Set("back", Value::Ref("contract_grating")))
+        .Add("Material", "two_sided", "toys", ParamDict().Set("material", Value::Ref("toy")));
+    const std::pair<const char *, EnergySense> expected[] = {{"metal", EnergySense::Reciprocal},
+                                                             {"gold_grating", EnergySense::PerIncidentDirection},
+                                                             {"rough_grating", EnergySense::PerIncidentDirection},
+                                                             {"toys", EnergySense::PerQuery}};
+    for (const auto &[name, sense] : expected) {
+        auto m = Get(s, name);
+        ASSERT_TRUE(m);
+        EXPECT_EQ(int(EnergySenseOf(*m)), int(sense)) << name << ": " << Describe(EnergySenseOf(*m));
+    }
+    auto t = Get(s, "rough_grating"), gold = Get(s, "contract_gold");
+    ASSERT_TRUE(t && gold);
+    const SampledWavelengths wl = TestWavelengths(480e-9);
+    for (const Vec3 &up : {DirectionFromCosTheta(0.95, 0.3), DirectionFromCosTheta(0.5, 2.2)})
+        for (const bool below : {false, true}) {
+            ScatterQuery q;
+            q.wi = below ? Mirror(up) : up;
+            q.wl = &wl;
+            q.rayOptics = false;
+            NearDeltaLobes ref;
+            gold->ListNearDelta(q, ref);
+            ASSERT_EQ(ref.count, 1);
+            const SampledSpectrum halo = ContinuousFrom(*t, q, q.wi, 0.02);
+            if (below) {
+                EXPECT_TRUE(halo.IsZero()) << "the grating face has no halo";
+            }
+            for (int i = 0; i < wl.Count(); ++i) {
+                const double listed = ListedEnergyFrom(*t, q, i).energy, F = ref.lobe[0].weight[i];
+                EXPECT_NEAR(listed + halo[i], F, 3.5e-4 * F + 1e-7)
+                    << "light from " << ToString(q.wi) << ", slot " << i << ": listed " << listed << " + halo " << halo[i];
+            }
+        }
+}
+
 // Children that send light through the surface are refused (Mitsuba's twosided does the same):
-// a dielectric, a mix holding one, an aperture. So are a missing or doubled face.
+// a dielectric, a mix holding one, an aperture. So are a missing or doubled face and faces that
+// conserve energy in different senses.
 TEST(TwoSided, BadInput) {
     auto firstError = [](MiniScene &s) {
         EXPECT_FALSE(s.Build<Material>("t"));
@@ -252,6 +302,17 @@ TEST(TwoSided, BadInput) {
         MiniScene s;
         s.Add("Material", "two_sided", "t", ParamDict());
         EXPECT_NE(firstError(s).find("two_sided needs 'material'"), std::string::npos) << s.FirstError();
+    }
+    {
+        MiniScene s;
+        s.WithFixtures()
+            .Add("Material", "toy_grating", "toy", ParamDict())
+            .Add("Material", "two_sided", "t", ParamDict().Set("front", Value::Ref("toy")).Set("back", Value::Ref("contract_rough")));
+        EXPECT_NE(firstError(s).find("'front' conserves energy per query (ToyGratingMaterial"), std::string::npos)
+            << s.FirstError();
+        EXPECT_NE(s.FirstError().find("but 'back' conserves energy per incident direction (HarveyShackMaterial"),
+                  std::string::npos)
+            << s.FirstError();
     }
 }
 

@@ -79,6 +79,34 @@ std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lob
     return std::nullopt;
 }
 
+EnergySense EnergySenseOf(const Material &m) {
+    if (m.IsReciprocal()) return EnergySense::Reciprocal;
+    return m.ConservesEnergyPerIncidentDirection() ? EnergySense::PerIncidentDirection : EnergySense::PerQuery;
+}
+
+std::optional<EnergySense> CombinedEnergySense(std::span<const Material *const> children) {
+    bool perQuery = false, perIncident = false;
+    for (const Material *m : children) {
+        const EnergySense s = EnergySenseOf(*m);
+        perQuery = perQuery || s == EnergySense::PerQuery;
+        perIncident = perIncident || s == EnergySense::PerIncidentDirection;
+    }
+    if (perQuery && perIncident) return std::nullopt;
+    return perQuery ? EnergySense::PerQuery : perIncident ? EnergySense::PerIncidentDirection : EnergySense::Reciprocal;
+}
+
+const char *Describe(EnergySense s) {
+    switch (s) {
+        case EnergySense::Reciprocal:
+            return "reciprocal";
+        case EnergySense::PerQuery:
+            return "conserves energy per query";
+        case EnergySense::PerIncidentDirection:
+            return "conserves energy per incident direction";
+    }
+    return "";
+}
+
 bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda,
                         bool transmission, Vec3 *wo) {
     // theory §4.2 (vector grating equation): the tangential wave vector of the incident wave

@@ -225,11 +225,13 @@ class Material {
     /// True if f(wi→wo) = f(wo→wi) (checked by the contract suite).
     virtual bool IsReciprocal() const { return true; }
     /// For a non-reciprocal kernel, the sense in which it conserves energy (the contract suite
-    /// checks that one). false (default): per query — what Sample can return for one wi carries at
-    /// most the incident energy (the backward walk's albedo ≤ 1; `harvey_shack`). true: per
-    /// physical incident direction — light arriving from a lobe's wo leaves into all the wi whose
-    /// lobes point back at it with at most its energy (a grating's orders from a plane wave carry
-    /// F); the lobes of one query may then sum to more than 1. Reciprocal kernels satisfy both.
+    /// checks that one; EnergySenseOf). false (default): per query — what Sample can return for one
+    /// wi carries at most the incident energy (the backward walk's albedo ≤ 1; the `aperture`).
+    /// true: per physical incident direction — light arriving from a direction d (a lobe's wo)
+    /// leaves into all the wi whose listed lobes point back at d, and into every wi with
+    /// f(wi → d)·|cosθ_i|, with at most its energy (a grating's orders of a plane wave, a rough
+    /// surface's glint and halo of the sun carry F); the lobes of one query may then sum to more
+    /// than 1. Reciprocal kernels satisfy both. Composite kernels: CombinedEnergySense.
     virtual bool ConservesEnergyPerIncidentDirection() const { return false; }
     /// Called by the scene builder for every shape that uses this kernel; throws phasor::Error
     /// (e.g. a planar kernel on a non-planar shape).
@@ -268,6 +270,27 @@ class Material {
         return 0;
     }
 };
+
+/// In which sense a kernel conserves energy: the two declarations IsReciprocal and
+/// ConservesEnergyPerIncidentDirection as one value (the contract suite checks the declared sense).
+enum class EnergySense {
+    Reciprocal,            // f(wi→wo) = f(wo→wi): both senses below hold
+    PerQuery,              // not reciprocal; what one query's lobes carry is ≤ 1 (its albedo)
+    PerIncidentDirection,  // not reciprocal; the light arriving from one direction leaves with ≤ 1
+};
+EnergySense EnergySenseOf(const Material &m);
+/// The sense of a kernel that answers every query with its children's answers to that query — a
+/// weighted sum (`mix`, weights that depend on the hit, not on the directions) or one child per
+/// side (`two_sided`): reciprocal if every child is; per incident direction if every child is
+/// reciprocal or per incident direction (the light from d leaves each child with ≤ 1, so their
+/// weighted sum or the child of d's side does too); per query likewise. nullopt if one child
+/// conserves energy only per query and another only per incident direction: the composite then
+/// bounds neither what a query gathers nor what the light from a direction leaves with (one
+/// child's per-query lobes may carry up to 1 from a direction where the other's carry F, …), and
+/// no single declaration describes it. Composite kernels refuse such children at creation.
+std::optional<EnergySense> CombinedEnergySense(std::span<const Material *const> children);
+/// "reciprocal", "conserves energy per query", "conserves energy per incident direction".
+const char *Describe(EnergySense s);
 
 /// The direction of a near-delta lobe from the vector grating equation (see NearDeltaLobe):
 /// nOut·wo.xy = −nIn·wi.xy + shift·λ/(2π), on wi's side (reflection) or the far side. False if
