@@ -15,14 +15,20 @@
 //     the standard error of the mean;
 //   * R = every reflected lobe + the continuous reflection (wo on wi's side), T the rest;
 //   * a kernel that conserves energy per incident direction (Material::
-//     ConservesEnergyPerIncidentDirection, the grating) lists per query what arrives at wi; its
-//     lobes' efficiencies are read from the queries at their directions, towards wi.
+//     ConservesEnergyPerIncidentDirection: grating, harvey_shack, a mix of them) lists per query
+//     what arrives at wi and evaluates f(wi → wo) for light arriving from wo; its lobes' efficiencies
+//     are read from the queries at their directions, towards wi, and its continuous part is the
+//     light from wi leaving into every w, ∫ f(w → wi)·|cosθ_w| dω_w — estimated by multi-sample MIS
+//     (balance heuristic) of cosine-weighted directions on either side and the kernel's own
+//     continuous samples at wi, one of each per sample (Sample's integral, ∫ f(wi → wo)·|cosθo| dωo,
+//     is what a camera at wi gathers instead);
 // Default: the wave-optical answer, a generalized-ray query (rayOptics = false) for a plane wave
 // (no GR footprint: q.gr = nullptr, β = 0). `--ray`: the ray-optics limit (rayOptics = true).
 // Footprint-aware kernels (the aperture) answer only for a given GR on a given shape — a plane-wave
 // probe has neither — and are refused with an explanation.
-// The plot (MakeMap, drawn by matplotlib through app/plot.h) maps Eval·|cosθo| [1/sr] over both
-// hemispheres.
+// The plot (MakeMap, drawn by matplotlib through app/plot.h) maps over both hemispheres the
+// continuous light from the source into each direction w: Eval(wi → w)·|cosθ_w| [1/sr], or for a
+// kernel that conserves energy per incident direction Eval(w → wi)·|cosθ_w|.
 
 #include "app/probe.h"
 
@@ -44,6 +50,7 @@
 #include "core/render/material.h"
 #include "core/render/registry.h"
 #include "core/render/sampler.h"
+#include "core/render/sampling.h"
 #include "parser/parser.h"
 
 namespace phasor {
@@ -138,13 +145,38 @@ ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64
     q.lobes = LobeContinuous;
     Pcg32 rng(seed, 0x70726f6265ull);  // "probe"
     double meanR = 0, meanT = 0, m2R = 0, m2T = 0;  // Welford, per sample (0 when it went elsewhere)
+    ScatterQuery qw = q;                            // a query at w (fromSource)
+    double etaFar = 0;  // η_t/η_i into the far side, from the kernel's transmitted samples (fromSource)
+    bool farUnknown = false;
     for (long long n = 1; n <= samples; ++n) {
         const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
         double xr = 0, xt = 0;
-        if (auto s = m.Sample(q, u0, Vec2(u1, u2))) {
-            if (!std::isfinite(s->weight[0]) || !std::isfinite(s->eta)) ++r.nonFinite;  // counted as 0
-            else if (s->wo.z * q.wi.z > 0) xr = s->weight[0];
-            else xt = s->weight[0] * s->eta * s->eta;
+        const std::optional<ScatterSample> s = m.Sample(q, u0, Vec2(u1, u2));
+        if (s && (!std::isfinite(s->weight[0]) || !std::isfinite(s->eta))) {
+            ++r.nonFinite;  // counted as 0
+        } else if (!fromSource) {
+            if (s && s->wo.z * q.wi.z > 0) xr = s->weight[0];
+            else if (s) xt = s->weight[0] * s->eta * s->eta;
+        } else {
+            // The light from wi into w: f(w → wi)·|cosθ_w| over the mixture density of the two
+            // techniques (cosine-weighted on a random side, |cosθ|/(2π); the kernel's samples, Pdf).
+            // On the far side the power factor (n_wi/n_w)² = 1/η² undoes f's radiance factor.
+            if (s && s->wo.z * q.wi.z < 0) etaFar = s->eta;
+            const Vec2 c = ConcentricDisc(Vec2(rng.Uniform(), rng.Uniform()));
+            const double side = rng.Uniform() < 0.5 ? 1 : -1;
+            const Vec3 w1(c.x, c.y, side * std::sqrt(std::max(0.0, 1 - c.x * c.x - c.y * c.y)));
+            for (const Vec3 &w : {w1, s ? s->wo : Vec3(0, 0, 0)}) {
+                if (w.z == 0) continue;  // no sample (or exactly grazing)
+                const double density = std::abs(w.z) / (2 * Pi) + m.Pdf(q, w);
+                qw.wi = w;
+                const double f = m.Eval(qw, q.wi)[0];
+                if (!(density > 0) || !(f > 0)) continue;
+                const double x = f * std::abs(w.z) / density;
+                if (!std::isfinite(x)) ++r.nonFinite;
+                else if (w.z * q.wi.z > 0) xr += x;
+                else if (etaFar > 0) xt += x / (etaFar * etaFar);
+                else farUnknown = true;
+            }
         }
         const double dr = xr - meanR, dt = xt - meanT;
         meanR += dr / double(n);
@@ -152,6 +184,11 @@ ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64
         m2R += dr * (xr - meanR);
         m2T += dt * (xt - meanT);
     }
+    if (farUnknown)
+        throw ProbeError{"the kernel sends light from the source through the surface into a continuous lobe, but none "
+                         "of its own samples crossed there: probe cannot tell the media's indices for the power "
+                         "factor (a kernel that conserves energy per incident direction with continuous "
+                         "transmission)"};
     r.contR = meanR;
     r.contT = meanT;
     if (samples > 1) {
@@ -225,8 +262,12 @@ std::string ReportText(const std::string &material, const std::string &type, con
 DiscMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int size) {
     DiscMap map;
     map.n = size;
-    map.valueLabel = "Eval·|cosθo| [1/sr]";
+    // What the light from the source sends into wo: f(wi → wo), or for a kernel that conserves
+    // energy per incident direction (f(wi → wo) is then the light arriving from wo) f(wo → wi).
+    const bool fromSource = !m.IsReciprocal() && m.ConservesEnergyPerIncidentDirection();
+    map.valueLabel = fromSource ? "Eval(wo → source)·|cosθo| [1/sr]" : "Eval·|cosθo| [1/sr]";
     q.lobes = LobeContinuous;
+    ScatterQuery qo = q;
     const double side = q.wi.z > 0 ? 1 : -1;
     for (int disc = 0; disc < 2; ++disc) {
         DiscMap::Disc d;
@@ -238,7 +279,10 @@ DiscMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int siz
                 const double s2 = x * x + y * y;
                 if (s2 >= 1) continue;  // (not drawn)
                 const Vec3 wo(x, y, (disc == 0 ? side : -side) * std::sqrt(1 - s2));
-                const double f = r.continuous ? m.Eval(q, wo)[0] * std::abs(wo.z) : 0.0;
+                qo.wi = wo;
+                const double f = !r.continuous ? 0.0
+                                 : fromSource  ? m.Eval(qo, q.wi)[0] * std::abs(wo.z)
+                                               : m.Eval(q, wo)[0] * std::abs(wo.z);
                 d.values[std::size_t(j) * size + i] = std::isfinite(f) ? f : 0.0;
             }
         map.discs.push_back(std::move(d));

@@ -2,7 +2,9 @@
 # probe.sh PHASOR SCENE OUTDIR — `phasor probe` against references computed here, independently of
 # phasor's code (awk): Fresnel for a dielectric and for a conductor (the real-arithmetic form of the
 # complex Fresnel equations), a Lambertian albedo, Saunderson's total reflectance of `plastic` with
-# the hemispherical Fresnel integral by Simpson's rule. Also: the CSV's exact header and rows, `-`
+# the hemispherical Fresnel integral by Simpson's rule, a grating's orders (Bessel series), the Airy
+# formula of a film (complex arithmetic) and the quarter-wave stack's closed form, a rough surface's
+# glint and total (F), the weighted sums of a mix, a two-sided sheet. Also: the CSV's exact header and rows, `-`
 # for stdout, the texture context (--uv), --ray, the seed, the plot, and errors (exit status 1, a
 # message, no output file).
 set -u
@@ -45,6 +47,38 @@ function diffusefresnel(eta,   n, h, i, t, mu, muc, s) {  # 2∫F(μ)μdμ, Simp
     return muc * muc + 2 * s * h / 3
 }
 function atan2pi(y, x) { return atan2(y, x) }
+# Complex arithmetic on (re, im) pairs; results in the globals _r, _i.
+function cset(a, b) { _r = a; _i = b }
+function cmul(ar, ai, br, bi) { cset(ar * br - ai * bi, ar * bi + ai * br) }
+function cdiv(ar, ai, br, bi,   d) { d = br * br + bi * bi; cset((ar * br + ai * bi) / d, (ai * br - ar * bi) / d) }
+function csqrt(ar, ai,   m) { m = sqrt(ar * ar + ai * ai); cset(sqrt((m + ar) / 2), (ai < 0 ? -1 : 1) * sqrt((m - ar) / 2)) }
+# cosθ in a medium n = nr + i·ni for the invariant s = n₀sinθ₀, on the branch whose wave decays
+# into the medium (Im(n·cosθ) ≥ 0, the time convention of e^{+iδ}); in _r, _i.
+function ccos(s, nr, ni,   ar, ai) {
+    cdiv(s, 0, nr, ni); cmul(_r, _i, _r, _i); csqrt(1 - _r, -_i); ar = _r; ai = _i
+    cmul(nr, ni, ar, ai); if (_i < 0) { ar = -ar; ai = -ai }
+    cset(ar, ai)
+}
+# Airy reflectance (Born & Wolf §7.6.1), unpolarised, of one film n1 (thickness d [m]) between air
+# and n2, light from air at θ0 [rad], vacuum wavelength l [m]: r = (r01 + r12 e)/(1 + r01 r12 e),
+# e = exp(2i·k0·n1·d·cosθ1), per polarisation (s: q = n cosθ; p: the same with cosθ/n).
+function airy(th, l, n1r, n1i, d, n2r, n2i,   s, c0r, c1r, c1i, c2r, c2i, p, q0r, q0i, q1r, q1i, q2r, q2i, ar, ai, br, bi, er, ei, nr, ni, R) {
+    s = sin(th); c0r = cos(th)
+    ccos(s, n1r, n1i); c1r = _r; c1i = _i
+    ccos(s, n2r, n2i); c2r = _r; c2i = _i
+    cmul(n1r, n1i, c1r, c1i); cmul(_r, _i, 0, 4 * atan2(0, -1) * d / l); cset(exp(_r) * cos(_i), exp(_r) * sin(_i)); er = _r; ei = _i
+    R = 0
+    for (p = 0; p < 2; p++) {
+        if (p == 0) { q0r = c0r; q0i = 0; cmul(n1r, n1i, c1r, c1i); q1r = _r; q1i = _i; cmul(n2r, n2i, c2r, c2i); q2r = _r; q2i = _i }
+        else { q0r = c0r; q0i = 0; cdiv(c1r, c1i, n1r, n1i); q1r = _r; q1i = _i; cdiv(c2r, c2i, n2r, n2i); q2r = _r; q2i = _i }
+        cdiv(q0r - q1r, q0i - q1i, q0r + q1r, q0i + q1i); ar = _r; ai = _i   # r01
+        cdiv(q1r - q2r, q1i - q2i, q1r + q2r, q1i + q2i); br = _r; bi = _i   # r12
+        cmul(br, bi, er, ei); nr = ar + _r; ni = ai + _i                      # r01 + r12 e
+        cmul(ar, ai, _r, _i); cdiv(nr, ni, 1 + _r, _i)                       # / (1 + r01 r12 e)
+        R += (_r * _r + _i * _i) / 2
+    }
+    return R
+}
 function besselj(n, x,   s, t, k) {  # J_n(x), n ≥ 0, power series (DLMF 10.2.2), exact to ~1e-15 for x < 10
     t = 1; for (k = 1; k <= n; k++) t *= x / 2 / k
     s = 0; for (k = 0; k < 60; k++) { s += t; t *= -(x / 2) * (x / 2) / ((k + 1) * (k + 1 + n)) }
@@ -149,12 +183,97 @@ for case in "20 550 0.1" "0 633 0.15" "45 450 0.08"; do
     [[ $rows -ge 6 ]] || fail "grating $case: too few orders: '$stdout'"
 done
 
-# 6. The plot: a PNG, not empty, written together with the CSV.
-run --material paint --theta 45deg --phi 30deg --lambda 550nm --csv "$out/paint.csv" --plot "$out/sub/paint.png" --quiet
-[[ $rc -eq 0 && -s "$out/paint.csv" ]] || fail "plot run: exit status $rc: $stderr"
-[[ "$(head -c 4 "$out/sub/paint.png" | od -An -tx1 | tr -d ' ')" == 89504e47 ]] || fail "paint.png is not a PNG"
-[[ $(stat -c %s "$out/sub/paint.png") -gt 10000 ]] || fail "paint.png is suspiciously small"
-grep -aq "Software.Matplotlib version" "$out/sub/paint.png" || fail "paint.png was not drawn by matplotlib"
+# 5c. Layer stacks, against the Airy formula written above (complex arithmetic, both polarisations)
+#    and the closed form of a quarter-wave stack. A lossless 250 nm MgF₂-like film (1.38) on glass
+#    (1.52) at two angles and wavelengths: R = Airy, T = 1 − R (the kernel's T is its own transmission
+#    lobe). An absorbing Cu₂O-like film (2.95 + 0.13i, 150 nm) on a Cu-like substrate (1.02 + 2.58i):
+#    R = Airy, T = 0. The lossless film as the coating of the metal (0.2 + 3.4i): R = Airy.
+for case in "30 550" "65 420"; do
+    read -r th lam <<<"$case"
+    run --material film --theta "${th}deg" --lambda "${lam}nm" --csv -
+    [[ $rc -eq 0 ]] || { fail "film $case: exit status $rc: $stderr"; continue; }
+    R=$(calc "airy($th * deg, ${lam}e-9, 1.38, 0, 250e-9, 1.52, 0)")
+    near "film $case R" "$(field 2 5)" "$R" 1e-10
+    near "film $case T" "$(field 3 5)" "$(calc "1 - $R")" 1e-10
+    near "film $case reflected lobe" "$(field 4 5)" "$R" 1e-10
+done
+for th in 10 55; do
+    run --material film --theta "${th}deg" --lambda 550nm --csv - -D film_n=2.95+0.13i -D film_d=150nm -D substrate_n=1.02+2.58i
+    [[ $rc -eq 0 ]] || { fail "Cu2O on Cu $th: exit status $rc: $stderr"; continue; }
+    near "Cu2O on Cu $th R" "$(field 2 5)" "$(calc "airy($th * deg, 550e-9, 2.95, 0.13, 150e-9, 1.02, 2.58)")" 1e-10
+    [[ "$(field 3 5)" == 0 && $(wc -l <<<"$stdout") -eq 4 ]] || fail "Cu2O on Cu $th: T or lobes: '$stdout'"
+done
+for th in 0 40; do
+    run --material coated_metal --theta "${th}deg" --lambda 600nm --csv -
+    near "coated metal $th R" "$(field 2 5)" "$(calc "airy($th * deg, 600e-9, 1.38, 0, 250e-9, 0.2, 3.4)")" 1e-10
+    [[ "$(field 3 5)" == 0 ]] || fail "coated metal $th: T = '$(field 3 5)'"
+done
+# A quarter-wave stack (N pairs of n_hi, n_lo, each λ0/4n thick) on n_s at normal incidence and λ0:
+# the admittance Y = (n_hi/n_lo)^{2N}·n_s, R = ((1 − Y)/(1 + Y))², T = 1 − R.
+for case in "4 600 2.3 1.38" "7 500 1.8 1.45"; do
+    read -r N l0 nh nl <<<"$case"
+    run --material mirror --theta 0deg --lambda "${l0}nm" --csv - -D "pairs=$N" -D "lambda0=${l0}nm" -D "n_hi=$nh" -D "n_lo=$nl"
+    [[ $rc -eq 0 ]] || { fail "quarter-wave $case: exit status $rc: $stderr"; continue; }
+    R=$(calc "(1 - ($nh / $nl)^(2 * $N) * 1.52)^2 / (1 + ($nh / $nl)^(2 * $N) * 1.52)^2")
+    near "quarter-wave $case R" "$(field 2 5)" "$R" 1e-10
+    near "quarter-wave $case T" "$(field 3 5)" "$(calc "1 - $R")" 1e-10
+done
+
+# 5d. harvey_shack: the light from (θ, φ) is reflected with exactly F (D7, per incident direction):
+#    the glint α_spec·F with α_spec = exp(−(4πσ_h·cosθ/λ)²) (a listed lobe, exact), the halo
+#    (1 − α_spec)·F by Monte Carlo (R within 4 standard errors of F). On the metal, a narrow and a
+#    wide halo; on the glass from inside beyond the critical angle (total internal reflection, F = 1)
+#    and from outside at normal incidence (F = 0.04). No transmission (reflection only).
+for case in "rough 30 0.1 metal" "rough 60 0.3 metal" "rough 20 0.02 metal" "rough_glass 130 0.1 glass" "rough_glass 0 0.2 glass"; do
+    read -r mat th ar sub <<<"$case"
+    run --material "$mat" --theta "${th}deg" --phi 25deg --lambda 550nm --csv - -D "alpha_r=$ar"
+    [[ $rc -eq 0 ]] || { fail "$mat $case: exit status $rc: $stderr"; continue; }
+    if [[ $sub == metal ]]; then F=$(calc "conductor(cos($th * deg), 0.2, 3.4)")
+    elif ((th > 90)); then F=$(calc "fresnel(-cos($th * deg), 1 / 1.5)")
+    else F=$(calc "fresnel(cos($th * deg), 1.5)"); fi
+    n=$( ((th > 90)) && echo 1.5 || echo 1)
+    spec=$(calc "exp(-(4 * pi * $n * 40e-9 * (cos($th * deg) < 0 ? -cos($th * deg) : cos($th * deg)) / 550e-9)^2) * $F")
+    se=$(field 2 6)
+    awk -v s="$se" 'BEGIN { exit !(s > 0 && s < 0.01) }' || fail "$mat $case: standard error '$se'"
+    near "$mat $case R = F" "$(field 2 5)" "$F" "$(calc "4 * $se")"
+    near "$mat $case glint" "$(field 4 5)" "$spec" "$(calc "1e-10 * $spec + 1e-15")"
+    near "$mat $case glint theta" "$(field 4 3)" "$(calc "$th * deg")" 1e-12
+    [[ "$(field 3 5),$(field 3 6)" == "0,0" && $(wc -l <<<"$stdout") -eq 4 ]] || fail "$mat $case: T or lobes: '$stdout'"
+done
+
+# 5e. mix of glass and metal (weight w: the metal's share): R = (1 − w)·F_glass + w·F_metal,
+#    T = (1 − w)·(1 − F_glass); lobes 0 (glass reflection), 1 (metal), 2 (glass refraction).
+for case in "0.3 30" "0.8 70"; do
+    read -r w th <<<"$case"
+    run --material blend --theta "${th}deg" --lambda 550nm --csv - -D "weight=$w"
+    [[ $rc -eq 0 ]] || { fail "blend $case: exit status $rc: $stderr"; continue; }
+    Fg=$(calc "fresnel(cos($th * deg), 1.5)") Fm=$(calc "conductor(cos($th * deg), 0.2, 3.4)")
+    near "blend $case R" "$(field 2 5)" "$(calc "(1 - $w) * $Fg + $w * $Fm")" 1e-10
+    near "blend $case T" "$(field 3 5)" "$(calc "(1 - $w) * (1 - $Fg)")" 1e-10
+    [[ "$(field 4 2),$(field 5 2),$(field 6 2)" == "0,1,2" ]] || fail "blend $case: lobe ids '$stdout'"
+    near "blend $case lobe 0" "$(field 4 5)" "$(calc "(1 - $w) * $Fg")" 1e-10
+    near "blend $case lobe 1" "$(field 5 5)" "$(calc "$w * $Fm")" 1e-10
+    near "blend $case lobe 2" "$(field 6 5)" "$(calc "(1 - $w) * (1 - $Fg)")" 1e-10
+done
+
+# 5f. two_sided with the metal in front and the Lambertian at the back: from below (θ > 90°) the
+#    albedo exactly (standard error 0) and no lobe; from above the metal's Fresnel R.
+run --material sheet --theta 140deg --phi 60deg --lambda 550nm --csv - -D albedo=0.42
+[[ "$(field 2 0)" == "R,,,,0.42,0" && "$(field 3 0)" == "T,,,,0,0" && $(wc -l <<<"$stdout") -eq 3 ]] ||
+    fail "sheet from below: '$stdout' $stderr"
+run --material sheet --theta 40deg --lambda 550nm --csv - -D albedo=0.42
+near "sheet from above R" "$(field 2 5)" "$(calc "conductor(cos(40 * deg), 0.2, 3.4)")" 1e-10
+[[ $(wc -l <<<"$stdout") -eq 4 ]] || fail "sheet from above: '$stdout'"
+
+# 6. The plot: a PNG, not empty, written together with the CSV (a kernel normalised per query and
+#    one per incident direction, whose map is the light from the source into each direction).
+for mat in paint rough; do
+    run --material $mat --theta 45deg --phi 30deg --lambda 550nm --csv "$out/$mat.csv" --plot "$out/sub/$mat.png" --quiet
+    [[ $rc -eq 0 && -s "$out/$mat.csv" ]] || fail "plot run $mat: exit status $rc: $stderr"
+    [[ "$(head -c 4 "$out/sub/$mat.png" | od -An -tx1 | tr -d ' ')" == 89504e47 ]] || fail "$mat.png is not a PNG"
+    [[ $(stat -c %s "$out/sub/$mat.png") -gt 10000 ]] || fail "$mat.png is suspiciously small"
+    grep -aq "Software.Matplotlib version" "$out/sub/$mat.png" || fail "$mat.png was not drawn by matplotlib"
+done
 # Without matplotlib (a Python without site packages): the map's data instead, and how to install it.
 printf '#!/bin/sh\nexec python3 -S "$@"\n' >"$out/nompl"
 chmod +x "$out/nompl"
