@@ -34,7 +34,7 @@
 // incidence only), so the lobes of one query need not sum to at most 1 (the light they gather comes
 // from different directions); energy is conserved per incident direction: the orders of the light
 // from one direction carry F (+ T) — ConservesEnergyPerIncidentDirection(), which the contract suite
-// checks. (harvey_shack normalises the other way, per query; see docs/kernels.md.)
+// checks (harvey_shack normalises its halo the same way; docs/kernels.md).
 //
 // Validity. Thin-phase theory needs a shallow profile (h ≪ Λ, slopes πh/Λ ≪ 1) and is scalar.
 // Against a rigorous FDTD reference of a sinusoidal metal grating, J_j(k·h·cosθ_i)² is within

@@ -8,7 +8,9 @@
 // continuous samples have weight = Eval·|cosθo|/Pdf and report pdf = Pdf(wo); near-delta samples
 // are one of the lobes ListNearDelta lists (same id, direction, probability and weight a_j/p_j),
 // each listed lobe obeys the vector grating equation with its own tangential shift (the law of
-// reflection and Snell's law for shift 0), lists no evanescent direction and Σ a_j ≤ 1; Eval and
+// reflection and Snell's law for shift 0), lists no evanescent direction and Σ a_j ≤ 1 (or, for a
+// kernel that conserves energy per incident direction, the light from one direction leaves through
+// the listed and continuous lobes with ≤ 1: EnergyPerIncidentDirection); Eval and
 // Pdf hold the continuous lobes only and the lobe mask (ScatterQuery::lobes) splits Sample into
 // the continuous and near-delta parts; EvalLobe's Mueller matrix has M00 = the lobe's value and
 // equals FromJones(Jones) where a Jones matrix is given.
