@@ -3,10 +3,17 @@
 // prove that a many-lobe, dispersive kernel needs nothing outside its own file and its
 // registration line: the contract suite (kernel_contract_test.cpp) picks it up from the registry
 // and checks its listed orders against the vector grating equation, their weights, the lobe
-// choice and EvalLobe. Not a physical model worth rendering: orders j = −M…M of a sinusoidal
-// phase grating (thin-phase amplitudes J_j(m)², m = k·h·cosθ_i, theory §4.2) on a grey mirror of
-// reflectance R, grooves along the local y axis (grating vector along x), renormalised over the
-// propagating orders. Registered only in the test executables.
+// choice and EvalLobe. Not a physical model worth rendering (the real one is `grating`,
+// src/materials/grating.cpp): orders j = −M…M of a sinusoidal phase grating (thin-phase amplitudes
+// J_j(m)², m = k·h·cosθ_i, theory §4.2) on a grey mirror of reflectance R, grooves along the local
+// y axis (grating vector along x), renormalised over the propagating orders of the *query's* wi.
+// Registered only in the test executables.
+// Unlike `grating` (whose orders carry the efficiencies of the light arriving along them) it
+// conserves energy per query and is not reciprocal, which no other kernel that can be blended does
+// (the `aperture` is footprint-aware): it is what exercises the contract suite's per-query energy
+// checks on a non-reciprocal many-lobe kernel, and what mix_test.cpp and two_sided_test.cpp use for
+// the per-query energy sense and for the refusal of a per-query child beside a per-incident-direction
+// one (CombinedEnergySense, core/render/material.h).
 #include <cmath>
 #include <sstream>
 
