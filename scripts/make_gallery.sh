@@ -10,9 +10,9 @@
 #   REUSE=1 scripts/make_gallery.sh                               reuse out/<scene>_compare/
 #
 # The compare folders stay in out/<scene>_compare/ (EXRs, diffs, table, index.html). For the
-# repository the PNGs are reduced to a 256-colour palette (Floyd–Steinberg dither) and the grid to
-# at most 960 pixels wide, with Pillow if a Python with it is found (Debian: python3-pil);
-# otherwise they are copied as they are.
+# repository the grid is scaled to at most 960 pixels wide and a PNG that would exceed 300 KB is
+# reduced to a 256-colour palette (Floyd–Steinberg dither), with Pillow if a Python with it is
+# found (Debian: python3-pil); otherwise the PNGs are copied as they are.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build}
@@ -30,13 +30,19 @@ done
 reduce() {
   if [[ -z "$python" ]]; then cp "$1" "$2"; return; fi
   "$python" - "$1" "$2" "$3" << 'EOF'
-import sys
+import io, sys
 from PIL import Image
 src, dst, width = sys.argv[1], sys.argv[2], int(sys.argv[3])
 im = Image.open(src).convert("RGB")
 if im.width > width:
     im = im.resize((width, round(im.height * width / im.width)), Image.Resampling.LANCZOS)
-im.quantize(colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.FLOYDSTEINBERG).save(dst, optimize=True)
+out = io.BytesIO()
+im.save(out, "PNG", optimize=True)
+if out.tell() > 300_000:  # noisy renders: a 256-colour palette keeps them small
+    out = io.BytesIO()
+    im.quantize(colors=256, method=Image.Quantize.MEDIANCUT, dither=Image.Dither.FLOYDSTEINBERG).save(
+        out, "PNG", optimize=True)
+open(dst, "wb").write(out.getvalue())
 EOF
 }
 
