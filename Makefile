@@ -5,7 +5,7 @@ JOBS      ?= $(shell nproc)
 BUILD     ?= build
 CMAKE_ARGS ?=
 
-.PHONY: all deps configure build demo test sanitize bench fuzz docs clean
+.PHONY: all deps configure build demo test sanitize bench fuzz docs gallery clean
 
 all: build
 
@@ -39,6 +39,11 @@ bench: build
 # Regenerates docs/plugins.md from the plug-ins' schemas.
 docs: build
 	@$(BUILD)/bin/phasor describe --markdown > docs/plugins.md
+
+# Renders the showcase scenes with `phasor compare` (grt, ray) into docs/gallery/ (a few minutes
+# per scene); INTEGRATORS=grt,ray,sample_solve for others (scripts/make_gallery.sh).
+gallery: build
+	@scripts/make_gallery.sh $(BUILD)
 
 clean:
 	rm -rf $(BUILD) build-asan out

@@ -1,7 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // `subdivision`: a Catmull–Clark subdivision surface (OpenSubdiv): the polygon cage from an OBJ
 // `file` (or the built-in `cage = "cube"`, [−1, 1]³) refined `levels` times uniformly, quads
-// split into triangles, shading normals from the limit surface; mapped by `to_world`.
+// split into triangles, shading normals from the limit surface, uvs from the cage's `vt`
+// (face-varying, seams kept; without them each triangle has the default parameterisation);
+// mapped by `to_world`.
 // Triangle count: 2 · 4^levels per cage quad (a cube at level 8: 786 432).
 #include "core/geometry/mesh_io.h"
 #include "shapes/shape_common.h"
@@ -17,7 +19,7 @@ class SubdivisionShape final : public MeshShape {
             "shape",
             "subdivision",
             "Catmull–Clark subdivision surface of an OBJ cage (OpenSubdiv).",
-            {P::File("file", "the cage as an .obj file (polygons are kept, not triangulated)"),
+            {P::File("file", "the cage as an .obj file (polygons are kept, not triangulated; its vt, at every corner or none, become face-varying uvs)"),
              P::String("cage", "a built-in cage instead of `file`").Choices({"cube"}),
              P::Integer("levels", "uniform refinement levels").Default(Value::Integer(3)).Min(0).Max(8),
              shape_common::ToWorldParam(), shape_common::MaterialParam()}};

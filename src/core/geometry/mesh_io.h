@@ -16,12 +16,17 @@ struct PolyMesh {
     std::vector<Vec3> positions;
     std::vector<int> faceSizes;
     std::vector<int> faceIndices;  // concatenated, counter-clockwise seen from outside
+    /// Optional texture coordinates, face-varying: faceUvIndices[c] indexes `uvs` for corner c of
+    /// faceIndices (a seam is a vertex whose corners use different uvs). Both empty: no uvs.
+    std::vector<Vec2> uvs;
+    std::vector<int> faceUvIndices;
 };
 
 /// Loads an OBJ file (v, vn, vt, f with any polygon size, negative indices); polygons are fan-
 /// triangulated. Materials and groups are ignored (one mesh).
 TriangleMesh LoadObj(const std::string &path);
-/// Loads the polygons of an OBJ file without triangulating (for subdivision cages).
+/// Loads the polygons of an OBJ file without triangulating (for subdivision cages), with their
+/// texture coordinates (`vt`) when every face corner has one; corners with and without are an error.
 PolyMesh LoadObjPolygons(const std::string &path);
 
 /// Loads every triangle primitive of a glTF 2.0 file (.gltf with external or embedded buffers,
@@ -33,7 +38,9 @@ TriangleMesh LoadGltf(const std::string &path, std::string *skipped = nullptr);
 
 /// Catmull–Clark subdivision of `cage` to `levels` uniform levels with OpenSubdiv (Far), with
 /// boundary interpolation of edges and corners; the limit-surface normals are computed from the
-/// limit stencils of the final level. Quads are split into two triangles.
+/// limit stencils of the final level. Quads are split into two triangles. A cage with uvs gives a
+/// mesh with uvs, refined as a face-varying primvar (OpenSubdiv's FVAR_LINEAR_CORNERS_ONLY: smooth
+/// inside, seams kept; the mesh repeats a vertex once per distinct uv at a seam).
 TriangleMesh SubdivideCatmullClark(const PolyMesh &cage, int levels);
 
 /// A unit cube cage [-1,1]³ with 6 quads (for tests and procedural assets).

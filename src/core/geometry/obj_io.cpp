@@ -219,9 +219,29 @@ TriangleMesh LoadObj(const std::string &path) {
 
 PolyMesh LoadObjPolygons(const std::string &path) {
     ObjReader reader(path);
-    ObjData d = reader.Read(false);
+    ObjData d = reader.Read(true);
+    // Texture coordinates for every corner or for none (a cage half with uvs has no meaning).
+    std::size_t withUv = 0;
+    for (const Corner &cr : d.corners) withUv += cr.vt >= 0;
+    if (withUv != 0 && withUv != d.corners.size()) {
+        std::size_t c = 0;
+        for (std::size_t f = 0; f < d.faceSizes.size(); c += d.faceSizes[f], ++f)
+            for (int k = 0; k < d.faceSizes[f]; ++k)
+                if ((d.corners[c + k].vt >= 0) != (d.corners[0].vt >= 0)) {
+                    reader.line_ = d.faceLines[f];
+                    reader.Fail(std::string("this face ") + (d.corners[0].vt >= 0 ? "lacks" : "has") +
+                                " texture coordinates and the first face " +
+                                (d.corners[0].vt >= 0 ? "has them" : "does not") +
+                                ": a subdivision cage needs a 'vt' at every corner or at none");
+                }
+    }
     PolyMesh pm;
     pm.positions = std::move(d.v);
+    if (withUv != 0) {
+        pm.uvs = std::move(d.vt);
+        pm.faceUvIndices.reserve(d.corners.size());
+        for (const Corner &cr : d.corners) pm.faceUvIndices.push_back(cr.vt);
+    }
     pm.faceSizes = std::move(d.faceSizes);
     pm.faceIndices.reserve(d.corners.size());
     std::size_t c = 0;

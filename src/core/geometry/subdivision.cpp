@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — Catmull–Clark subdivision through OpenSubdiv Far: uniform refinement of a polygon
 // cage, vertex positions interpolated level by level in double precision, shading normals from
-// the limit-surface tangents (PrimvarRefiner::Limit) of the last level's vertices.
+// the limit-surface tangents (PrimvarRefiner::Limit) of the last level's vertices; the cage's uvs,
+// if any, as a face-varying primvar.
 #include <opensubdiv/far/primvarRefiner.h>
 #include <opensubdiv/far/topologyDescriptor.h>
 #include <opensubdiv/far/topologyRefinerFactory.h>
@@ -39,6 +40,41 @@ void OsdErrorCallback(Far::ErrorType, const char *message) {
 }
 void OsdWarningCallback(const char *) {}
 
+struct Point2 {
+    double x = 0, y = 0;
+    void Clear(void * = nullptr) { x = y = 0; }
+    void AddWithWeight(const Point2 &s, double w) {
+        x += w * s.x;
+        y += w * s.y;
+    }
+};
+
+/// The refined mesh with uvs: one vertex per distinct (vertex, uv value) pair of the last level's
+/// face corners (a seam vertex is repeated once per chart), triangles as in `mesh`.
+TriangleMesh SplitAtUvSeams(const TriangleMesh &mesh, const Far::TopologyLevel &last,
+                            const std::vector<Point2> &uv) {
+    TriangleMesh out;
+    std::vector<std::vector<std::pair<int, uint32_t>>> copies(mesh.positions.size());  // (uv value, new vertex)
+    auto vertex = [&](int v, int t) {
+        for (const auto &[value, index] : copies[std::size_t(v)])
+            if (value == t) return index;
+        const uint32_t index = uint32_t(out.positions.size());
+        out.positions.push_back(mesh.positions[std::size_t(v)]);
+        out.normals.push_back(mesh.normals[std::size_t(v)]);
+        out.uvs.push_back(Vec2(uv[std::size_t(t)].x, uv[std::size_t(t)].y));
+        copies[std::size_t(v)].emplace_back(t, index);
+        return index;
+    };
+    // The same triangulation as the caller's (quads split along corner 0, fans otherwise).
+    for (int f = 0; f < last.GetNumFaces(); ++f) {
+        Far::ConstIndexArray fv = last.GetFaceVertices(f);
+        Far::ConstIndexArray ft = last.GetFaceFVarValues(f, 0);
+        for (int k = 1; k + 1 < fv.size(); ++k)
+            for (int c : {0, k, k + 1}) out.indices.push_back(vertex(fv[c], ft[c]));
+    }
+    return out;
+}
+
 }  // namespace
 
 PolyMesh CubeCage() {
@@ -73,6 +109,17 @@ TriangleMesh SubdivideCatmullClark(const PolyMesh &cage, int levels) {
             throw Error("subdivision: vertex index " + std::to_string(v) + " is out of range");
     for (const Vec3 &p : cage.positions)
         if (!IsFinite(p)) throw Error("subdivision: a cage vertex is not finite");
+    const bool hasUv = !cage.faceUvIndices.empty();
+    if (hasUv) {
+        if (cage.faceUvIndices.size() != cage.faceIndices.size())
+            throw Error("subdivision: " + std::to_string(cage.faceUvIndices.size()) + " uv indices for " +
+                        std::to_string(cage.faceIndices.size()) + " face corners");
+        for (int t : cage.faceUvIndices)
+            if (t < 0 || t >= int(cage.uvs.size()))
+                throw Error("subdivision: uv index " + std::to_string(t) + " is out of range");
+        for (const Vec2 &t : cage.uvs)
+            if (!std::isfinite(t.x) || !std::isfinite(t.y)) throw Error("subdivision: a cage uv is not finite");
+    }
 
     // Topology: Catmull–Clark, sharp boundary edges and corners.
     Far::TopologyDescriptor desc;
@@ -80,8 +127,17 @@ TriangleMesh SubdivideCatmullClark(const PolyMesh &cage, int levels) {
     desc.numFaces = int(cage.faceSizes.size());
     desc.numVertsPerFace = cage.faceSizes.data();
     desc.vertIndicesPerFace = cage.faceIndices.data();
+    Far::TopologyDescriptor::FVarChannel uvChannel;
+    if (hasUv) {
+        uvChannel.numValues = int(cage.uvs.size());
+        uvChannel.valueIndices = cage.faceUvIndices.data();
+        desc.numFVarChannels = 1;
+        desc.fvarChannels = &uvChannel;
+    }
     Sdc::Options sdcOptions;
     sdcOptions.SetVtxBoundaryInterpolation(Sdc::Options::VTX_BOUNDARY_EDGE_AND_CORNER);
+    // uvs: smooth inside a chart, linear only at the corners of its boundary (seams stay put).
+    sdcOptions.SetFVarLinearInterpolation(Sdc::Options::FVAR_LINEAR_CORNERS_ONLY);
     using Factory = Far::TopologyRefinerFactory<Far::TopologyDescriptor>;
 
     static std::mutex callbackMutex;  // SetErrorCallback is process-global
@@ -110,6 +166,18 @@ TriangleMesh SubdivideCatmullClark(const PolyMesh &cage, int levels) {
         std::vector<Point3> dst(refiner->GetLevel(level).GetNumVertices());
         primvar.Interpolate(level, src, dst);
         src.swap(dst);
+    }
+
+    // uvs (face-varying), level by level.
+    std::vector<Point2> uvSrc;
+    if (hasUv) {
+        uvSrc.resize(cage.uvs.size());
+        for (std::size_t i = 0; i < uvSrc.size(); ++i) uvSrc[i] = {cage.uvs[i].x, cage.uvs[i].y};
+        for (int level = 1; level <= levels; ++level) {
+            std::vector<Point2> dst(refiner->GetLevel(level).GetNumFVarValues(0));
+            primvar.InterpolateFaceVarying(level, uvSrc, dst, 0);
+            uvSrc.swap(dst);
+        }
     }
 
     const Far::TopologyLevel &last = refiner->GetLevel(levels);
@@ -160,6 +228,7 @@ TriangleMesh SubdivideCatmullClark(const PolyMesh &cage, int levels) {
         }
         mesh.normals[i] = n;
     }
+    if (hasUv) mesh = SplitAtUvSeams(mesh, last, uvSrc);
     mesh.Validate("subdivision surface");
     return mesh;
 }

@@ -51,10 +51,22 @@ TEST(Obj, LoadsPolygonsAttributesAndNegativeIndices) {
     EXPECT_EQ(m.positions[m.indices[7]], Vec3(1, 1, 0));  // −2 → vertex 3
     EXPECT_DOUBLE_EQ(m.Area(), 1.5);
 
-    PolyMesh pm = LoadObjPolygons(path);
+    // A subdivision cage takes uvs at every corner or at none: the triangle lacks them.
+    ExpectError([&] { LoadObjPolygons(path); }, {"good.obj:17:", "lacks texture coordinates"});
+    PolyMesh pm = LoadObjPolygons(WriteScratch("cage.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                                           "f 1 2 3 4\nf -4 -2 -1\n"));
     EXPECT_EQ(pm.faceSizes, (std::vector<int>{4, 3}));
     EXPECT_EQ(pm.faceIndices, (std::vector<int>{0, 1, 2, 3, 0, 2, 3}));
     EXPECT_EQ(pm.positions.size(), 4u);
+    EXPECT_TRUE(pm.uvs.empty());
+    EXPECT_TRUE(pm.faceUvIndices.empty());
+    // With uvs at every corner: kept face-varying (the triangle reuses vt 1 and 3 and adds 5).
+    pm = LoadObjPolygons(WriteScratch("cage_uv.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
+                                                     "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nvt 0.5 0.5\n"
+                                                     "f 1/1 2/2 3/3 4/4\nf 1/1 3/3 4/5\n"));
+    EXPECT_EQ(pm.faceUvIndices, (std::vector<int>{0, 1, 2, 3, 0, 2, 4}));
+    ASSERT_EQ(pm.uvs.size(), 5u);
+    EXPECT_EQ(pm.uvs[4], Vec2(0.5, 0.5));
 }
 
 TEST(Obj, NormalsDroppedUnlessEveryCornerHasOne) {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Catmull–Clark subdivision through OpenSubdiv: topology counts, convergence of the refined
-// control points to the limit surface, limit normals, and cage errors.
+// control points to the limit surface, limit normals, face-varying uvs, and cage errors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -111,6 +111,106 @@ TEST(Subdivision, OpenCageKeepsCornersAndTriangleCagesWork) {
     EXPECT_EQ(SubdivideCatmullClark(tet, 1).TriangleCount(), 24u);  // 12 quads
 }
 
+// A flat n×n grid of quads whose uvs are an affine function of position: Catmull–Clark refines
+// positions and face-varying uvs with the same stencils inside a chart and the same B-spline rule
+// along its boundary (VTX_BOUNDARY_EDGE_AND_CORNER for positions, FVAR_LINEAR_CORNERS_ONLY for
+// uvs), so every refined vertex keeps uv = A·(x, y) + b exactly (up to rounding). A uv paired
+// with the wrong vertex, or interpolated with other weights, breaks it by O(1/n).
+TEST(Subdivision, UvsFollowAnAffineMapOfAFlatGrid) {
+    const int n = 3;
+    auto uvOf = [](double x, double y) { return Vec2(0.3 + 0.5 * x - 0.2 * y, -0.1 + 0.25 * x + 0.7 * y); };
+    PolyMesh grid;
+    for (int j = 0; j <= n; ++j)
+        for (int i = 0; i <= n; ++i) {
+            const double x = i + 0.2 * j, y = j + 0.1 * i * i;  // a sheared, bent grid in z = 0
+            grid.positions.push_back(Vec3(x, y, 0));
+            grid.uvs.push_back(uvOf(x, y));
+        }
+    for (int j = 0; j < n; ++j)
+        for (int i = 0; i < n; ++i) {
+            grid.faceSizes.push_back(4);
+            for (int v : {j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1, (j + 1) * (n + 1) + i}) {
+                grid.faceIndices.push_back(v);
+                grid.faceUvIndices.push_back(v);
+            }
+        }
+    for (int level : {0, 1, 3}) {
+        TriangleMesh m = SubdivideCatmullClark(grid, level);
+        ASSERT_EQ(m.uvs.size(), m.positions.size());
+        EXPECT_EQ(m.positions.size(), std::size_t((n << level) + 1) * std::size_t((n << level) + 1));  // no seam
+        for (std::size_t i = 0; i < m.positions.size(); ++i) {
+            const Vec2 want = uvOf(m.positions[i].x, m.positions[i].y);
+            ASSERT_NEAR(m.uvs[i].x, want.x, 1e-12) << "level " << level << ", vertex " << i;
+            ASSERT_NEAR(m.uvs[i].y, want.y, 1e-12) << "level " << level << ", vertex " << i;
+        }
+    }
+}
+
+// A closed tube (a ring of 8 quads around x, 4 segments long, capped) with u along the axis and v
+// around it, the seam at v = 0 ≡ 1: the refined mesh has the geometry of the cage without uvs,
+// repeats exactly the seam's vertices, never interpolates across the seam, and dp/du follows the
+// axis on the side wall away from the ends (what a grating's groove direction is measured from).
+TEST(Subdivision, TubeUvSeamIsKept) {
+    const int ring = 8, segs = 4;
+    PolyMesh tube;
+    for (int i = 0; i <= segs; ++i)
+        for (int k = 0; k < ring; ++k) {
+            const double a = 2 * Pi * k / ring;
+            tube.positions.push_back(Vec3(i, std::cos(a), std::sin(a)));
+        }
+    for (int i = 0; i <= segs; ++i)
+        for (int k = 0; k <= ring; ++k) tube.uvs.push_back(Vec2(double(i) / segs, double(k) / ring));
+    const int capUv = int(tube.uvs.size());
+    tube.uvs.push_back(Vec2(0.5, 0.5));  // the caps: one uv (a degenerate chart)
+    auto vid = [&](int i, int k) { return i * ring + k % ring; };
+    auto tid = [&](int i, int k) { return i * (ring + 1) + k; };  // k = ring: the seam's other side
+    for (int i = 0; i < segs; ++i)
+        for (int k = 0; k < ring; ++k) {
+            tube.faceSizes.push_back(4);
+            for (auto [a, b] : {std::pair{i, k}, {i, k + 1}, {i + 1, k + 1}, {i + 1, k}}) {
+                tube.faceIndices.push_back(vid(a, b));
+                tube.faceUvIndices.push_back(tid(a, b));
+            }
+        }
+    for (int end : {0, segs}) {
+        tube.faceSizes.push_back(ring);
+        for (int k = 0; k < ring; ++k) {
+            tube.faceIndices.push_back(vid(end, end == 0 ? ring - k : k));
+            tube.faceUvIndices.push_back(capUv);
+        }
+    }
+    PolyMesh plain = tube;
+    plain.uvs.clear();
+    plain.faceUvIndices.clear();
+    const int level = 3;
+    TriangleMesh m = SubdivideCatmullClark(tube, level), g = SubdivideCatmullClark(plain, level);
+    ASSERT_EQ(m.uvs.size(), m.positions.size());
+    EXPECT_EQ(m.TriangleCount(), g.TriangleCount());
+    // Same surface: every triangle of m has the positions of g's triangle of the same index.
+    for (std::size_t i = 0; i < m.indices.size(); ++i) {
+        ASSERT_EQ(m.positions[m.indices[i]], g.positions[g.indices[i]]) << i;
+        ASSERT_EQ(m.normals[m.indices[i]], g.normals[g.indices[i]]) << i;
+    }
+    // Copies: the side wall's seam column (segs·2^L + 1 vertices) once more, and the cap
+    // boundaries, which belong to the cap chart and the wall chart (2·ring·2^L vertices).
+    const std::size_t seam = std::size_t(segs << level) + 1, capRims = 2 * std::size_t(ring << level);
+    EXPECT_EQ(m.positions.size(), g.positions.size() + seam + capRims);
+    MeshShape shape(m);
+    std::size_t wall = 0;
+    for (std::size_t t = 0; t < m.TriangleCount(); ++t) {
+        const Vec2 &a = m.uvs[m.indices[3 * t]], &b = m.uvs[m.indices[3 * t + 1]], &c = m.uvs[m.indices[3 * t + 2]];
+        EXPECT_LT(std::max({std::abs(a.y - b.y), std::abs(b.y - c.y), std::abs(a.y - c.y)}), 0.25) << t;
+        const SurfaceInteraction si = shape.Interaction(Ray{}, 0, unsigned(t), 1.0 / 3, 1.0 / 3);
+        if (Length(si.dpdu) == 0) continue;  // a cap: one uv, no parameterisation
+        ++wall;
+        if (std::abs(si.p.x - 0.5 * segs) > 1) continue;  // near the ends the wall turns into the caps
+        const Vec3 radial = Normalize(Vec3(0, si.p.y, si.p.z));
+        EXPECT_GT(Normalize(si.dpdu).x, 0.9) << "triangle " << t;  // along +x
+        EXPECT_LT(std::abs(Dot(Normalize(si.dpdv), radial)), 0.35) << "triangle " << t;  // around
+    }
+    EXPECT_GT(wall, m.TriangleCount() / 2);
+}
+
 TEST(Subdivision, BadCagesThrow) {
     PolyMesh c = CubeCage();
     c.faceIndices[5] = 99;
@@ -121,6 +221,12 @@ TEST(Subdivision, BadCagesThrow) {
     EXPECT_THROW(SubdivideCatmullClark(CubeCage(), -1), Error);
     EXPECT_THROW(SubdivideCatmullClark(CubeCage(), 11), Error);
     EXPECT_THROW(SubdivideCatmullClark(PolyMesh{}, 1), Error);
+    c = CubeCage();
+    c.uvs = {Vec2(0, 0)};
+    c.faceUvIndices.assign(c.faceIndices.size() - 1, 0);  // one corner short
+    EXPECT_THROW(SubdivideCatmullClark(c, 1), Error);
+    c.faceUvIndices.push_back(1);  // out of range
+    EXPECT_THROW(SubdivideCatmullClark(c, 1), Error);
 }
 
 }  // namespace
