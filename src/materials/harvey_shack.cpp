@@ -168,6 +168,9 @@ class HarveyShackMaterial final : public Material {
     unsigned Capabilities(const ScatterQuery &) const override {
         return CapNearDelta | (sigma_ > 0 ? CapContinuous : 0u);
     }
+    void ContinuousLobes(const ScatterQuery &, ContinuousLobeIds &out) const override {
+        if (sigma_ > 0) out.Add(ScatterLobe);
+    }
 
     /// Lobe 0: the specular direction on wi's side, weight α_spec(λ)·F(λ), probability α_spec at
     /// the hero (the same as Sample's).
