@@ -13,7 +13,10 @@
 //     LobeContinuous (the masked estimator is unbiased for the continuous part alone), each counting
 //     weight·η² on transmission (η = ScatterSample::eta), from a fixed seed (--seed, default 0), with
 //     the standard error of the mean;
-//   * R = every reflected lobe + the continuous reflection (wo on wi's side), T the rest.
+//   * R = every reflected lobe + the continuous reflection (wo on wi's side), T the rest;
+//   * a kernel that conserves energy per incident direction (Material::
+//     ConservesEnergyPerIncidentDirection, the grating) lists per query what arrives at wi; its
+//     lobes' efficiencies are read from the queries at their directions, towards wi.
 // Default: the wave-optical answer, a generalized-ray query (rayOptics = false) for a plane wave
 // (no GR footprint: q.gr = nullptr, β = 0). `--ray`: the ray-optics limit (rayOptics = true).
 // Footprint-aware kernels (the aperture) answer only for a given GR on a given shape — a plane-wave
@@ -105,13 +108,28 @@ ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64
     ProbeResult r;
     NearDeltaLobes lobes;
     m.ListNearDelta(q, lobes);
+    // A kernel that conserves energy per incident direction (a grating) lists, for a query at wi,
+    // what arrives *at* wi along each lobe; the light *from* wi into lobe l's direction is what the
+    // query there lists along its lobe of the same id back towards wi (material.h).
+    const bool fromSource = !m.IsReciprocal() && m.ConservesEnergyPerIncidentDirection();
     for (const NearDeltaLobe &l : lobes) {
         ProbeLobe p;
         p.id = l.id;
         p.transmission = (l.flags & ScatterTransmission) != 0;
         p.wo = l.wo[0];
-        const double power = l.nOut[0] / l.nIn[0];  // undo the radiance factor (n_in/n_out)²
-        p.efficiency = l.weight[0] * power * power;
+        const NearDeltaLobe *carrier = &l;
+        NearDeltaLobes back;
+        if (fromSource) {
+            ScatterQuery there = q;
+            there.wi = l.wo[0];
+            m.ListNearDelta(there, back);
+            carrier = nullptr;
+            for (const NearDeltaLobe &b : back)
+                if (b.id == l.id && SameDirection(b.wo[0], q.wi)) carrier = &b;
+            if (!carrier) continue;  // nothing reaches that direction from wi
+        }
+        const double power = carrier->nOut[0] / carrier->nIn[0];  // undo the radiance factor (n_in/n_out)²
+        p.efficiency = carrier->weight[0] * power * power;
         (p.transmission ? r.discreteT : r.discreteR) += p.efficiency;
         r.lobes.push_back(p);
     }

@@ -19,15 +19,18 @@ std::string Coating::ToString() const {
 
 StackResponse SmoothSurface::Response(double lambda, double etaOutside, double cosI, bool fromInside,
                                       const TextureEvalContext &tex) const {
-    std::array<Layer, MaxLayers> layers;
     const int count = LayerCount();
+    const Complex outside(etaOutside, 0), substrate = SubstrateIndex(lambda);
+    const Complex nIn = fromInside ? substrate : outside, nOut = fromInside ? outside : substrate;
+    // A bare interface needs no layer buffer (filling MaxLayers default layers costs more than the
+    // Fresnel coefficients; gratings ask once per order listing and wavelength).
+    if (count == 0) return LayerStackResponse(lambda, nIn, Complex(cosI, 0), std::span<const Layer>(), nOut);
+    std::array<Layer, MaxLayers> layers;
     for (int j = 0; j < count; ++j) {
         const CoatingLayer &c = coating_->layers[fromInside ? count - 1 - j : j];
         layers[j] = Layer{c.ior->Eval(lambda), c.thickness.Eval(tex)};
     }
-    const Complex outside(etaOutside, 0), substrate = SubstrateIndex(lambda);
-    return LayerStackResponse(lambda, fromInside ? substrate : outside, Complex(cosI, 0),
-                              std::span<const Layer>(layers.data(), count), fromInside ? outside : substrate);
+    return LayerStackResponse(lambda, nIn, Complex(cosI, 0), std::span<const Layer>(layers.data(), count), nOut);
 }
 
 std::string SmoothSurface::ToString() const {

@@ -45,6 +45,11 @@ function diffusefresnel(eta,   n, h, i, t, mu, muc, s) {  # 2∫F(μ)μdμ, Simp
     return muc * muc + 2 * s * h / 3
 }
 function atan2pi(y, x) { return atan2(y, x) }
+function besselj(n, x,   s, t, k) {  # J_n(x), n ≥ 0, power series (DLMF 10.2.2), exact to ~1e-15 for x < 10
+    t = 1; for (k = 1; k <= n; k++) t *= x / 2 / k
+    s = 0; for (k = 0; k < 60; k++) { s += t; t *= -(x / 2) * (x / 2) / ((k + 1) * (k + 1 + n)) }
+    return s
+}
 BEGIN { pi = atan2(0, -1); deg = pi / 180 }'
 calc() { awk "$awkmath"' BEGIN { printf "%.15g\n", '"$1"' }'; }
 
@@ -120,6 +125,29 @@ run --material paint --theta 30deg --lambda 550nm --csv - --seed 8; [[ "$stdout"
 run --material glass --theta 40deg --lambda 550nm --csv - --ray; a=$stdout
 run --material glass --theta 40deg --lambda 550nm --csv -
 [[ "$stdout" == "$a" ]] || fail "--ray changed a smooth dielectric"
+
+# 5b. grating on the metal (ĝ = +x), light from θ in the x–z plane: order j leaves at
+#    sinθ_o = |sinθ − jλ/Λ| with J_j(m)²·R/Σ_prop J², m = 2πh·cosθ/λ (D6, renormalised), R = F.
+for case in "20 550 0.1" "0 633 0.15" "45 450 0.08"; do
+    read -r th lam h <<<"$case"
+    run --material lines --theta "${th}deg" --lambda "${lam}nm" --csv - -D "height=${h}um"
+    [[ $rc -eq 0 ]] || { fail "grating $case: exit status $rc: $stderr"; continue; }
+    R=$(calc "conductor(cos($th * deg), 0.2, 3.4)")
+    near "grating $case R" "$(field 2 5)" "$R" 1e-10
+    rows=$(wc -l <<<"$stdout")
+    for ((r = 4; r <= rows; r++)); do
+        j=$(field "$r" 2)
+        ref=$(awk "$awkmath"' BEGIN { th = '"$th"' * deg; l = '"$lam"'e-9; L = 2e-6; m = 2 * pi * '"$h"'e-6 * cos(th) / l
+            for (k = -20; k <= 20; k++) if ((sin(th) - k * l / L) ^ 2 < 1) S += besselj(k < 0 ? -k : k, m) ^ 2
+            jj = '"$j"'; e = besselj(jj < 0 ? -jj : jj, m) ^ 2 * '"$R"' / S
+            so = sin(th) - jj * l / L; if (so < 0) so = -so
+            printf "%.15g %.15g\n", e, atan2(so, sqrt(1 - so * so)) }')
+        read -r eff theta <<<"$ref"
+        near "grating $case order $j efficiency" "$(field "$r" 5)" "$eff" "$(calc "1e-9 * $eff + 1e-15")"
+        near "grating $case order $j theta_o" "$(field "$r" 3)" "$theta" 1e-9
+    done
+    [[ $rows -ge 6 ]] || fail "grating $case: too few orders: '$stdout'"
+done
 
 # 6. The plot: a PNG, not empty, written together with the CSV.
 run --material paint --theta 45deg --phi 30deg --lambda 550nm --csv "$out/paint.csv" --plot "$out/sub/paint.png" --quiet

@@ -28,6 +28,9 @@ inline constexpr const char *UnderTestName = "under_test";
 ///   @contract_glass    material dielectric(ior = 1.5)
 ///   @contract_aluminium material conductor(ior = "Al")
 ///   @contract_matte    material diffuse(reflectance = 0.6)
+///   @contract_bk7      material dielectric(ior = "BK7")   (dispersive)
+///   @contract_pitch    texture  gradient(value0 = 1.2 um, value1 = 2.4 um, axis = "u")   (a length)
+///   @contract_groove_angle texture gradient(value0 = 0 deg, value1 = 120 deg, axis = "v") (an angle)
 inline void AddFixtures(SceneDesc &desc) {
     auto add = [&](const char *keyword, const char *type, const char *name, const ParamDict &params) {
         SceneEntity e;
@@ -41,6 +44,17 @@ inline void AddFixtures(SceneDesc &desc) {
     add("Material", "dielectric", "contract_glass", ParamDict().Set("ior", Value::Number(1.5)));
     add("Material", "conductor", "contract_aluminium", ParamDict().Set("ior", Value::String("Al")));
     add("Material", "diffuse", "contract_matte", ParamDict().Set("reflectance", Value::Number(0.6)));
+    add("Material", "dielectric", "contract_bk7", ParamDict().Set("ior", Value::String("BK7")));
+    add("Texture", "gradient", "contract_pitch",
+        ParamDict()
+            .Set("value0", Value::Number(1.2e-6, Dim::Length()))
+            .Set("value1", Value::Number(2.4e-6, Dim::Length()))
+            .Set("axis", Value::String("u")));
+    add("Texture", "gradient", "contract_groove_angle",
+        ParamDict()
+            .Set("value0", Value::Number(0, Dim::Angle()))
+            .Set("value1", Value::Number(120 * 3.141592653589793 / 180, Dim::Angle()))
+            .Set("axis", Value::String("v")));
     SceneEntity checker;
     checker.keyword = "Texture";
     checker.type = "checkerboard";

@@ -2,6 +2,7 @@
 // phasor — cylinder functions (bessel.h).
 #include "core/numerics/bessel.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -67,6 +68,45 @@ double BesselI0Scaled(double x) {
     // Asymptotic expansion (Abramowitz & Stegun 9.7.1).
     const double t = 1 / (8 * x);
     return (1 + t * (1 + t * (4.5 + t * 37.5))) / std::sqrt(2 * Pi * x);
+}
+
+void BesselJSequence(double x, int nMax, double *out) {
+    if (nMax < 0) return;
+    if (!(x >= 1e-8)) {
+        // J_n(x) = (x/2)^n/n!·(1 − (x/2)²/(n+1) + …): the next term is below 1e-32 relative.
+        const double h = std::max(0.0, x) / 2;
+        double t = 1;
+        for (int n = 0; n <= nMax; ++n) {
+            out[n] = t * (1 - h * h / (n + 1));
+            t *= h / (n + 1);
+        }
+        return;
+    }
+    // Start above both nMax and x with a margin d that makes the contamination by the dominant
+    // solution Y negligible at n ≤ max(nMax, x): its relative size there is ~J_N/Y_N, which falls
+    // like exp(−(2/3)(2d)^{3/2}/√x) past the transition n ≈ x (DLMF 10.19.8), below 1e-16 for
+    // d ≳ 0.3·x^{1/3}·… — d = 6 + √(24·max(nMax, x)) covers it with room (x = 250 needs d ≈ 46,
+    // this gives 83; for x ≲ nMax the factor (x/2)^{2d}·(nMax!/N!)² is < 1e-20 already at d = 6).
+    const double top = std::max(double(nMax), x);
+    int start = int(top + 6 + std::sqrt(24 * top));
+    start += start & 1;  // even, so the normalisation sum pairs up
+    double next = 0, cur = 1e-30, norm = 0;  // J_{n+1}, J_n up to a common factor
+    const double twoOverX = 2 / x;            // a multiplication in the loop, not a division
+    for (int n = start; n > 0; --n) {
+        const double prev = n * twoOverX * cur - next;  // J_{n−1}
+        next = cur;
+        cur = prev;
+        if (n - 1 <= nMax) out[n - 1] = cur;
+        if ((n - 1) % 2 == 0 && n - 1 > 0) norm += 2 * cur;
+        if (std::abs(cur) > 1e250) {  // rescale everything kept so far
+            cur *= 1e-250;
+            next *= 1e-250;
+            norm *= 1e-250;
+            for (int k = n - 1; k <= nMax; ++k) out[k] *= 1e-250;
+        }
+    }
+    norm += cur;  // + J_0
+    for (int k = 0; k <= nMax; ++k) out[k] /= norm;
 }
 
 }  // namespace phasor

@@ -1,7 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — cylinder functions: the Hankel functions H₀⁽¹⁾, H₁⁽¹⁾ of the 2-D Rayleigh–Sommerfeld
-// kernel (theory §6.2, `rs`) and the scaled modified Bessel function I₀ of the GR disc
-// measurement (core/render/genray.h).
+// kernel (theory §6.2, `rs`), the scaled modified Bessel function I₀ of the GR disc
+// measurement (core/render/genray.h) and the sequence J₀ … J_N of the grating orders
+// (materials/grating.cpp).
 #pragma once
 
 #include "core/math.h"
@@ -24,5 +25,12 @@ void Hankel01(double x, Complex *h0, Complex *h1);
 /// The exponentially scaled modified Bessel function I₀(x)·e^{−x} for x ≥ 0 (std::cyl_bessel_i
 /// below 600, the asymptotic expansion A&S 9.7.1 to four terms above, relative error < 1e-12).
 double BesselI0Scaled(double x);
+
+/// J_0(x), J_1(x), …, J_nMax(x) for x ≥ 0 into out[0 … nMax], by Miller's backward recurrence
+/// J_{n−1} = (2n/x)·J_n − J_{n+1} started well above max(nMax, x) and normalised with
+/// J_0 + 2·Σ_k J_2k = 1 (DLMF 10.74(iv), 10.12.4); a power series for x < 1e-8. One pass costs
+/// O(max(nMax, x)) flops, ~50× less than nMax + 1 calls of std::cyl_bessel_j; agrees with it to
+/// ~1e-15 absolute (tests/core/numerics/bessel_test.cpp).
+void BesselJSequence(double x, int nMax, double *out);
 
 }  // namespace phasor

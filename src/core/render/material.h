@@ -256,6 +256,13 @@ class Material {
     std::optional<LobeResponse> EvalContinuousLobes(const ScatterQuery &q, const Vec3 &wo) const;
     /// True if f(wi→wo) = f(wo→wi) (checked by the contract suite).
     virtual bool IsReciprocal() const { return true; }
+    /// For a non-reciprocal kernel, the sense in which it conserves energy (the contract suite
+    /// checks that one). false (default): per query — what Sample can return for one wi carries at
+    /// most the incident energy (the backward walk's albedo ≤ 1; `harvey_shack`). true: per
+    /// physical incident direction — light arriving from a lobe's wo leaves into all the wi whose
+    /// lobes point back at it with at most its energy (a grating's orders from a plane wave carry
+    /// F); the lobes of one query may then sum to more than 1. Reciprocal kernels satisfy both.
+    virtual bool ConservesEnergyPerIncidentDirection() const { return false; }
     /// Called by the scene builder for every shape that uses this kernel; throws phasor::Error
     /// (e.g. a planar kernel on a non-planar shape).
     virtual void CheckShape(const Shape &shape) const { (void)shape; }

@@ -69,5 +69,39 @@ TEST(BesselI0Scaled, MatchesStdAndIsContinuousAtTheAsymptoticSwitch) {
     EXPECT_NEAR(BesselI0Scaled(1e4) * std::sqrt(2 * Pi * 1e4), 1 + 1 / 8e4, 1e-9);
 }
 
+TEST(BesselJSequence, MatchesStdCylBesselJ) {
+    // Every order 0…30 against std::cyl_bessel_j over small, moderate and large arguments (the
+    // grating's m = k·h·cosθ_i spans ~0–20; far larger x only costs time). Tolerance: the
+    // backward recurrence and the normalisation sum each lose a few ulps per O(x) terms, so
+    // 2e-15 absolute on values ≤ 1 plus 1e-12 relative for the tiny high orders.
+    constexpr int N = 30;
+    double j[N + 1];
+    for (double x : {0.0, 1e-12, 3e-9, 1e-8, 2e-6, 0.01, 0.3, 1.0, 2.404825557695773, 5.5, 12.7, 29.9, 31.3, 77.0,
+                     250.0}) {
+        BesselJSequence(x, N, j);
+        for (int n = 0; n <= N; ++n) {
+            const double ref = std::cyl_bessel_j(double(n), x);
+            EXPECT_NEAR(j[n], ref, 2e-15 * std::max(1.0, std::sqrt(x)) + 1e-12 * std::abs(ref))
+                << "n = " << n << ", x = " << x;
+        }
+    }
+    // A deliberately shorter start (as if the margin were dropped) would fail here: the check
+    // is sensitive to the top orders, J_30(31.3) ≈ 0.12 and J_30(5.5) ≈ 4e-18.
+    BesselJSequence(5.5, N, j);
+    EXPECT_NEAR(j[N] / std::cyl_bessel_j(double(N), 5.5), 1.0, 1e-12);
+}
+
+TEST(BesselJSequence, SumOfSquaresIsOne) {
+    // Σ_{n∈ℤ} J_n(x)² = J_0² + 2Σ_{n≥1} J_n² = 1 (DLMF 10.23.3) once nMax ≫ x.
+    constexpr int N = 60;
+    double j[N + 1];
+    for (double x : {0.0, 0.5, 3.0, 17.0, 40.0}) {
+        BesselJSequence(x, N, j);
+        double s = j[0] * j[0];
+        for (int n = 1; n <= N; ++n) s += 2 * j[n] * j[n];
+        EXPECT_NEAR(s, 1.0, 1e-13) << x;
+    }
+}
+
 }  // namespace
 }  // namespace phasor

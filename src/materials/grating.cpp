@@ -1,0 +1,493 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — `grating`: a sinusoidal surface-relief diffraction grating on a smooth substrate
+// (theory §0 D6, §4.2, §4.6; the CD, the rainbow boa's scales).
+//
+// Model. The surface is z(x_g) = (h/2)·sin(2π·x_g/Λ) along the grating vector ĝ (h peak-to-peak,
+// grooves along TangentAtAngle(angle)). In the thin-phase (Raman–Nath) approximation the relief is
+// a phase screen on the smooth substrate: the reflected field is the substrate's, times
+// exp(i·a·sin(2π x_g/Λ)) = Σ_j J_j(a)·exp(i·j·2π x_g/Λ), so order j is a plane wave whose
+// tangential wave vector is the specular one plus j·2π/Λ·ĝ (the vector grating equation,
+// NearDeltaDirection; conical incidence included) with power efficiency
+//     a_j = J_j(m)²·F,   m = |a| = k·h·cosθ_i,   k = 2π·n_in/λ                    (D6)
+// where F is the substrate's unpolarised Fresnel reflectance at θ_i (SmoothSurface, its coating
+// included). Σ_j J_j(m)² = 1 over all j ∈ ℤ. Orders with no propagating direction (evanescent)
+// and orders beyond `max_order` are dropped; with `renormalize` (default) their share is given to
+// the propagating orders in proportion, a_j = J_j²·F/Σ_prop J², so the grating reflects exactly F
+// (a lossless substrate conserves energy, as a rigorous solution does); `renormalize = false` keeps
+// the plain thin-phase values and loses the dropped share. Either way the dropped share is
+// reported per side (GratingMaterial::Orders, grating.h).
+// Transmission (`transmission = true`, a transparent substrate): the same screen in transmission
+// has the phase amplitude a = k₀·(h/2)·(n_t·cosθ_t − n_i·cosθ_i) (the optical path through a
+// bump of height z is n_t z cosθ_t instead of n_i z cosθ_i), and order j of the transmitted side
+// carries J_j(a)²·T (T the substrate's transmittance at θ_i, renormalised over the propagating
+// transmitted orders) with the (η_i/η_t)² radiance factor of dielectric.cpp. Light arriving from
+// inside the substrate (wi.z < 0) is handled symmetrically (n_i = the substrate's index). Without
+// `transmission` the grating is an opaque two-sided reflector, like `conductor`: wi.z < 0 is
+// reflected on that side, and a dielectric substrate's transmitted share is absorbed.
+//
+// Whose incidence. The efficiencies belong to the light's incident direction: a lobe of a query
+// at wi, pointing at wo (where the light comes from in a backward tracer), carries the efficiency
+// of the order that takes light arriving from wo into wi — m, F and the renormalisation at wo's
+// angle, not wi's (the order index is the same both ways: the tangential wave vector out is the one
+// in plus j·2π/Λ·ĝ). So a pixel, camera or sensor, that sees a laser or the sun through order j
+// receives exactly J_j(k·h·cosθ_source)²·F/Σ. The model is not reciprocal (m depends on the
+// incidence only), so the lobes of one query need not sum to at most 1 (the light they gather comes
+// from different directions); energy is conserved per incident direction: the orders of the light
+// from one direction carry F (+ T) — ConservesEnergyPerIncidentDirection(), which the contract suite
+// checks. (harvey_shack normalises the other way, per query; see docs/kernels.md.)
+//
+// Validity. Thin-phase theory needs a shallow profile (h ≪ Λ, slopes πh/Λ ≪ 1) and is scalar.
+// Against a rigorous FDTD reference of a sinusoidal metal grating, J_j(k·h·cosθ_i)² is within
+// ≈ 2e-3 of the unpolarised efficiencies up to h/λ ≈ 0.18 at normal incidence and within
+// ≈ 2.5e-2 up to h/λ ≈ 0.27 at 20° incidence; there the unrenormalised thin-phase sum over the
+// propagating orders is 0.994 whereas the rigorous one is 1 (hence `renormalize`). Beyond
+// h/λ ≈ 0.3, or for Λ ≲ λ (one or two propagating orders, resonances, Wood anomalies) and for
+// polarisation-resolved work, use a rigorous method (RCWA, FDTD). Not reciprocal (m depends on θ_i
+// only; the exact thin-phase argument is ½kh(cosθ_i + cosθ_o), which D6 trades for Σ_j J_j² = 1).
+//
+// Polarisation (EvalLobe): order j's Jones matrix is J_j(a)·√scale times the substrate's
+// diag(r_s, r_p) at the source's θ (diag(t_s, t_p)·√(power factor)·(n_exit/n_source) when
+// transmitted), so M00 = a_j.
+// The rotation between the incident and the diffracted planes of incidence of conical orders is
+// not modelled (the thin-phase screen is scalar). No coherence terms (LobeCoherence::any =
+// false): a partially coherent field is an incoherent mixture of plane waves, each diffracted with
+// the same efficiencies, so only each order's angular spread depends on the coherence, and that is
+// the generalized ray's own spread; an order needs mutually coherent periods by definition (if they
+// were not, there would be no order at all, only a single period's diffraction, a continuous lobe).
+//
+// Ray-optics limit (ScatterQuery::rayOptics: the `ray` integrator, GRs after an aperture): the
+// grooves are not resolved and the kernel is its smooth substrate — the zeroth orders only, with
+// J_0 = 1 (the h → 0 limit): reflection F, transmission T. Chosen over J_0(m)²·F so that a `ray`
+// render of a grating on a lossless substrate keeps the energy the wave-optical kernel
+// (renormalised) reflects and `phasor compare` shows only what diffraction redistributes.
+//
+// Lobes (all listed near-delta lobes; Sample picks one ∝ its radiance weight at the hero
+// wavelength, SampleListedLobe; each thread keeps its last listing, since grt lists a vertex's lobes
+// and then samples them, and a listing evaluates the orders of every lobe's source direction):
+// reflected order j has id j, transmitted order j id 1000 + j
+// (GratingMaterial::TransmittedId). Orders j ≠ 0 are ScatterDispersive (their direction depends
+// on λ); the zeroth reflected order is not, the zeroth transmitted order is when the substrate
+// disperses. An order is listed if it propagates with non-zero weight at some carried wavelength;
+// at a wavelength where it is evanescent its weight is 0 (and its direction that of the first
+// wavelength where it carries light; if that is not the hero, its probability is 0).
+//
+// Parameters: `period` Λ and `angle` (the groove direction, radians from the first shading
+// tangent dp/du, counter-clockwise about the normal) are constants or scalar textures (texture-
+// driven pitch and orientation over a body, as on the boa's scales), `angle_texture` names an angle
+// texture instead of `angle`; `height` h; `substrate` a conductor or dielectric (Material::Surface);
+// `max_order`, `transmission`, `renormalize` as above.
+//
+// References: J. W. Goodman, Introduction to Fourier Optics, 3rd ed. (2005), §4.4.4 (thin
+// sinusoidal phase grating, Jacobi–Anger expansion); E. G. Loewen & E. Popov, Diffraction
+// Gratings and Applications (1997), ch. 2 (vector grating equation, conical diffraction);
+// DLMF §10.12 (Σ J_n² = 1).
+#include "materials/grating.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+
+#include "core/diagnostics.h"
+#include "core/numerics/bessel.h"
+#include "core/render/registry.h"
+#include "materials/smooth_surface.h"
+
+namespace phasor {
+
+namespace {
+
+/// J_j(a) for integer j and real a from J_|j|(|a|): J_{−n}(x) = (−1)ⁿJ_n(x) = J_n(−x) (DLMF 10.4.1).
+double SignedBessel(const double *jAbs, int j, double a) {
+    const int n = std::abs(j);
+    const bool flip = (n & 1) && ((j < 0) != (a < 0));
+    return flip ? -jAbs[n] : jAbs[n];
+}
+
+/// A unique id per kernel instance (the listing cache's key: an address may be reused).
+std::uint64_t NextInstanceId() {
+    static std::atomic<std::uint64_t> next{1};
+    return next++;
+}
+
+}  // namespace
+
+GratingMaterial::GratingMaterial(FloatTexture period, double height, FloatTexture angle,
+                                 std::shared_ptr<const Material> substrate, int maxOrder, bool transmission,
+                                 bool renormalize)
+    : period_(std::move(period)),
+      height_(height),
+      angle_(std::move(angle)),
+      substrate_(std::move(substrate)),
+      surface_(substrate_->Surface()),
+      maxOrder_(maxOrder),
+      transmission_(transmission),
+      renormalize_(renormalize),
+      id_(NextInstanceId()) {
+    // Dispersive if the substrate's index varies over the band a path may carry (as dielectric.cpp).
+    const double n0 = surface_->SubstrateIndex(550e-9).real();
+    for (double l = 200e-9; l <= 3000e-9; l *= 1.005)
+        if (std::abs(surface_->SubstrateIndex(l).real() - n0) > 1e-12 * n0) dispersive_ = true;
+}
+
+const Schema &GratingMaterial::GetSchema() {
+    static const Schema s{
+        "material",
+        "grating",
+        "sinusoidal surface-relief grating on a conductor or dielectric: thin-phase orders J_j(k·h·cosθ_i)²·F "
+        "along the vector grating equation",
+        {
+            P::FloatTexture("period", "grating period Λ (a length, or a texture of a length for a varying pitch)",
+                            Dim::Length())
+                .Required()
+                .Min(0, true),
+            P::Length("height", "peak-to-peak height h of the sinusoidal profile (≤ period; thin-phase theory "
+                                "holds for h/λ ≲ 0.2)")
+                .Required()
+                .Min(0),
+            P::FloatTexture("angle",
+                            "groove direction in the tangent plane, from the first shading tangent (dp/du) "
+                            "counter-clockwise about the normal; the grating vector is perpendicular to it "
+                            "(an angle or a texture of an angle)",
+                            Dim::Angle())
+                .Default(Value::Number(0, Dim::Angle())),
+            P::FloatTexture("angle_texture", "@texture of an angle: the groove direction, instead of 'angle'",
+                            Dim::Angle()),
+            P::Ref("substrate", "material",
+                   "the smooth surface under the relief: @conductor or @dielectric (its coating included); its "
+                   "Fresnel reflectance F (transmittance T) multiplies the orders")
+                .Required(),
+            P::Integer("max_order", "highest order |j| listed (orders beyond it are dropped like evanescent ones)")
+                .Default(Value::Integer(10))
+                .Min(0)
+                .Max(GratingSide::MaxOrder),
+            P::Bool("transmission", "also list transmitted orders (a transparent substrate only); otherwise the "
+                                    "grating is an opaque two-sided reflector")
+                .Default(Value::Bool(false)),
+            P::Bool("renormalize", "give the share of the evanescent (and beyond max_order) orders to the "
+                                   "propagating ones in proportion, so the grating reflects exactly F; false: "
+                                   "plain thin-phase efficiencies J_j²·F")
+                .Default(Value::Bool(true)),
+        }};
+    return s;
+}
+
+std::unique_ptr<Material> GratingMaterial::Create(const ParamDict &d, BuildContext &ctx) {
+    FloatTexture period = ctx.GetFloatTexture(d, "period");
+    const double height = d.GetNumber("height");
+    if (height > period.MinValue()) {
+        const std::string what = period.IsConstant()
+                                     ? "the period (" + period.ToString() + ")"
+                                     : "the smallest period of texture " + d.GetValue("period").ToString() + " (" +
+                                           Value::Number(period.MinValue(), Dim::Length()).ToString() + ")";
+        throw Error(d.Loc("height"), "'height' (" + Value::Number(height, Dim::Length()).ToString() + ") exceeds " +
+                                         what + ": a sinusoidal relief deeper than its period is far outside "
+                                                "the thin-phase model (use height ≲ 0.2·λ)");
+    }
+    if (d.Has("angle") && d.Has("angle_texture"))
+        throw Error(d.Loc("angle_texture"), "give either 'angle' or 'angle_texture', not both");
+    FloatTexture angle;
+    if (d.Has("angle_texture")) {
+        const Value &v = d.GetValue("angle_texture");
+        if (v.kind != Value::Kind::Ref)
+            throw Error(v.loc, "'angle_texture' expects @texture (a texture of an angle); got " + v.DescribeKind() +
+                                   " (for a constant groove direction write 'angle = …')");
+        angle = ctx.GetFloatTexture(d, "angle_texture");
+    } else {
+        angle = ctx.GetFloatTexture(d, "angle");
+    }
+    std::shared_ptr<Material> substrate = ctx.GetRef<Material>(d, "substrate");
+    const std::string name = "'" + d.GetValue("substrate").ToString() + "'";
+    if (!substrate->Surface()) {
+        const SceneEntity *e = ctx.EntityOf(substrate.get());
+        throw Error(d.Loc("substrate"), "'substrate' must be a smooth kernel with a Fresnel response (a conductor or a "
+                                        "dielectric); " + name + " is a '" + (e ? e->type : std::string("?")) +
+                                            "' material");
+    }
+    const bool transmission = d.GetBool("transmission");
+    if (transmission) {
+        for (double l = 360e-9; l <= 1000e-9; l += 5e-9) {
+            if (!substrate->Surface()->Absorbing(l)) continue;
+            const Complex n = substrate->Surface()->SubstrateIndex(l);
+            std::ostringstream os;
+            os << "'transmission = true' needs a transparent substrate (a dielectric), but " << name << " absorbs: n + iκ = "
+               << n.real() << (n.imag() < 0 ? "" : "+") << n.imag() << "i at " << std::lround(l * 1e9) << " nm";
+            throw Error(d.Loc("transmission"), os.str());
+        }
+    }
+    return std::make_unique<GratingMaterial>(std::move(period), height, std::move(angle), std::move(substrate),
+                                             d.GetInt("max_order"), transmission, d.GetBool("renormalize"));
+}
+
+std::vector<ParamDict> GratingMaterial::TestPresets() {
+    const auto um = [](double v) { return Value::Number(v * 1e-6, Dim::Length()); };
+    std::vector<ParamDict> p(4);
+    // p[0]: a CD-like reflection grating on gold.
+    p[0].Set("substrate", Value::Ref("contract_gold"))
+        .Set("period", um(1.6))
+        .Set("height", um(0.1))
+        .Set("max_order", Value::Integer(5));
+    // p[1]: texture-driven pitch (1.2–2.4 µm along u) and groove direction (0–120° along v).
+    p[1].Set("substrate", Value::Ref("contract_gold"))
+        .Set("period", Value::Ref("contract_pitch"))
+        .Set("angle", Value::Ref("contract_groove_angle"))
+        .Set("height", um(0.15))
+        .Set("max_order", Value::Integer(8));
+    // p[2]: transmission into a dispersive glass (BK7), grooves at 30°.
+    p[2].Set("substrate", Value::Ref("contract_bk7"))
+        .Set("transmission", Value::Bool(true))
+        .Set("period", um(2))
+        .Set("height", um(0.25))
+        .Set("angle", Value::Number(30 * Pi / 180, Dim::Angle()));
+    // p[3]: a long period with many propagating orders, plain (unrenormalised) efficiencies, the
+    // groove direction from angle_texture.
+    p[3].Set("substrate", Value::Ref("contract_glass"))
+        .Set("period", um(20))
+        .Set("height", um(0.4))
+        .Set("max_order", Value::Integer(15))
+        .Set("renormalize", Value::Bool(false))
+        .Set("angle_texture", Value::Ref("contract_groove_angle"));
+    return p;
+}
+
+Vec3 GratingMaterial::GratingVector(const ScatterQuery &q) const {
+    const Vec3 t = TangentAtAngle(angle_.Eval(q.tex));
+    return {-t.y, t.x, 0};  // the groove direction rotated by +90° about the normal
+}
+
+GratingOrders GratingMaterial::Orders(const ScatterQuery &q, int i) const {
+    GratingOrders o;
+    FillOrders(q, i, period_.Eval(q.tex), GratingVector(q), SideReflected | SideTransmitted, &o);
+    return o;
+}
+
+void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, const Vec3 &g, unsigned sides,
+                                 GratingOrders *out) const {
+    GratingOrders &o = *out;  // may hold an earlier call's orders: every field read below is set
+    o.reflected.present = o.transmitted.present = false;
+    o.reflected.maxOrder = o.transmitted.maxOrder = 0;
+    const double lambda = q.wl->lambda[i];
+    o.period = period;
+    o.vector = Vec2(g.x, g.y);
+    o.groove = Vec2(g.y, -g.x);
+    o.fromInside = transmission_ && q.wi.z < 0;
+    const double nSub = surface_->SubstrateIndex(lambda).real();
+    const double nI = o.fromInside ? nSub : q.etaOutside, nT = o.fromInside ? q.etaOutside : nSub;
+    o.reflected.nIn = o.reflected.nOut = o.transmitted.nIn = nI;
+    o.transmitted.nOut = nT;
+    if (q.wi.z == 0 || !(o.period > 0)) return;
+    const double cosI = std::abs(q.wi.z);
+    o.surface = surface_->Response(lambda, q.etaOutside, cosI, o.fromInside, q.tex);
+    // Ray-optics limit: the smooth substrate (zeroth orders, J_0(0) = 1).
+    const int maxOrder = q.rayOptics ? 0 : maxOrder_;
+    const double h = q.rayOptics ? 0 : height_, k0 = 2 * Pi / lambda;
+    const Vec2 unitShift = o.vector * (2 * Pi / o.period);
+    auto fill = [&](GratingSide &s, bool transmitted, double a, double f) {
+        s.present = true;
+        s.propagatingSum = s.evanescent = 0;
+        s.modulation = a;
+        s.substrate = f;
+        // Orders whose efficiency is below 1e-20 are not considered (they count as truncated):
+        // |J_n(x)| ≤ (x/2)ⁿ/n! (DLMF 10.14.4), so past n ≥ x/2 with (x/2)ⁿ/n! < 1e-10 every
+        // further order is smaller still. At m ≈ 1 this lists ~10 orders instead of 2·max_order + 1.
+        const double half = std::abs(a) / 2;
+        int used = 0;
+        for (double t = 1; used < maxOrder && (used < half || t >= 1e-10);) t *= half / ++used;
+        s.maxOrder = used;
+        double jAbs[GratingSide::MaxOrder + 1];
+        BesselJSequence(std::abs(a), used, jAbs);
+        double total = 0;
+        for (int j = -used; j <= used; ++j) {
+            const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
+            s.amplitude[k] = SignedBessel(jAbs, j, a);
+            const double e = s.amplitude[k] * s.amplitude[k];
+            total += e;
+            s.propagating[k] = NearDeltaDirection(q.wi, s.nIn, s.nOut, unitShift * double(j), lambda, transmitted, &s.wo[k]);
+            (s.propagating[k] ? s.propagatingSum : s.evanescent) += e;
+        }
+        s.truncated = std::max(0.0, 1 - total);
+        s.scale = !renormalize_ ? 1.0 : (s.propagatingSum > 0 ? 1 / s.propagatingSum : 0.0);
+    };
+    // Reflection: the phase 2·k·z·cosθ_i of the double pass, a = −k₀·n_i·h·cosθ_i (D6).
+    if (sides & SideReflected) fill(o.reflected, false, -k0 * nI * h * cosI, o.surface.R());
+    if (transmission_ && (sides & SideTransmitted)) {
+        // Transmission: a = k₀·(h/2)·(n_t cosθ_t − n_i cosθ_i) with the zeroth order's θ_t.
+        const double sin2T = (nI / nT) * (nI / nT) * (1 - cosI * cosI);
+        const double t = o.surface.T();
+        if (sin2T < 1 && t > 0) fill(o.transmitted, true, k0 * h / 2 * (nT * std::sqrt(1 - sin2T) - nI * cosI), t);
+    }
+}
+
+namespace {
+
+/// The last listing of each thread (ListNearDelta): grt lists a vertex's lobes and then samples
+/// one (Sample lists them again), sample_solve evaluates them (EvalLobe); each listing evaluates
+/// the orders of every lobe's source direction. The key is everything a listing reads.
+struct ListingCache {
+    std::uint64_t owner = 0;  // GratingMaterial instance id; 0 = empty
+    Vec3 wi;
+    double etaOutside = 0;
+    bool rayOptics = false;
+    int count = 0;
+    std::array<double, NumWavelengths> lambda{};
+    TextureEvalContext tex;
+    NearDeltaLobes lobes;
+
+    bool Matches(std::uint64_t id, const ScatterQuery &q) const {
+        if (owner != id || !(wi == q.wi) || etaOutside != q.etaOutside || rayOptics != q.rayOptics ||
+            count != q.wl->Count())
+            return false;
+        for (int i = 0; i < count; ++i)
+            if (lambda[std::size_t(i)] != q.wl->lambda[i]) return false;
+        const TextureEvalContext &t = q.tex;
+        return tex.uv == t.uv && tex.p == t.p && tex.dpdu == t.dpdu && tex.dpdv == t.dpdv && tex.n == t.n &&
+               tex.beta == t.beta;
+    }
+    void Store(std::uint64_t id, const ScatterQuery &q, const NearDeltaLobes &from, int first) {
+        owner = id;
+        wi = q.wi;
+        etaOutside = q.etaOutside;
+        rayOptics = q.rayOptics;
+        count = q.wl->Count();
+        for (int i = 0; i < count; ++i) lambda[std::size_t(i)] = q.wl->lambda[i];
+        tex = q.tex;
+        lobes.count = 0;
+        for (int k = first; k < from.count; ++k) lobes.Add() = from.lobe[std::size_t(k)];
+    }
+};
+thread_local ListingCache listingCache;
+
+}  // namespace
+
+double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec3 &source,
+                                         bool transmitted, int j, GratingOrders *orders) const {
+    ScatterQuery from = q;
+    from.wi = source;  // the light arrives from `source`: its order j is the lobe's weight towards q.wi
+    FillOrders(from, i, period, g, transmitted ? SideTransmitted : SideReflected, orders);
+    return (transmitted ? orders->transmitted : orders->reflected).Energy(j);
+}
+
+void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const {
+    if (q.wi.z == 0) return;
+    if (listingCache.Matches(id_, q)) {
+        for (const NearDeltaLobe &l : listingCache.lobes) out.Add() = l;
+        return;
+    }
+    const int first = out.count;
+    const int count = q.wl->Count();
+    const double period = period_.Eval(q.tex);
+    const Vec3 g = GratingVector(q);
+    const Vec2 unitShift = Vec2(g.x, g.y) * (2 * Pi / period);
+    const int maxOrder = q.rayOptics ? 0 : maxOrder_;
+    // Indices of wi's medium and of the far side (the substrate, or the outside when wi is inside).
+    const bool inside = transmission_ && q.wi.z < 0;
+    std::array<double, NumWavelengths> nWi{}, nFar{};
+    for (int i = 0; i < count; ++i) {
+        const double nSub = surface_->SubstrateIndex(q.wl->lambda[i]).real();
+        nWi[std::size_t(i)] = inside ? nSub : q.etaOutside;
+        nFar[std::size_t(i)] = inside ? q.etaOutside : nSub;
+    }
+    GratingOrders scratch;
+    for (const bool transmitted : {false, true}) {
+        if (transmitted && !transmission_) break;
+        for (int j = -maxOrder; j <= maxOrder; ++j) {
+            // Lobe j's direction per wavelength (vector grating equation from wi) and its weight:
+            // the efficiency of order j for light arriving from that direction (see the file comment).
+            std::array<Vec3, NumWavelengths> wo{};
+            std::array<double, NumWavelengths> energy{};
+            int lit = -1;  // the first wavelength where the lobe carries light
+            for (int i = 0; i < count; ++i) {
+                const std::size_t s = std::size_t(i);
+                const double nOut = transmitted ? nFar[s] : nWi[s];
+                if (!NearDeltaDirection(q.wi, nWi[s], nOut, unitShift * double(j), q.wl->lambda[i], transmitted, &wo[s]))
+                    continue;
+                energy[s] = SourceEfficiency(q, i, period, g, wo[s], transmitted, j, &scratch);
+                if (energy[s] > 0 && lit < 0) lit = i;
+            }
+            if (lit < 0) continue;
+            NearDeltaLobe &l = out.Add();
+            l.id = (transmitted ? TransmittedId : 0) + j;
+            l.flags = ScatterNearDelta | (transmitted ? ScatterTransmission : ScatterReflection) |
+                      (j != 0 || (transmitted && dispersive_) ? ScatterDispersive : 0u);
+            l.shift = unitShift * double(j);
+            for (int i = 0; i < count; ++i) {
+                const std::size_t s = std::size_t(i);
+                l.nIn[s] = nWi[s];
+                l.nOut[s] = transmitted ? nFar[s] : nWi[s];
+                const double ratio = l.nIn[s] / l.nOut[s];
+                l.weight[i] = transmitted ? energy[s] * ratio * ratio : energy[s];  // (η_i/η_t)²: radiance
+                l.wo[s] = energy[s] > 0 ? wo[s] : wo[std::size_t(lit)];
+            }
+        }
+    }
+    // Sample picks a lobe ∝ its weight at the hero (then a_j/p_j is the same for every lobe);
+    // if the hero carries nothing, ∝ the weight summed over the carried wavelengths.
+    double hero = 0, all = 0;
+    for (int k = first; k < out.count; ++k) {
+        hero += out.lobe[std::size_t(k)].weight[0];
+        for (int i = 0; i < count; ++i) all += out.lobe[std::size_t(k)].weight[i];
+    }
+    for (int k = first; k < out.count; ++k) {
+        NearDeltaLobe &l = out.lobe[std::size_t(k)];
+        double w = 0;
+        if (hero > 0) w = l.weight[0];
+        else
+            for (int i = 0; i < count; ++i) w += l.weight[i];
+        l.prob = hero > 0 ? w / hero : w / all;
+    }
+    listingCache.Store(id_, q, out, first);
+}
+
+std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const {
+    NearDeltaLobes lobes;
+    ListNearDelta(q, lobes);
+    const NearDeltaLobe *l = nullptr;
+    for (const NearDeltaLobe &x : lobes)
+        if (x.id == lobe) l = &x;
+    if (!l || !SameDirection(wo, l->wo[0])) return std::nullopt;
+    const bool transmitted = (l->flags & ScatterTransmission) != 0;
+    const int j = transmitted ? lobe - TransmittedId : lobe;
+    const double period = period_.Eval(q.tex);
+    const Vec3 g = GratingVector(q);
+    LobeResponse r;
+    r.hasJones = true;
+    for (int i = 0; i < q.wl->Count(); ++i) {
+        if (l->weight[i] == 0) continue;  // evanescent at this wavelength: no response
+        // The orders of the light arriving along the lobe (its source direction at this wavelength).
+        GratingOrders o;
+        SourceEfficiency(q, i, period, g, l->wo[std::size_t(i)], transmitted, j, &o);
+        const GratingSide &s = transmitted ? o.transmitted : o.reflected;
+        const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
+        // Order j's field relative to the substrate's: J_j(a)·√scale.
+        const double amp = s.amplitude[k] * std::sqrt(s.scale);
+        Jones base;
+        if (!transmitted) {
+            base = Jones::Diagonal(o.surface.rs, o.surface.rp);
+        } else {
+            // diag(t_s, t_p) with each component's power factor (|t'|² = T_s, T_p) and the
+            // radiance factor n_exit/n_source (the light leaves into wi's medium), as dielectric.cpp.
+            auto powered = [](Complex t, double power) {
+                return std::abs(t) > 0 ? t * (std::sqrt(power) / std::abs(t)) : Complex(0, 0);
+            };
+            base = Jones::Diagonal(powered(o.surface.ts, o.surface.Ts), powered(o.surface.tp, o.surface.Tp)) *
+                   Complex(s.nOut / s.nIn, 0);
+        }
+        r.jones[i] = base * Complex(amp, 0);
+        r.mueller[i] = Mueller::FromJones(r.jones[i]);
+    }
+    return r;
+}
+
+std::string GratingMaterial::ToString() const {
+    std::ostringstream os;
+    os << "GratingMaterial[ period = " << period_.ToString() << ", height = " << height_ << " m, angle = "
+       << angle_.ToString() << ", max_order = " << maxOrder_ << ", transmission = " << (transmission_ ? "true" : "false")
+       << ", renormalize = " << (renormalize_ ? "true" : "false") << ", substrate = { " << surface_->ToString()
+       << " } ]";
+    return os.str();
+}
+
+PHASOR_EXPORT_PLUGIN(Material, GratingMaterial)
+
+}  // namespace phasor
