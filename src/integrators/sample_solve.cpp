@@ -53,16 +53,6 @@ namespace phasor {
 
 namespace {
 
-/// P·Mᵀ·P, P = diag(1, 1, −1, 1): the Mueller matrix of the reverse path of a reciprocal element
-/// whose forward matrix is M, in bases (ŝ, k̂ × ŝ) of each wave (the Jones matrix D·Jᵀ·D).
-Mueller Reciprocal(const Mueller &m) {
-    Mueller r;
-    const double p[4] = {1, 1, -1, 1};
-    for (int i = 0; i < 4; ++i)
-        for (int j = 0; j < 4; ++j) r.m[i][j] = p[i] * m.m[j][i] * p[j];
-    return r;
-}
-
 /// One coherent plane-wave mode of a `distant` source (force_coherent): direction of travel
 /// `travel`, irradiance `e` per carried wavelength (normal to `travel`).
 class CoherentMode final : public Light {
@@ -213,7 +203,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
                     const double mu = beam.MutualCoherence(si.shading.ToWorld(Vec3(sh.x, sh.y, 0)), 2 * Pi / wl.lambda[i]);
                     mi = mi * mu + r->coherence.incoherent[i] * (1 - mu);
                 }
-                m[std::size_t(i)] = Reciprocal(mi) * (1 / n);
+                m[std::size_t(i)] = ReciprocalMueller(mi) * (1 / n);
             }
             const double scale = std::abs(q.wi.z) > 0 ? std::abs(wo.z) / std::abs(q.wi.z) : 1;
             beam.Interact(sAxis, out, m, scale, !nearDelta || scalar);

@@ -15,6 +15,14 @@ Mueller LinearPolarizer(double angle) {
     return m;
 }
 
+Mueller ReciprocalMueller(const Mueller &m) {
+    Mueller r;
+    const double p[4] = {1, 1, -1, 1};
+    for (int i = 0; i < 4; ++i)
+        for (int j = 0; j < 4; ++j) r.m[i][j] = p[i] * m.m[j][i] * p[j];
+    return r;
+}
+
 double AngleAbout(const Vec3 &from, const Vec3 &to, const Vec3 &d) {
     return std::atan2(Dot(Cross(from, to), d), Dot(from, to));
 }

@@ -51,6 +51,13 @@ struct Sym2 {
 /// c = cos 2·angle, s = sin 2·angle. Malus: linear light at angle a transmits cos²(a − angle).
 Mueller LinearPolarizer(double angle);
 
+/// The Mueller matrix of the reverse path through a reciprocal element whose matrix is M, each wave
+/// in its basis (ŝ, k̂ × ŝ): P·Mᵀ·P with P = diag(1, 1, −1, 1), the Mueller matrix of D·Jᵀ·D,
+/// D = diag(1, −1) (reciprocity transposes the Jones matrix; reversing k̂ flips p̂). Kernels state
+/// their response for the backward tracer's direction (light arriving along −wi); `sample_solve`
+/// sends light the other way. A diagonal (interface) response is its own reverse.
+Mueller ReciprocalMueller(const Mueller &m);
+
 /// The angle ψ [rad] about the unit axis `d` that turns the unit vector `from` into `to` (both ⊥ d).
 double AngleAbout(const Vec3 &from, const Vec3 &to, const Vec3 &d);
 /// The Stokes vector S given in the basis (from, d × from) re-expressed in (to, d × to):
