@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "core/diagnostics.h"
+#include "core/polarization.h"
 
 namespace phasor {
 
@@ -144,7 +145,7 @@ Image Film::Resolve() const {
     img.height = height_;
     img.channels = {"R", "G", "B", "intensity", "variance"};
     if (stokes_)
-        for (const char *c : {"S0", "S1", "S2", "S3"}) img.channels.push_back(c);
+        for (const char *c : {"S0", "S1", "S2", "S3", "DoP"}) img.channels.push_back(c);
     // Pixels with different sample counts (a render stopped during a pass): each pixel's count
     // goes into a last channel, so that every value can be weighed by its own n.
     const bool counts = minSamples != maxSamples;
@@ -169,6 +170,9 @@ Image Film::Resolve() const {
                 bool fits = true;
                 for (double v : m.mean) fits = fits && Representable(v);
                 for (int c = 0; c < 4 && fits; ++c) img.At(x, y, 5 + c) = float(m.mean[std::size_t(c)]);
+                // The degree of polarisation of the pixel's mean Stokes vector (0 where S0 = 0).
+                const Stokes s{m.mean[0], m.mean[1], m.mean[2], m.mean[3]};
+                if (fits) img.At(x, y, 9) = float(DegreeOfPolarization(s));
             }
         }
     }

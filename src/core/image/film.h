@@ -71,8 +71,9 @@ class Film {
     /// estimate — exact in expectation for independent samples only; for Owen-scrambled Sobol'
     /// samples the real error is usually far smaller: docs/architecture.md, "Error estimates").
     /// Every value is finite: pixels that would overflow float are 0 (see InvalidSampleCount).
-    /// With Stokes output (EnableStokes) four channels follow: S0, S1, S2, S3 (S0 equals
-    /// intensity; the frame is the detector's, docs/sample_solve.md). When pixels hold different
+    /// With Stokes output (EnableStokes) five channels follow: S0, S1, S2, S3 (S0 equals
+    /// intensity; the frame is the detector's, docs/sample_solve.md) and DoP, the degree of
+    /// polarisation √(S1² + S2² + S3²)/S0 of the pixel's mean (0 where S0 = 0). When pixels hold different
     /// numbers of samples (a render stopped during a pass) a last channel, `samples`, holds each
     /// pixel's count (a pixel with 0 has no estimate: all 0).
     /// Metadata: phasor:samples_per_pixel (the fewest any pixel has), invalid_samples, sensor.
