@@ -63,6 +63,12 @@ struct Mueller {
     /// The Mueller matrix of a Jones matrix (non-depolarising): M = A (J ⊗ J*) A⁻¹ with the Stokes
     /// convention above, so FromJones(Diagonal(r_s, r_p)) = theory §4.1's Fresnel matrix.
     static Mueller FromJones(const Jones &j);
+    /// The Mueller matrix of an incoherent sum of elements that do not mix s and p, Σ_k
+    /// FromJones(Diagonal(a_k, b_k)), from the sums ss = Σ|a_k|², pp = Σ|b_k|², sp = Σ a_k·conj(b_k):
+    /// theory §4.1's [[A, B, 0, 0], [B, A, 0, 0], [0, 0, C, S], [0, 0, −S, C]] with A = (ss + pp)/2,
+    /// B = (ss − pp)/2, C = Re sp, S = Im sp. One term gives FromJones(Diagonal(a, b)); more terms
+    /// depolarise partially (|sp|² < ss·pp). Used for a layer stack's incoherent sum.
+    static Mueller FromDiagonalSums(double ss, double pp, Complex sp);
     /// Rotation of the Stokes reference frame by theta [rad] (theory §4.9):
     /// [[1,0,0,0],[0,cos2θ,−sin2θ,0],[0,sin2θ,cos2θ,0],[0,0,0,1]]. Rotation(a)·Rotation(b) =
     /// Rotation(a + b); Rotation(π) = identity. An element M whose s axis is at angle θ to the
@@ -140,6 +146,16 @@ inline Mueller Mueller::FromJones(const Jones &j) {
             const Jones p = asJones(i) * j * asJones(k) * jd;
             r.m[i][k] = 0.5 * (p.m[0][0] + p.m[1][1]).real();
         }
+    return r;
+}
+
+inline Mueller Mueller::FromDiagonalSums(double ss, double pp, Complex sp) {
+    Mueller r;
+    r.m[0][0] = r.m[1][1] = 0.5 * (ss + pp);
+    r.m[0][1] = r.m[1][0] = 0.5 * (ss - pp);
+    r.m[2][2] = r.m[3][3] = sp.real();
+    r.m[2][3] = sp.imag();
+    r.m[3][2] = -sp.imag();
     return r;
 }
 

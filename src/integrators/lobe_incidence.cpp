@@ -19,6 +19,7 @@ constexpr double ResidualTol = 1e-11;
 constexpr double StepH = 1e-5;
 constexpr int MaxIterations = 30;
 constexpr double MaxStep = 0.25;  // [rad] per Newton step
+constexpr int MaxHalvings = 40;    // of a step that leaves the shape (0.25 rad / 2⁴⁰ ≈ 2e-13 rad)
 
 /// The state at one detector direction: the hit, the lobe's exit direction and the source.
 struct LobeState {
@@ -80,35 +81,44 @@ struct LobeTarget {
     }
 
     /// ∂r/∂u at dir by central differences, u = (a, b) ↦ normalize(dir + a·T.s + b·T.t) (unit
-    /// speed at 0: solid-angle coordinates). False if a neighbour misses.
-    bool Jacobian(const Vec3 &dir, const Frame &T, const Frame &perp, double J[2][2], PathStats &stats) const {
+    /// speed at 0: solid-angle coordinates); one-sided where a neighbour leaves the shape (within
+    /// StepH·distance of its edge). False if both neighbours of an axis miss.
+    bool Jacobian(const Vec3 &dir, const LobeState &at, const Frame &T, const Frame &perp, double J[2][2],
+                  PathStats &stats) const {
+        const Vec2 r0 = Residual(at, perp);
         for (int c = 0; c < 2; ++c) {
             const Vec3 axis = c == 0 ? T.s : T.t;
             LobeState plus, minus;
-            if (!Evaluate(Normalize(dir + axis * StepH), &plus, stats) ||
-                !Evaluate(Normalize(dir - axis * StepH), &minus, stats))
-                return false;
-            const Vec2 d = (Residual(plus, perp) - Residual(minus, perp)) / (2 * StepH);
+            const bool p = Evaluate(Normalize(dir + axis * StepH), &plus, stats);
+            const bool m = Evaluate(Normalize(dir - axis * StepH), &minus, stats);
+            if (!p && !m) return false;
+            const Vec2 hi = p ? Residual(plus, perp) : r0, lo = m ? Residual(minus, perp) : r0;
+            const Vec2 d = (hi - lo) / ((p && m ? 2 : 1) * StepH);
             J[0][c] = d.x;
             J[1][c] = d.y;
         }
         return true;
     }
 
-    /// Newton from `seed`: the solution's state and |det ∂r/∂u| there; false if none is found.
+    /// Newton from `seed`: the solution's state and |det ∂r/∂u| there; false if none is found. A
+    /// step that leaves the shape (or the lobe) is halved until it lands on it: near the shape's
+    /// edge the first steps, taken with the Jacobian of a distant seed, may overshoot.
     bool Solve(const Vec3 &seed, LobeState *st, double *absDet, PathStats &stats) const {
         Vec3 dir = seed;
+        LobeState cur;
+        if (!Evaluate(dir, &cur, stats)) return false;
         for (int it = 0; it < MaxIterations; ++it) {
-            LobeState cur;
-            if (!Evaluate(dir, &cur, stats)) return false;
             const Frame perp = Frame::FromNormal(cur.inc.wi);
             const Frame T = Frame::FromNormal(dir);
             double J[2][2];
-            if (!Jacobian(dir, T, perp, J, stats)) return false;
+            if (!Jacobian(dir, cur, T, perp, J, stats)) return false;
             const double det = J[0][0] * J[1][1] - J[0][1] * J[1][0];
             if (!(std::abs(det) > 1e-300) || !std::isfinite(det)) return false;
             const Vec2 r = Residual(cur, perp);
             if (Length(r) < ResidualTol) {
+                // r only sees the components ⊥ s, so ω = −s (a lobe pointing away from the source,
+                // e.g. a refraction on the source's own side) would pass: no solution then.
+                if (Dot(cur.wo, cur.inc.wi) <= 0) return false;
                 *st = cur;
                 *absDet = std::abs(det);
                 return true;
@@ -117,12 +127,19 @@ struct LobeTarget {
             Vec2 delta(-(J[1][1] * r.x - J[0][1] * r.y) / det, -(-J[1][0] * r.x + J[0][0] * r.y) / det);
             const double len = Length(delta);
             if (len > MaxStep) delta = delta * (MaxStep / len);
-            dir = Normalize(dir + T.s * delta.x + T.t * delta.y);
+            for (int halvings = 0;; ++halvings) {
+                const Vec3 next = Normalize(dir + T.s * delta.x + T.t * delta.y);
+                if (Evaluate(next, &cur, stats)) {
+                    dir = next;
+                    break;
+                }
+                if (halvings == MaxHalvings) return false;
+                delta = delta * 0.5;
+            }
         }
         return false;
     }
 };
-
 /// Directions from o towards the shape to start Newton from: its bounds' centre, then a few
 /// points spread over it (a plate with a hole in the middle).
 std::vector<Vec3> Seeds(const Shape &shape, const Vec3 &o) {

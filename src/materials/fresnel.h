@@ -36,8 +36,10 @@ struct FresnelCoefficients {
 /// For real n1 and κ₂ ≥ 0 this is the principal branch (Re cosθ_t ≥ 0); under total internal
 /// reflection it picks the evanescent wave that decays (cosθ_t = +i·a for real n₂ > 0).
 inline Complex RefractedCos(Complex n1, Complex cosThetaI, Complex n2) {
-    const Complex sin2I = 1.0 - cosThetaI * cosThetaI;
-    Complex cosT = std::sqrt(1.0 - (n1 / n2) * (n1 / n2) * sin2I);
+    // 1 − (n₁/n₂)²·sin²θ_i written as (1 − (n₁/n₂)²) + (n₁/n₂)²·cos²θ_i: no cancellation near
+    // grazing incidence, and an index-matched interface gives cosθ_t = cosθ_i exactly (r = 0).
+    const Complex ratio2 = (n1 / n2) * (n1 / n2);
+    Complex cosT = std::sqrt((1.0 - ratio2) + ratio2 * cosThetaI * cosThetaI);
     const Complex q = n2 * cosT;  // normal wave-vector component / k₀
     const bool real = std::abs(q.imag()) <= 100 * std::numeric_limits<double>::epsilon() * std::abs(q);
     if (real ? q.real() < 0 : q.imag() < 0) cosT = -cosT;
@@ -48,9 +50,12 @@ inline Complex RefractedCos(Complex n1, Complex cosThetaI, Complex n2) {
 /// the incident medium, as inside an absorbing layer stack (layer_stack.h). cosθ_t follows
 /// RefractedCos. Stokes' relations hold exactly in this normalisation: swapping the media gives
 /// r' = −r and t·t' − r·r' = 1 per polarisation.
-inline FresnelCoefficients FresnelAmplitudes(Complex n1, Complex cosThetaI, Complex n2) {
+/// The same with cosθ_t given (it must be RefractedCos's for this interface): a layer stack
+/// computes every medium's cosθ from the incident medium by Snell's invariant, so round-off in
+/// complex layers does not accumulate down the stack.
+inline FresnelCoefficients FresnelAmplitudes(Complex n1, Complex cosThetaI, Complex n2, Complex cosThetaT) {
     FresnelCoefficients c;
-    const Complex cosI = cosThetaI, cosT = RefractedCos(n1, cosThetaI, n2);
+    const Complex cosI = cosThetaI, cosT = cosThetaT;
     c.cosThetaT = cosT;
     const Complex a = n1 * cosI, b = n2 * cosT;    // s-polarisation terms
     const Complex ap = n2 * cosI, bp = n1 * cosT;  // p-polarisation terms
@@ -59,6 +64,26 @@ inline FresnelCoefficients FresnelAmplitudes(Complex n1, Complex cosThetaI, Comp
     c.ts = 2.0 * a / (a + b);
     c.tp = 2.0 * a / (ap + bp);
     return c;
+}
+inline FresnelCoefficients FresnelAmplitudes(Complex n1, Complex cosThetaI, Complex n2) {
+    if (n1.imag() == 0 && n2.imag() == 0 && cosThetaI.imag() == 0 && n2.real() > 0) {
+        // Lossless media and a propagating transmitted wave: the same formulas in real arithmetic
+        // (a dielectric's hot path; complex division is several times slower).
+        const double r = n1.real() / n2.real(), c = cosThetaI.real();
+        const double cos2T = (1 - r * r) + r * r * c * c;
+        if (cos2T >= 0) {
+            const double cosT = std::sqrt(cos2T);
+            const double a = n1.real() * c, b = n2.real() * cosT, ap = n2.real() * c, bp = n1.real() * cosT;
+            FresnelCoefficients f;
+            f.cosThetaT = cosT;
+            f.rs = (a - b) / (a + b);
+            f.rp = (ap - bp) / (ap + bp);
+            f.ts = 2 * a / (a + b);
+            f.tp = 2 * a / (ap + bp);
+            return f;
+        }
+    }
+    return FresnelAmplitudes(n1, cosThetaI, n2, RefractedCos(n1, cosThetaI, n2));
 }
 
 /// The interface n1 (real, incident side) → n2 = n + iκ for a real cosθ_i (clamped to [0, 1]);

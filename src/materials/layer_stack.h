@@ -44,4 +44,43 @@ struct StackResponse {
 StackResponse LayerStackResponse(double lambda, Complex nIncident, Complex cosIncident,
                                  std::span<const Layer> layers, Complex nSubstrate);
 
+/// The incoherent response of a stack (the ray-optics limit, design.md §4.1 "a film's incoherent
+/// sum"): inside every layer in which the wave propagates, the multiply reflected waves are
+/// summed in power instead of in amplitude — what a stack of layers thicker than the light's
+/// coherence length (or laterally sheared past its coherence width) reflects, and what a ray
+/// tracer bouncing rays inside each slab computes. Layers in which the wave does not propagate
+/// (LayerPropagates false: evanescent beyond a critical angle, or metallic) have no propagation
+/// phase that could decorrelate, so each run of them is kept coherent together with its two
+/// faces and acts as one effective interface (mixed coherent/incoherent stacks: Katsidis &
+/// Siapkas, Appl. Opt. 41, 3978 (2002); Centurioni, Appl. Opt. 44, 7532 (2005)); so does a layer of
+/// zero thickness (it is no layer). Without layers, or when no layer propagates, it equals
+/// LayerStackResponse's R and T.
+///
+/// Rs, Rp, Ts, Tp as in StackResponse (T with the power factor between the incident medium and
+/// the substrate, so a lossless stack has R + T = 1 per polarisation). Rsp and Tsp are the s–p
+/// cross sums Σ a_s·conj(a_p) over the summed waves (Tsp including √(P_s·P_p) of the power
+/// factors): with Rs, Rp they give the Mueller matrix of the incoherent sum,
+/// Mueller::FromDiagonalSums(Rs, Rp, Rsp), which depolarises partially.
+struct IncoherentStackResponse {
+    double Rs = 0, Rp = 0, Ts = 0, Tp = 0;
+    Complex Rsp, Tsp;
+    double R() const { return 0.5 * (Rs + Rp); }  // unpolarised
+    double T() const { return 0.5 * (Ts + Tp); }
+};
+IncoherentStackResponse LayerStackIncoherent(double lambda, Complex nIncident, Complex cosIncident,
+                                             std::span<const Layer> layers, Complex nSubstrate);
+
+/// True if a wave with normal wave-vector component q = n·cosθ (in units of k₀) propagates
+/// rather than decays: Re q > Im q. Lossless media beyond the critical angle (q imaginary) and
+/// metals (n ≪ κ) do not; glasses and weakly absorbing films such as Cu₂O do.
+inline bool LayerPropagates(Complex q) { return q.real() > q.imag(); }
+
+/// Lateral shear [m] between the wave reflected at the top face of the stack and the one that
+/// crosses every layer down to the substrate face and back: Σ_j 2·d_j·tanθ_j over the layers in
+/// which the wave propagates (theory §4.4: 2·d·tanθ_t for one film), with tanθ_j the ray
+/// direction of the propagating wave, n₀sinθ₀/Re(n_j cosθ_j). Evanescent and metallic layers
+/// (LayerPropagates false) add nothing. 0 at normal incidence. The deeper wave exits displaced
+/// along the incident wave's tangential direction of travel.
+double LayerStackShear(Complex nIncident, Complex cosIncident, std::span<const Layer> layers);
+
 }  // namespace phasor

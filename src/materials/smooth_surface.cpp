@@ -4,6 +4,7 @@
 
 #include <array>
 #include <sstream>
+#include <vector>
 
 namespace phasor {
 
@@ -17,20 +18,47 @@ std::string Coating::ToString() const {
     return os.str();
 }
 
-StackResponse SmoothSurface::Response(double lambda, double etaOutside, double cosI, bool fromInside,
-                                      const TextureEvalContext &tex) const {
+template <typename F>
+auto SmoothSurface::WithLayers(double lambda, bool fromInside, const TextureEvalContext &tex, F &&f) const {
+    // Short coatings (every film, most stacks) live on the stack; long ones on the heap.
+    constexpr int Small = 8;
     const int count = LayerCount();
-    const Complex outside(etaOutside, 0), substrate = SubstrateIndex(lambda);
-    const Complex nIn = fromInside ? substrate : outside, nOut = fromInside ? outside : substrate;
-    // A bare interface needs no layer buffer (filling MaxLayers default layers costs more than the
-    // Fresnel coefficients; gratings ask once per order listing and wavelength).
-    if (count == 0) return LayerStackResponse(lambda, nIn, Complex(cosI, 0), std::span<const Layer>(), nOut);
-    std::array<Layer, MaxLayers> layers;
+    std::array<Layer, Small> small;
+    std::vector<Layer> big(count > Small ? count : 0);
+    Layer *layers = count > Small ? big.data() : small.data();
     for (int j = 0; j < count; ++j) {
         const CoatingLayer &c = coating_->layers[fromInside ? count - 1 - j : j];
         layers[j] = Layer{c.ior->Eval(lambda), c.thickness.Eval(tex)};
     }
-    return LayerStackResponse(lambda, nIn, Complex(cosI, 0), std::span<const Layer>(layers.data(), count), nOut);
+    return f(std::span<const Layer>(layers, count));
+}
+
+StackResponse SmoothSurface::Response(double lambda, double etaOutside, double cosI, bool fromInside,
+                                      const TextureEvalContext &tex, Complex substrate) const {
+    const Complex outside(etaOutside, 0);
+    return WithLayers(lambda, fromInside, tex, [&](std::span<const Layer> layers) {
+        return LayerStackResponse(lambda, fromInside ? substrate : outside, Complex(cosI, 0), layers,
+                                  fromInside ? outside : substrate);
+    });
+}
+
+IncoherentStackResponse SmoothSurface::IncoherentResponse(double lambda, double etaOutside, double cosI,
+                                                          bool fromInside, const TextureEvalContext &tex,
+                                                          Complex substrate) const {
+    const Complex outside(etaOutside, 0);
+    return WithLayers(lambda, fromInside, tex, [&](std::span<const Layer> layers) {
+        return LayerStackIncoherent(lambda, fromInside ? substrate : outside, Complex(cosI, 0), layers,
+                                    fromInside ? outside : substrate);
+    });
+}
+
+double SmoothSurface::Shear(double lambda, double etaOutside, double cosI, bool fromInside,
+                            const TextureEvalContext &tex) const {
+    if (!coating_) return 0;
+    const Complex incident = fromInside ? SubstrateIndex(lambda) : Complex(etaOutside, 0);
+    return WithLayers(lambda, fromInside, tex, [&](std::span<const Layer> layers) {
+        return LayerStackShear(incident, Complex(cosI, 0), layers);
+    });
 }
 
 std::string SmoothSurface::ToString() const {

@@ -63,11 +63,33 @@ class SmoothSurface {
     /// layer_stack.h (fresnel.h's sign conventions, T with the power factor between the incident
     /// and the exit medium, so a lossless stack has R + T = 1 per polarisation).
     StackResponse Response(double lambda, double etaOutside, double cosI, bool fromInside,
-                           const TextureEvalContext &tex) const;
+                           const TextureEvalContext &tex) const {
+        return Response(lambda, etaOutside, cosI, fromInside, tex, SubstrateIndex(lambda));
+    }
+    /// The same with the substrate's index at lambda given (SubstrateIndex(lambda): a caller that
+    /// already has it saves a second evaluation of a tabulated or modelled index).
+    StackResponse Response(double lambda, double etaOutside, double cosI, bool fromInside,
+                           const TextureEvalContext &tex, Complex substrate) const;
+    /// The same wave's incoherent response (layer_stack.h's LayerStackIncoherent: multiple
+    /// reflections inside every propagating layer summed in power), the ray-optics limit of a
+    /// coated surface. Equals Response's R and T for a bare surface.
+    IncoherentStackResponse IncoherentResponse(double lambda, double etaOutside, double cosI, bool fromInside,
+                                               const TextureEvalContext &tex) const {
+        return IncoherentResponse(lambda, etaOutside, cosI, fromInside, tex, SubstrateIndex(lambda));
+    }
+    IncoherentStackResponse IncoherentResponse(double lambda, double etaOutside, double cosI, bool fromInside,
+                                               const TextureEvalContext &tex, Complex substrate) const;
+    /// Lateral shear [m] of the coating for that wave (LayerStackShear: 2·d·tanθ_t for one film);
+    /// 0 for a bare surface.
+    double Shear(double lambda, double etaOutside, double cosI, bool fromInside, const TextureEvalContext &tex) const;
 
     std::string ToString() const;
 
   private:
+    /// Calls f(span of the coating's layers at lambda, in the order the wave meets them).
+    template <typename F>
+    auto WithLayers(double lambda, bool fromInside, const TextureEvalContext &tex, F &&f) const;
+
     std::shared_ptr<const ComplexSpectrum> substrate_;
     double cauchyB_ = 0;  // [m²]
     std::shared_ptr<const Coating> coating_;

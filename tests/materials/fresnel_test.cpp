@@ -275,5 +275,18 @@ TEST(Refraction, SnellAndReversibility) {
     EXPECT_EQ(ReflectLocal(Vec3(0.3, -0.4, 0.5)), Vec3(-0.3, 0.4, 0.5));
 }
 
+
+TEST(Fresnel, IndexMatchedInterfaceIsInvisibleEvenAtGrazingIncidence) {
+    // cosθ_t = cosθ_i exactly when n₁ = n₂ (RefractedCos avoids 1 − sin²θ's cancellation), so
+    // r = 0 and t = 1 down to cosθ = 1e-12 (the old form gave cosθ_t = 0 and r = 1 there).
+    for (double c : {1.0, 0.3, 1e-6, 1e-12}) {
+        const FresnelCoefficients f = FresnelAmplitudes(c, 1.5, Complex(1.5, 0));
+        EXPECT_EQ(f.cosThetaT, Complex(c, 0)) << c;
+        EXPECT_EQ(f.rs, Complex(0, 0)) << c;
+        EXPECT_EQ(f.rp, Complex(0, 0)) << c;
+        EXPECT_EQ(f.ts, Complex(1, 0)) << c;
+    }
+}
+
 }  // namespace
 }  // namespace phasor

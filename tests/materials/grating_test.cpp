@@ -395,7 +395,9 @@ TEST(Grating, TransmittedOrdersUseTheTransmissionPhase) {
                 EXPECT_NEAR(o.weight, expected * (nT / nD) * (nT / nD), 1e-12 * expected + 1e-16) << "order " << j;
             }
             EXPECT_GE(transmitted, 5);
-            if (theta == 0) EXPECT_NEAR(std::abs(a), Pi * h * (n - 1) / lambda, 1e-12);
+            if (theta == 0) {
+                EXPECT_NEAR(std::abs(a), Pi * h * (n - 1) / lambda, 1e-12);
+            }
         }
     }
 }
@@ -478,7 +480,9 @@ TEST(Grating, RayOpticsLimitIsTheSmoothSubstrate) {
                     // dielectric ∝ R and T.)
                     for (int i = 0; i < wl.Count(); ++i) {
                         EXPECT_NEAR(a.weight[i], b.weight[i], 1e-12) << name << ", lobe " << a.id << ", slot " << i;
-                        if (b.weight[i] > 0) EXPECT_LT(AngleBetween(a.wo[i], b.wo[i]), 1e-12) << name;
+                        if (b.weight[i] > 0) {
+                            EXPECT_LT(AngleBetween(a.wo[i], b.wo[i]), 1e-12) << name;
+                        }
                     }
                 }
             }
@@ -553,7 +557,9 @@ TEST(Grating, DispersionFlags) {
                 same = same && (lit == 0 || AngleBetween(l.wo[i], l.wo[0]) < 1e-12);
                 ++lit;
             }
-            if (lit >= 2) EXPECT_EQ(same, !dispersive) << substrate << ", lobe " << l.id;
+            if (lit >= 2) {
+                EXPECT_EQ(same, !dispersive) << substrate << ", lobe " << l.id;
+            }
         }
     }
 }

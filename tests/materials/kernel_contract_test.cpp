@@ -441,7 +441,9 @@ TEST_P(MaterialContract, WhiteFurnace) {
     }
     for (int j = 0; j < Stat().wl->Count(); ++j) {
         const Moments &mj = e[std::size_t(j)];
-        if (mj.mean <= 1) continue;
+        // 1e-12: round-off, as in the deterministic case below (a lossless layer stack's R + T is 1
+        // to a few ulps, and its two lobes' weights differ in the last bits).
+        if (mj.mean <= 1 + 1e-12) continue;
         if (mj.VarianceOfMean() == 0) {
             EXPECT_LE(mj.mean, 1 + 1e-12)
                 << "slot " << j << ": every sample carries more energy than it received";

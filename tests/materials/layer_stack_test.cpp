@@ -183,5 +183,96 @@ TEST(LayerStack, ThickAbsorbingAndEvanescentLayersAreStable) {
     }
 }
 
+
+// ---- the incoherent response (LayerStackIncoherent) and the shear ----------------------------------
+
+TEST(LayerStackIncoherent, NoPropagatingLayerIsTheCoherentResponse) {
+    // Without layers, and when every layer is evanescent or metallic, nothing is summed in power.
+    const Layer metal[] = {{{0.05, 3.3}, 20e-9}};  // silver-like: coherent even in the ray limit
+    for (double th : {0.0, 0.6, 1.3}) {
+        for (std::span<const Layer> layers : {std::span<const Layer>(), std::span<const Layer>(metal)}) {
+            const StackResponse c = LayerStackResponse(Lambda, 1.0, CosIn(th), layers, Complex(1.5, 0));
+            const IncoherentStackResponse n = LayerStackIncoherent(Lambda, 1.0, CosIn(th), layers, Complex(1.5, 0));
+            EXPECT_NEAR(n.Rs, c.Rs, 1e-15);
+            EXPECT_NEAR(n.Rp, c.Rp, 1e-15);
+            EXPECT_NEAR(n.Ts, c.Ts, 1e-15);
+            EXPECT_NEAR(n.Tp, c.Tp, 1e-15);
+            EXPECT_LT(std::abs(n.Rsp - c.rs * std::conj(c.rp)), 1e-15);
+        }
+    }
+}
+
+TEST(LayerStackIncoherent, TwoThickSlabsAddInPowerLikeARayTracer) {
+    // Two lossless slabs: the incoherent sum is the "net radiation" result of a ray tracer that
+    // bounces rays inside each slab — written here with face powers ρ = |r|², τ = 1 − ρ:
+    // a slab on a stack of reflectance G, transmittance Tb (both seen from inside the slab):
+    //   R = ρ₀ + τ₀²G/(1 − ρ₀G),  T = τ₀·Tb/(1 − ρ₀G)   (for s and p separately).
+    const Layer slabs[] = {{1.8, 3e-6}, {1.3, 5e-6}};
+    const Complex ns(1.6, 0);
+    for (double th : {0.0, 0.5, 1.1}) {
+        const double beta = std::sin(th);
+        auto cosIn = [&](double n) { return std::sqrt(1 - Sqr(beta / n)); };
+        auto face = [&](double n1, double n2, bool p) {
+            const double c1 = cosIn(n1), c2 = cosIn(n2);
+            const double r = p ? (n2 * c1 - n1 * c2) / (n2 * c1 + n1 * c2) : (n1 * c1 - n2 * c2) / (n1 * c1 + n2 * c2);
+            return r * r;
+        };
+        for (bool p : {false, true}) {
+            const double r0 = face(1.0, 1.8, p), r1 = face(1.8, 1.3, p), r2 = face(1.3, 1.6, p);
+            const double g2 = r2, t2 = 1 - r2;                                    // below slab 2
+            const double g1 = r1 + Sqr(1 - r1) * g2 / (1 - r1 * g2), t1 = (1 - r1) * t2 / (1 - r1 * g2);  // below slab 1
+            const double R = r0 + Sqr(1 - r0) * g1 / (1 - r0 * g1), T = (1 - r0) * t1 / (1 - r0 * g1);
+            const IncoherentStackResponse n = LayerStackIncoherent(Lambda, 1.0, CosIn(th), slabs, ns);
+            EXPECT_NEAR(p ? n.Rp : n.Rs, R, 1e-13) << th << " p " << p;
+            EXPECT_NEAR(p ? n.Tp : n.Ts, T, 1e-13) << th << " p " << p;
+            EXPECT_NEAR(R + T, 1, 1e-13);
+        }
+    }
+}
+
+TEST(LayerStackIncoherent, EnergyAndReciprocityWithAbsorbingAndEvanescentLayers) {
+    // Lossless stacks: R + T = 1. With absorbing layers R + T < 1, and T is the same from both
+    // sides (T is reciprocal between lossless outer media in the coherent and incoherent sums
+    // alike). An evanescent gap (frustrated total reflection) stays coherent: R ≤ 1.
+    std::vector<Layer> lossy = SomeStack();
+    lossy[1].n = Complex(2.3, 0.02);
+    lossy[4].n = Complex(0.2, 3.0);  // a metal layer in the middle
+    lossy[4].thickness = 12e-9;
+    for (double th : {0.0, 0.45, 0.9, 1.4}) {
+        const IncoherentStackResponse n = LayerStackIncoherent(Lambda, 1.0, CosIn(th), SomeStack(), Complex(1.52, 0));
+        EXPECT_NEAR(n.Rs + n.Ts, 1, 1e-12) << th;
+        EXPECT_NEAR(n.Rp + n.Tp, 1, 1e-12) << th;
+        // Reciprocity: from the substrate at the angle that refracts to θ in air.
+        const double cosSub = std::sqrt(1 - Sqr(std::sin(th) / 1.52));
+        std::vector<Layer> up(lossy.rbegin(), lossy.rend());
+        const IncoherentStackResponse down = LayerStackIncoherent(Lambda, 1.0, CosIn(th), lossy, Complex(1.52, 0));
+        const IncoherentStackResponse back = LayerStackIncoherent(Lambda, 1.52, cosSub, up, Complex(1, 0));
+        EXPECT_LT(down.R() + down.T(), 1 - 1e-3);
+        EXPECT_NEAR(down.Ts, back.Ts, 1e-13) << th;
+        EXPECT_NEAR(down.Tp, back.Tp, 1e-13) << th;
+        const StackResponse cd = LayerStackResponse(Lambda, 1.0, CosIn(th), lossy, Complex(1.52, 0));
+        const StackResponse cb = LayerStackResponse(Lambda, 1.52, cosSub, up, Complex(1, 0));
+        EXPECT_NEAR(cd.Ts, cb.Ts, 1e-13) << th;
+    }
+    for (double gap : {50e-9, 1e-6}) {
+        const Layer air[] = {{1.0, gap}, {1.9, 2e-6}};
+        const IncoherentStackResponse f = LayerStackIncoherent(Lambda, 1.5, CosIn(1.0), air, Complex(1.5, 0));
+        EXPECT_LE(f.Rs, 1 + 1e-12) << gap;
+        EXPECT_NEAR(f.Rs + f.Ts, 1, 1e-12) << gap;
+        EXPECT_NEAR(f.Rp + f.Tp, 1, 1e-12) << gap;
+    }
+}
+
+TEST(LayerStackShear, TwiceTheThicknessTimesTheTangentPerPropagatingLayer) {
+    // Σ 2 d_j tanθ_j (theory §4.4) for the propagating layers; metallic and evanescent ones add 0.
+    const double th = 0.6, s = std::sin(th);
+    const Layer layers[] = {{1.5, 100e-9}, {{0.2, 3.0}, 10e-9}, {2.0, 40e-9}};
+    const double expected = 2 * 100e-9 * s / std::sqrt(1.5 * 1.5 - s * s) + 2 * 40e-9 * s / std::sqrt(4 - s * s);
+    EXPECT_NEAR(LayerStackShear(1.0, CosIn(th), layers), expected, 1e-20);
+    EXPECT_EQ(LayerStackShear(1.0, CosIn(0), layers), 0);
+    const Layer gap[] = {{1.0, 1e-6}};  // from glass past the critical angle: evanescent
+    EXPECT_EQ(LayerStackShear(1.5, CosIn(1.0), gap), 0);
+}
+
 }  // namespace
 }  // namespace phasor

@@ -31,6 +31,9 @@ inline constexpr const char *UnderTestName = "under_test";
 ///   @contract_bk7      material dielectric(ior = "BK7")   (dispersive)
 ///   @contract_pitch    texture  gradient(value0 = 1.2 um, value1 = 2.4 um, axis = "u")   (a length)
 ///   @contract_groove_angle texture gradient(value0 = 0 deg, value1 = 120 deg, axis = "v") (an angle)
+///   @contract_film     material thin_film(ior = "Cu2O", thickness = 150 nm)  (a coating)
+///   @contract_stack    material multilayer(layers = [layer("MgF2", 100 nm), layer(2.1, 65 nm)])  (a coating)
+///   @contract_thickness texture gradient(value0 = 80 nm, value1 = 250 nm) along u (a length)
 inline void AddFixtures(SceneDesc &desc) {
     auto add = [&](const char *keyword, const char *type, const char *name, const ParamDict &params) {
         SceneEntity e;
@@ -55,6 +58,17 @@ inline void AddFixtures(SceneDesc &desc) {
             .Set("value0", Value::Number(0, Dim::Angle()))
             .Set("value1", Value::Number(120 * 3.141592653589793 / 180, Dim::Angle()))
             .Set("axis", Value::String("v")));
+    add("Material", "thin_film", "contract_film",
+        ParamDict().Set("ior", Value::String("Cu2O")).Set("thickness", Value::Number(150e-9, Dim::Length())));
+    auto layer = [](Value ior, double d) {
+        return Value::Call("layer", {std::move(ior), Value::Number(d, Dim::Length())}, {"ior", "thickness"});
+    };
+    add("Material", "multilayer", "contract_stack",
+        ParamDict().Set("layers", Value::List({layer(Value::String("MgF2"), 100e-9), layer(Value::Number(2.1), 65e-9)})));
+    add("Texture", "gradient", "contract_thickness",
+        ParamDict()
+            .Set("value0", Value::Number(80e-9, Dim::Length()))
+            .Set("value1", Value::Number(250e-9, Dim::Length())));
     SceneEntity checker;
     checker.keyword = "Texture";
     checker.type = "checkerboard";

@@ -93,10 +93,14 @@ std::optional<ScatterSample> Material::SampleLobes(const ScatterQuery &q, double
 }
 
 std::optional<ScatterSample> SampleListedLobe(const NearDeltaLobes &lobes, double u0) {
+    return SampleListedLobe(std::span<const NearDeltaLobe>(lobes.begin(), lobes.end()), u0);
+}
+
+std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0) {
     double c = 0;
     for (const NearDeltaLobe &l : lobes) {
         c += l.prob;
-        if (u0 >= c && &l + 1 != lobes.end()) continue;  // the last lobe takes rounding's remainder
+        if (u0 >= c && &l != &lobes.back()) continue;  // the last lobe takes rounding's remainder
         if (!(l.prob > 0)) return std::nullopt;
         ScatterSample s;
         s.wo = l.wo[0];

@@ -8,6 +8,7 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -311,6 +312,9 @@ bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shi
 /// returns its hero direction with weight a_j/p_j, pdf p_j, its id, flags and η. Nullopt if no
 /// lobe is listed or the pick has p = 0.
 std::optional<ScatterSample> SampleListedLobe(const NearDeltaLobes &lobes, double u0);
+/// The same for lobes a kernel keeps in its own small array (NearDeltaLobes is 64 lobes large:
+/// constructing one per Sample costs more than a smooth surface's optics).
+std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0);
 
 /// True if unit directions a and b agree to `tol` [rad] (EvalLobe's test for a near-delta lobe).
 inline bool SameDirection(const Vec3 &a, const Vec3 &b, double tol = 1e-9) { return Length(a - b) <= tol; }

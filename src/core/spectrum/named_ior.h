@@ -11,16 +11,35 @@
 //               metallic films for vertical-cavity optoelectronic devices", Appl. Opt. 37, 5271
 //               (1998), Lorentz–Drude model with the paper's Al parameters, evaluated over 0.1–10 µm
 //               (clamped outside).
-//   BK7:        Schott N-BK7 data sheet, Sellmeier coefficients (n_d = 1.5168 at 587.6 nm).
-//   fused_silica: I. H. Malitson, "Interspecimen comparison of the refractive index of fused
+//   BK7:        Schott N-BK7 data sheet, Sellmeier coefficients (n_d = 1.5168 at 587.6 nm),
+//               0.3–2.5 µm.
+//   fused_silica, SiO2: I. H. Malitson, "Interspecimen comparison of the refractive index of fused
 //               silica", J. Opt. Soc. Am. 55, 1205 (1965), three-term Sellmeier, 0.21–3.71 µm
-//               (n_d = 1.4585).
-//   water:      constant n_D = 1.333 (CRC Handbook, 20 °C: 1.33299); not dispersive (give a
-//               table for rainbows).
-//   chitin:     constant 1.56, the value commonly used for insect cuticle (theory §4.5 uses
-//               1.55); not dispersive.
-// Sellmeier glasses are evaluated with λ clamped to 0.2–3.7 µm (outside, the formula's poles are
-// near). All glasses here are lossless (κ = 0).
+//               (n_d = 1.4585). "SiO2" is the same amorphous silica (sputtered and evaporated
+//               SiO₂ coating layers are close to it), named as coating designs name it.
+//   MgF2:       M. J. Dodge, "Refractive properties of magnesium fluoride", Appl. Opt. 23, 1980
+//               (1984), three-term Sellmeier of the ordinary ray, 0.2–7 µm (n_o = 1.3777 at
+//               589.3 nm). Coating layers are polycrystalline and nearly isotropic; the ordinary
+//               index is the one thin-film designs use.
+//   TiO2:       J. R. DeVore, "Refractive indices of rutile and sphalerite", J. Opt. Soc. Am. 41,
+//               416 (1951), rutile, ordinary ray: n² = 5.913 + 0.2441/(λ² − 0.0803) (λ in µm),
+//               0.43–1.53 µm (n_o = 2.613 at 589.3 nm). Rutile absorbs below ≈ 410 nm; the formula
+//               is held constant below 430 nm.
+//   water:      M. Daimon and A. Masumura, "Measurement of the refractive index of distilled water
+//               from the near-infrared region to the ultraviolet region", Appl. Opt. 46, 3811
+//               (2007), four-term Sellmeier at 20 °C, 0.182–1.129 µm (n_D = 1.3330).
+//   chitin:     H. L. Leertouwer, B. D. Wilts, D. G. Stavenga, "Refractive index and dispersion of
+//               butterfly chitin and bird keratin measured by polarizing interference microscopy",
+//               Opt. Express 19, 24061 (2011): Cauchy n = A + B/λ², A = 1.517, B = 8.80·10³ nm²
+//               (1.572, 1.552, 1.541 at 400, 500, 600 nm), measured over 400–700 nm (theory §4.5
+//               uses 1.55).
+//   Cu2O:       cuprous oxide (cuprite; the film on tarnished copper and the bornite ore of the
+//               paper's Fig. 1): the SOPRA S.A. optical-constants database, file CU2O.MAT
+//               (n, κ at 75 wavelengths, 295–2480 nm; as distributed with the Solcore project),
+//               interpolated linearly in wavelength, clamped outside. Absorbing in the blue
+//               (κ ≈ 0.99 at 400 nm, 0.19 at 551 nm, 0.06 at 800 nm), n ≈ 3.1 at 500 nm.
+// Outside the band of a dispersion formula, its value at the nearer end is used
+// (core/spectrum/dispersion.h). All glasses and liquids here are lossless (κ = 0).
 #pragma once
 
 #include <array>
@@ -28,6 +47,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/spectrum/dispersion.h"
 
 namespace phasor {
 
@@ -117,22 +137,80 @@ inline Complex MetalIndex(Metal m, double lambda) {
 
 namespace glass_detail {
 
-// Sellmeier: n² = 1 + Σ B_j λ²/(λ² − C_j), λ in µm, C_j in µm².
-inline double Sellmeier(double lambda, const double (&b)[3], const double (&c)[3]) {
-    const double l2 = Sqr(Clamp(lambda, 0.2e-6, 3.7e-6) * 1e6);
-    double n2 = 1;
-    for (int j = 0; j < 3; ++j) n2 += b[j] * l2 / (l2 - c[j]);
-    return std::sqrt(n2);
-}
+constexpr double Um = 1e-6, Um2 = 1e-12;  // µm and µm² in SI
+
+// Sellmeier fits: B_j, C_j [µm²] as published, and the band [µm] they were made on.
 inline Complex Bk7Index(double lambda) {
-    constexpr double b[3] = {1.03961212, 0.231792344, 1.01046945};
-    constexpr double c[3] = {0.00600069867, 0.0200179144, 103.560653};
-    return Sellmeier(lambda, b, c);
+    static const double b[] = {1.03961212, 0.231792344, 1.01046945};
+    static const double c[] = {0.00600069867 * Um2, 0.0200179144 * Um2, 103.560653 * Um2};
+    return dispersion::Sellmeier(lambda, b, c, 0.3 * Um, 2.5 * Um);
 }
 inline Complex FusedSilicaIndex(double lambda) {
-    constexpr double b[3] = {0.6961663, 0.4079426, 0.8974794};
-    constexpr double c[3] = {0.0684043 * 0.0684043, 0.1162414 * 0.1162414, 9.896161 * 9.896161};
-    return Sellmeier(lambda, b, c);
+    static const double b[] = {0.6961663, 0.4079426, 0.8974794};
+    static const double c[] = {Sqr(0.0684043) * Um2, Sqr(0.1162414) * Um2, Sqr(9.896161) * Um2};
+    return dispersion::Sellmeier(lambda, b, c, 0.21 * Um, 3.71 * Um);
+}
+inline Complex MgF2Index(double lambda) {
+    static const double b[] = {0.48755108, 0.39875031, 2.3120353};
+    static const double c[] = {Sqr(0.04338408) * Um2, Sqr(0.09461442) * Um2, Sqr(23.793604) * Um2};
+    return dispersion::Sellmeier(lambda, b, c, 0.2 * Um, 7.0 * Um);
+}
+inline Complex WaterIndex(double lambda) {
+    static const double b[] = {5.684027565e-1, 1.726177391e-1, 2.086189578e-2, 1.130748688e-1};
+    static const double c[] = {5.101829712e-3 * Um2, 1.821153936e-2 * Um2, 2.620722293e-2 * Um2,
+                               1.069792721e1 * Um2};
+    return dispersion::Sellmeier(lambda, b, c, 0.182 * Um, 1.129 * Um);
+}
+// DeVore's rutile formula (a constant background and one resonance, not Sellmeier's form).
+inline Complex TiO2Index(double lambda) {
+    const double l2 = Sqr(Clamp(lambda, 0.43 * Um, 1.53 * Um) / Um);  // µm²
+    return std::sqrt(5.913 + 0.2441 / (l2 - 0.0803));
+}
+inline Complex ChitinIndex(double lambda) {
+    return dispersion::Cauchy(lambda, 1.517, 8.80e3 * 1e-18, 0, 0.4 * Um, 0.7 * Um);
+}
+
+// SOPRA CU2O.MAT: λ [nm], n, κ.
+struct NkRow {
+    double lambdaNm, n, k;
+};
+inline constexpr NkRow Cu2OTable[] = {
+    {295.20, 1.97885, 1.87676}, {298.76, 1.99401, 1.85723}, {302.40, 2.01278, 1.83512},
+    {306.14, 2.03492, 1.81051}, {309.96, 2.06021, 1.7835}, {313.89, 2.08844, 1.75418},
+    {317.91, 2.11937, 1.72264}, {322.04, 2.15279, 1.68896}, {326.28, 2.18847, 1.65325},
+    {330.63, 2.22618, 1.61559}, {335.10, 2.26571, 1.57607}, {339.69, 2.30683, 1.53478},
+    {344.40, 2.34931, 1.49182}, {349.25, 2.39293, 1.44727}, {354.24, 2.43747, 1.40123},
+    {359.38, 2.48270, 1.35378}, {364.66, 2.52841, 1.30502}, {370.11, 2.57436, 1.25504},
+    {375.71, 2.62034, 1.20393}, {381.49, 2.66611, 1.15178}, {387.45, 2.71146, 1.09868},
+    {393.60, 2.75617, 1.04472}, {399.95, 2.80000, 0.99}, {406.51, 2.84520, 0.931971},
+    {413.28, 2.88866, 0.873808}, {420.29, 2.92990, 0.815873}, {427.54, 2.96844, 0.758531},
+    {435.04, 3.00380, 0.702145}, {442.80, 3.03551, 0.647078}, {450.86, 3.06254, 0.593956},
+    {459.20, 3.08137, 0.544624}, {467.87, 3.09623, 0.49716}, {476.87, 3.10732, 0.451581},
+    {486.22, 3.11489, 0.407908}, {495.94, 3.11916, 0.366157}, {506.06, 3.12144, 0.324937},
+    {516.60, 3.12120, 0.285244}, {527.60, 3.11748, 0.248678}, {539.07, 3.11004, 0.215848},
+    {551.05, 3.09867, 0.187747}, {563.57, 3.08304, 0.167556}, {576.68, 3.06309, 0.1511},
+    {590.41, 3.03867, 0.137625}, {604.81, 3.00765, 0.126046}, {619.93, 2.96953, 0.115553},
+    {635.82, 2.93087, 0.106566}, {652.55, 2.89540, 0.09885}, {670.19, 2.86855, 0.092196},
+    {688.81, 2.84388, 0.086246}, {708.49, 2.82001, 0.080571}, {729.32, 2.79539, 0.074987},
+    {751.43, 2.76796, 0.069686}, {774.91, 2.73311, 0.064633}, {799.90, 2.70000, 0.06},
+    {826.57, 2.67644, 0.055959}, {855.07, 2.65635, 0.052422}, {885.61, 2.63745, 0.049348},
+    {918.41, 2.62139, 0.046008}, {953.73, 2.60902, 0.042744}, {991.88, 2.60120, 0.040443},
+    {1033.21, 2.59590, 0.037691}, {1078.13, 2.59181, 0.034515}, {1127.14, 2.58731, 0.031347},
+    {1180.81, 2.58195, 0.02815}, {1239.85, 2.57522, 0.024451}, {1305.11, 2.56987, 0.020754},
+    {1377.61, 2.56977, 0.017827}, {1458.65, 2.57005, 0.014585}, {1549.81, 2.56923, 0.011237},
+    {1653.14, 2.56696, 0.008159}, {1771.22, 2.56412, 0.005417}, {1907.46, 2.56136, 0.003119},
+    {2066.42, 2.55930, 0.001376}, {2254.28, 2.55857, 0.000296}, {2479.70, 2.55980, 1.2e-05},
+};
+inline Complex Cu2OIndex(double lambda) {
+    const double nm = lambda * 1e9;
+    const auto &t = Cu2OTable;
+    const std::size_t count = std::size(t);
+    if (!(nm > t[0].lambdaNm)) return {t[0].n, t[0].k};
+    if (nm >= t[count - 1].lambdaNm) return {t[count - 1].n, t[count - 1].k};
+    std::size_t i = 1;
+    while (t[i].lambdaNm < nm) ++i;
+    const double f = (nm - t[i - 1].lambdaNm) / (t[i].lambdaNm - t[i - 1].lambdaNm);
+    return {(1 - f) * t[i - 1].n + f * t[i].n, (1 - f) * t[i - 1].k + f * t[i].k};
 }
 
 }  // namespace glass_detail
@@ -153,8 +231,12 @@ inline const std::vector<NamedIndex> &NamedIndices() {
         {"Cu", "copper, Johnson & Christy 1972", [](double l) { return MetalIndex(Metal::Cu, l); }},
         {"BK7", "Schott N-BK7 crown glass (Sellmeier)", glass_detail::Bk7Index},
         {"fused_silica", "fused silica, Malitson 1965 (Sellmeier)", glass_detail::FusedSilicaIndex},
-        {"water", "water, constant n_D = 1.333", [](double) { return Complex(1.333, 0); }},
-        {"chitin", "insect chitin, constant 1.56", [](double) { return Complex(1.56, 0); }},
+        {"SiO2", "amorphous silica (coating layers), Malitson 1965 (Sellmeier)", glass_detail::FusedSilicaIndex},
+        {"MgF2", "magnesium fluoride, ordinary ray, Dodge 1984 (Sellmeier)", glass_detail::MgF2Index},
+        {"TiO2", "titanium dioxide (rutile), ordinary ray, DeVore 1951", glass_detail::TiO2Index},
+        {"Cu2O", "cuprous oxide, SOPRA database (absorbing in the blue)", glass_detail::Cu2OIndex},
+        {"water", "water at 20 °C, Daimon & Masumura 2007 (Sellmeier)", glass_detail::WaterIndex},
+        {"chitin", "insect chitin, Leertouwer et al. 2011 (Cauchy)", glass_detail::ChitinIndex},
     };
     return table;
 }

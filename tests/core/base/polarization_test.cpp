@@ -144,5 +144,27 @@ TEST(Polarization, PhysicalMuellerMatricesKeepDegreeOfPolarisationAtMostOne) {
     EXPECT_EQ((Mueller::Depolarizer(0.3) * Stokes{2, 1, 0, 0})[0], 0.6);
 }
 
+
+TEST(Mueller, FromDiagonalSumsIsTheSumOfTheTermsMuellerMatrices) {
+    // One term: FromJones(Diagonal(a, b)). Several: the sum of their Mueller matrices (an
+    // incoherent sum), which depolarises partially.
+    const Complex a[] = {{0.3, -0.4}, {-0.2, 0.1}, {0.05, 0.6}}, b[] = {{0.7, 0.2}, {0.1, -0.3}, {-0.4, 0.0}};
+    ExpectMuellerNear(Mueller::FromDiagonalSums(std::norm(a[0]), std::norm(b[0]), a[0] * std::conj(b[0])),
+                      Mueller::FromJones(Jones::Diagonal(a[0], b[0])), Tol, "one term");
+    double ss = 0, pp = 0;
+    Complex sp;
+    Mueller sum = Mueller::Zero();
+    for (int k = 0; k < 3; ++k) {
+        ss += std::norm(a[k]);
+        pp += std::norm(b[k]);
+        sp += a[k] * std::conj(b[k]);
+        sum = sum + Mueller::FromJones(Jones::Diagonal(a[k], b[k]));
+    }
+    const Mueller m = Mueller::FromDiagonalSums(ss, pp, sp);
+    ExpectMuellerNear(m, sum, Tol, "three terms");
+    const Stokes out = m * Stokes{1, 0, 1, 0};  // 45° linear light in
+    EXPECT_LT(DegreeOfPolarization(out), 1 - 1e-3);
+}
+
 }  // namespace
 }  // namespace phasor
