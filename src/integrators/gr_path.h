@@ -190,7 +190,10 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
     }
     SampledSpectrum T(ds->weight), L(0.0);
     bool measured = false;  // a measurement (NEE or closed form) happened: RR may start
-    std::vector<Vertex> path;
+    // The recorded path (only with a recording sink), in a per-thread buffer reused across samples.
+    thread_local std::vector<Vertex> pathBuffer;
+    std::vector<Vertex> &path = pathBuffer;
+    path.clear();
     auto report = [&](const Event &e) {
         if constexpr (rec) sink.OnEvent(e, path, *ds);
     };

@@ -150,9 +150,12 @@ class SampleSolveIntegrator final : public PixelIntegrator {
         Pcg32 rng;  // draws coherent modes (force_coherent) without touching the path's dimensions
         std::array<SampledSpectrum, 4> stokes{SampledSpectrum(0.0), SampledSpectrum(0.0), SampledSpectrum(0.0),
                                               SampledSpectrum(0.0)};
-        std::deque<CoherentMode> modes;  // alive for the sample (the sampler measures them right away)
-        std::vector<std::optional<LobeResponse>> responses;  // per path vertex, its sampled lobe's response
-        std::vector<bool> scalarVertex;                      // the vertex passes polarisation unchanged
+        // Per-sample state in per-thread buffers (cleared by Solve): the coherent modes drawn (alive
+        // for the sample: the sampler measures them right away), and per path vertex its sampled
+        // lobe's response and whether it passes polarisation unchanged.
+        std::deque<CoherentMode> &modes;
+        std::vector<std::optional<LobeResponse>> &responses;
+        std::vector<char> &scalarVertex;
 
         const Light *Measured(const Light *light, const Vec3 &p, const SampledWavelengths &w) {
             // A distant source with an angular profile is an ensemble; fully coherent transport
@@ -222,7 +225,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
         const std::optional<LobeResponse> &VertexResponse(const std::vector<grpath::Vertex> &path, int v) {
             if (responses.size() < path.size()) {
                 responses.resize(path.size());
-                scalarVertex.resize(path.size());
+                scalarVertex.resize(path.size(), 0);
             }
             std::optional<LobeResponse> &r = responses[std::size_t(v)];
             const grpath::Vertex &vx = path[std::size_t(v)];
@@ -235,11 +238,64 @@ class SampleSolveIntegrator final : public PixelIntegrator {
             return r;
         }
 
+        /// True if a vertex's response is a pure depolariser (only M00) at every carried wavelength.
+        static bool Depolarizes(const LobeResponse &r, int count) {
+            for (int i = 0; i < count; ++i)
+                for (int a = 0; a < 4; ++a)
+                    for (int b = 0; b < 4; ++b)
+                        if ((a || b) && std::abs(r.mueller[i].m[a][b]) > 1e-14 * std::abs(r.mueller[i].m[0][0])) return false;
+            return true;
+        }
+        /// True if a response neither polarises unpolarised light nor reads polarisation into S0:
+        /// its first row and column are (M00, 0, 0, 0) at every carried wavelength.
+        static bool Decoupled(const LobeResponse &r, int count) {
+            for (int i = 0; i < count; ++i)
+                for (int c = 1; c < 4; ++c)
+                    if (std::abs(r.mueller[i].m[0][c]) > 1e-14 * std::abs(r.mueller[i].m[0][0]) ||
+                        std::abs(r.mueller[i].m[c][0]) > 1e-14 * std::abs(r.mueller[i].m[0][0]))
+                        return false;
+            return true;
+        }
+
+        /// True if the forward solve's S0 is the event's scalar value exactly, without a polariser
+        /// or Stokes output: no coherence term can act (a coherent beam, or no lobe that has
+        /// one before the beam's coherence is reset), and between depolarisers at most one
+        /// interaction couples S0 and polarisation (a single one acting on unpolarised light gives
+        /// S0 = M00, its weight). Only the path vertices' (cached) responses are looked at: the
+        /// event's own interaction is counted as coupling, and its response is never computed here.
+        bool ScalarSuffices(const grpath::Event &e, const std::vector<grpath::Vertex> &path, bool partial) {
+            if (e.at && partial && e.at->material->HasCoherenceTerms()) return false;
+            bool coherenceAlive = partial && e.kind != grpath::EventKind::DirectLight;
+            int coupling = e.at ? 1 : 0;
+            for (int v = e.prefix - 1; v >= 0; --v) {
+                const grpath::Vertex &vx = path[std::size_t(v)];
+                const std::optional<LobeResponse> &r = VertexResponse(path, v);
+                if (scalarVertex[std::size_t(v)]) {
+                    coherenceAlive = false;
+                    continue;
+                }
+                if (!r) return false;
+                if (Depolarizes(*r, wl.Count())) {
+                    coupling = 0;
+                    coherenceAlive = false;
+                    continue;
+                }
+                if (coherenceAlive && r->coherence.any) return false;
+                if (!(vx.bs.flags & ScatterNearDelta)) coherenceAlive = false;
+                if (!Decoupled(*r, wl.Count()) && ++coupling >= 2) return false;
+            }
+            return true;
+        }
+
         void OnEvent(const grpath::Event &e, const std::vector<grpath::Vertex> &path, const DetectorGrSample &ds) {
             const Detector &det = scene.GetDetector();
             // Where the light first interacts (for its coherence there).
             const Vec3 first = e.at ? e.at->p : e.prefix > 0 ? path[std::size_t(e.prefix - 1)].si.p : ds.ray.o;
             const double omega = e.ensemble && e.light && !forceCoherent ? e.light->Coherence(first).omega : 0;
+            if (!det.Polarization().Any() && ScalarSuffices(e, path, omega > 0)) {
+                stokes[0] += e.value;  // unpolarised detection of an uncoupled chain: grt's value
+                return;
+            }
             PltBeam beam = PltBeam::Source(e.travel, wl.Count(), omega);
             if (std::isfinite(e.dist)) beam.Propagate(e.dist);
             if (e.at) {
@@ -278,13 +334,21 @@ class SampleSolveIntegrator final : public PixelIntegrator {
 
     std::array<SampledSpectrum, 4> Solve(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
                                          PathStats &stats) const {
-        Sink sink{scene, wl, forceCoherent_,
+        thread_local std::deque<CoherentMode> modes;
+        thread_local std::vector<std::optional<LobeResponse>> responses;
+        thread_local std::vector<char> scalarVertex;
+        modes.clear();
+        responses.clear();
+        scalarVertex.clear();
+        Sink sink{scene,
+                  wl,
+                  forceCoherent_,
                   Pcg32(Hash(stats.sample.seed, uint64_t(uint32_t(x)), uint64_t(uint32_t(y))),
                         uint64_t(stats.sample.index)),
-                  {},
-                  {},
-                  {},
-                  {}};
+                  {SampledSpectrum(0.0), SampledSpectrum(0.0), SampledSpectrum(0.0), SampledSpectrum(0.0)},
+                  modes,
+                  responses,
+                  scalarVertex};
         paths_.Estimate(scene, x, y, wl, sampler, stats, sink);
         return sink.stokes;
     }

@@ -147,6 +147,7 @@ class MixMaterial final : public Material {
     }
 
     bool IsReciprocal() const override { return a_->IsReciprocal() && b_->IsReciprocal(); }
+    bool HasCoherenceTerms() const override { return a_->HasCoherenceTerms() || b_->HasCoherenceTerms(); }
 
     void CheckShape(const Shape &shape) const override {
         a_->CheckShape(shape);

@@ -182,6 +182,7 @@ class TwoSidedMaterial final : public Material {
     }
 
     bool IsReciprocal() const override { return front_->IsReciprocal() && back_->IsReciprocal(); }
+    bool HasCoherenceTerms() const override { return front_->HasCoherenceTerms() || back_->HasCoherenceTerms(); }
 
     void CheckShape(const Shape &shape) const override {
         front_->CheckShape(shape);

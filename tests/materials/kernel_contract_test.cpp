@@ -797,6 +797,8 @@ TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
         for (const NearDeltaLobe &l : lobes) {
             auto r = material_->EvalLobe(*q, l.id, l.wo[0]);
             ASSERT_TRUE(r) << regime << ": no response of listed lobe " << l.id;
+            EXPECT_TRUE(!r->coherence.any || material_->HasCoherenceTerms())
+                << regime << ": lobe " << l.id << " reports coherence terms but HasCoherenceTerms() is false";
             for (int j = 0; j < wl_.Count(); ++j) {
                 if (j > 0 && !(l.wo[j] == l.wo[0])) continue;  // a dispersive companion elsewhere
                 EXPECT_NEAR(r->mueller[j].m[0][0], l.weight[j], 1e-9 * l.weight[j] + 1e-15)

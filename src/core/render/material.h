@@ -255,6 +255,10 @@ class Material {
     /// Σ over ContinuousLobes of EvalLobe towards wo (the Mueller sum; a Jones matrix only when
     /// exactly one lobe answers; no coherence terms); nullopt if none answers.
     std::optional<LobeResponse> EvalContinuousLobes(const ScatterQuery &q, const Vec3 &wo) const;
+    /// True if some lobe's EvalLobe may report coherence terms (LobeCoherence::any: a coated
+    /// surface, thin_film, multilayer); false promises that none does (checked by the contract
+    /// suite), which lets a polarised integrator skip evaluating lobes whose response cannot matter.
+    virtual bool HasCoherenceTerms() const { return false; }
     /// True if f(wi→wo) = f(wo→wi) (checked by the contract suite).
     virtual bool IsReciprocal() const { return true; }
     /// For a non-reciprocal kernel, the sense in which it conserves energy (the contract suite
