@@ -8,7 +8,9 @@
 // (in the medium it arrives from) into two lobes:
 //   * a specular near-delta lobe (id 0, listed): the coherent part α_spec·F(θ_i), with the
 //     Debye–Waller factor α_spec = exp(−(kσ_h(cosθ_i + cosθ_o))²) = exp(−(2kσ_h cosθ_i)²) at the
-//     mirror direction; Jones √α_spec·diag(r_s, r_p);
+//     mirror direction; Jones √α_spec·diag(r_s, r_p) (over a coated substrate, with the coating's
+//     coherence terms times α_spec, LobeCoherence: sample_solve weights its interference by the
+//     light's coherence);
 //   * a continuous scattered lobe (id 1): theory §4.3's energy-normalised form
 //         f(wi → wo) = (1 − α_spec)·F(θ_i)·k²p_PSD(ζ)/V(θ_i, k²T),   ζ = k(wo∥ + wi∥)
 //     (wi, wo pointing away from the surface; the mirror direction has ζ = 0), where V is the PSD
@@ -199,10 +201,17 @@ class HarveyShackMaterial final : public Material {
         if (lobe == SpecularLobe) {
             if (!SameDirection(wo, ReflectLocal(q.wi))) return std::nullopt;
             r.hasJones = true;
+            // A coated substrate's coherence terms, times the specular share α_spec (sample_solve).
+            r.coherence.any = surface_->LayerCount() > 0;
             for (int i = 0; i < l.count; ++i) {
                 const StackResponse s = Response(q, l, i, l.cosI);
                 r.jones[i] = Jones::Diagonal(s.rs, s.rp) * Complex(std::sqrt(l.alpha[i]), 0);
                 r.mueller[i] = Mueller::FromJones(r.jones[i]);
+                if (!r.coherence.any) continue;
+                const double lambda = q.wl->lambda[i];
+                const IncoherentStackResponse n = surface_->IncoherentResponse(lambda, q.etaOutside, l.cosI, l.inside, q.tex);
+                r.coherence.incoherent[i] = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp) * l.alpha[i];
+                r.coherence.shear[i] = surface_->ShearVector(lambda, q.etaOutside, l.wi, l.inside, q.tex);
             }
             return r;
         }
@@ -230,6 +239,8 @@ class HarveyShackMaterial final : public Material {
     }
 
     bool IsReciprocal() const override { return false; }  // 1/V(θ_i), F(θ_i): see the file comment
+    /// The specular lobe carries a coated substrate's coherence terms.
+    bool HasCoherenceTerms() const override { return surface_->LayerCount() > 0; }
 
     std::string ToString() const override {
         std::ostringstream os;

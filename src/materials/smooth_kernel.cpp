@@ -118,7 +118,6 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
 
     const bool inside = FromInside(q);
     const double cosI = std::abs(q.wi.z);
-    const double tangential = std::hypot(q.wi.x, q.wi.y);
     LobeResponse r;
     // A bare surface has one response, a Jones matrix in both regimes; a coated one in the
     // ray-optics limit answers with the incoherent sum, which has none.
@@ -157,11 +156,8 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
             r.mueller[i] = Mueller::FromJones(j);
         }
         r.coherence.incoherent[i] = incoherent;
-        if (r.coherence.any && tangential > 0) {
-            // The deeper reflections exit displaced along the incident wave's tangential travel, −wi.xy.
-            const double shear = surface_.Shear(lambda, q.etaOutside, cosI, inside, q.tex);
-            r.coherence.shear[i] = Vec2(-q.wi.x, -q.wi.y) * (shear / tangential);
-        }
+        // The deeper reflections exit displaced along the incident wave's tangential travel, −wi.xy.
+        if (r.coherence.any) r.coherence.shear[i] = surface_.ShearVector(lambda, q.etaOutside, q.wi, inside, q.tex);
     }
     return r;
 }
