@@ -27,6 +27,21 @@
 
 namespace phasor::grpath {
 
+/// The query a GR `gr` (tracing direction into the surface) makes at the hit `si`: its footprint
+/// (hero β for textures) unless it is spread-free (`rayOptics`, a classical ray). Its pointers refer
+/// to si, gr and wl.
+inline ScatterQuery GrQuery(const SurfaceInteraction &si, const SpectralGenRay &gr, bool rayOptics,
+                            const SampledWavelengths &wl) {
+    ScatterQuery q;
+    q.wi = si.shading.ToLocal(-gr.d);
+    q.wl = &wl;
+    q.rayOptics = rayOptics;  // a spread-free GR continues as a classical ray (theory §9.5)
+    q.tex = TextureEvalContext(si, rayOptics ? 0 : std::sqrt(gr.beta2[0]));  // hero footprint radius β
+    q.gr = rayOptics ? nullptr : &gr;
+    q.si = &si;
+    return q;
+}
+
 /// One vertex of a sampled path: the hit, the GR arriving there (tracing direction gr.d into the
 /// surface, footprint propagated to the hit) and the lobe the path left through.
 struct Vertex {
@@ -37,16 +52,7 @@ struct Vertex {
     bool left = false;            // the path continued from here through `bs`
     ScatterSample bs;             // the sampled lobe (local wo, weight a_j/p_j or f|cos|/pdf, pdf, id, flags)
     /// The query the sampler asked here (its pointers refer to this vertex and to wl).
-    ScatterQuery Query(const SampledWavelengths &wl) const {
-        ScatterQuery q;
-        q.wi = si.shading.ToLocal(-gr.d);
-        q.wl = &wl;
-        q.rayOptics = rayOptics;
-        q.tex = TextureEvalContext(si, rayOptics ? 0 : std::sqrt(gr.beta2[0]));
-        q.gr = rayOptics ? nullptr : &gr;
-        q.si = &si;
-        return q;
-    }
+    ScatterQuery Query(const SampledWavelengths &wl) const { return GrQuery(si, gr, rayOptics, wl); }
 };
 
 enum class EventKind { Detector, Incidence, LobeIncidence, Emission, Escape, DirectLight, ThroughLobe };
@@ -197,6 +203,20 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
     auto report = [&](const Event &e) {
         if constexpr (rec) sink.OnEvent(e, path, *ds);
     };
+    // An Emission or Escape event: light `le` met by the path after `depth` vertices, arriving along −g.d.
+    auto reportFound = [&](EventKind kind, const SampledSpectrum &le, int depth, const Light *light, double dist) {
+        if constexpr (rec) {
+            if (le.IsZero()) return;
+            Event e;
+            e.kind = kind;
+            e.value = T * le;
+            e.prefix = depth;
+            e.light = light;
+            e.travel = -g.d;
+            e.dist = dist;
+            report(e);
+        }
+    };
 
     // Primary GRs facing closed-form sources (theory §0 D4a).
     if (ds->integratesIncidence) {
@@ -295,16 +315,7 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
             const SampledSpectrum le = closedFormDone ? path::EscapedEmission(scene, g.d, wl, mis, skipClosedForm)
                                                       : path::EscapedEmission(scene, g.d, wl, mis);
             L += T * le;
-            if constexpr (rec) {
-                if (!le.IsZero()) {
-                    Event e;
-                    e.kind = EventKind::Escape;
-                    e.value = T * le;
-                    e.prefix = depth;
-                    e.travel = -g.d;
-                    report(e);
-                }
-            }
+            reportFound(EventKind::Escape, le, depth, nullptr, Infinity);
             break;
         }
         g.Propagate(si->t);  // ABCD free-space update of every wavelength's footprint
@@ -318,18 +329,7 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
         }
         const SampledSpectrum le = path::HitEmission(scene, *si, g.d, wl, mis);
         L += T * le;
-        if constexpr (rec) {
-            if (!le.IsZero()) {
-                Event e;
-                e.kind = EventKind::Emission;
-                e.value = T * le;
-                e.prefix = depth;
-                e.light = si->areaLight;
-                e.travel = -g.d;
-                e.dist = si->t;
-                report(e);
-            }
-        }
+        reportFound(EventKind::Emission, le, depth, si->areaLight, si->t);
         const Material *mat = si->material;
         if (!mat || depth == maxDepth_) break;
 
@@ -342,13 +342,7 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
             path.push_back(v);
         }
         const Frame &frame = si->shading;
-        ScatterQuery q;
-        q.wi = frame.ToLocal(-g.d);
-        q.wl = &wl;
-        q.rayOptics = spreadFree;  // a spread-free GR continues as a classical ray (theory §9.5)
-        q.tex = TextureEvalContext(*si, spreadFree ? 0 : std::sqrt(g.beta2[0]));  // hero footprint radius β
-        q.gr = spreadFree ? nullptr : &g;
-        q.si = &*si;
+        const ScatterQuery q = GrQuery(*si, g, spreadFree, wl);
         const unsigned caps = mat->Capabilities(q);
         if (spreadFree && mat->IsFootprintAware()) stats.counters.Add(RenderEvent::FootprintAfterSpreadFree);
 

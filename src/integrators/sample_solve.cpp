@@ -169,18 +169,6 @@ class SampleSolveIntegrator final : public PixelIntegrator {
             return &modes.back();
         }
 
-        /// The query at an interaction (as the sampler asked it).
-        ScatterQuery QueryAt(const SurfaceInteraction &si, const SpectralGenRay &gr, bool rayOptics) const {
-            ScatterQuery q;
-            q.wi = si.shading.ToLocal(-gr.d);
-            q.wl = &wl;
-            q.rayOptics = rayOptics;
-            q.tex = TextureEvalContext(si, rayOptics ? 0 : std::sqrt(gr.beta2[0]));
-            q.gr = rayOptics ? nullptr : &gr;
-            q.si = &si;
-            return q;
-        }
-
         /// One interaction of the beam: the lobe's response `r` (nullopt: no response, the beam is
         /// extinguished) towards the light along wo (local), relative to its M00; `scalar`: the
         /// vertex passes polarisation unchanged (footprint-aware kernels).
@@ -299,7 +287,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
             PltBeam beam = PltBeam::Source(e.travel, wl.Count(), omega);
             if (std::isfinite(e.dist)) beam.Propagate(e.dist);
             if (e.at) {
-                const ScatterQuery q = QueryAt(*e.at, *e.gr, e.rayOptics);
+                const ScatterQuery q = grpath::GrQuery(*e.at, *e.gr, e.rayOptics, wl);
                 const Material &mat = *e.at->material;
                 if (e.kind == grpath::EventKind::DirectLight) {
                     const bool scalar = mat.IsFootprintAware() && !e.rayOptics;

@@ -14,19 +14,13 @@
 #include "integrators/gr_path.h"
 #include "parser/parser.h"
 #include "support/scene_builder.h"
+#include "validation/render_row.h"
 
 namespace phasor::test {
 namespace {
 
 std::unique_ptr<Scene> LoadValidation(const std::string &file) {
-    Diagnostics diag;
-    auto desc = ParseSceneFile(std::string(PHASOR_SOURCE_DIR) + "/scenes/validation/" + file, DefineList{}, diag);
-    std::unique_ptr<Scene> scene;
-    if (desc) scene = Scene::Build(*desc, diag, "grt");
-    std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(scene) << file << ": " << os.str();
-    return scene;
+    return BuildValidation(ValidationScene(file), DefineList{}, "grt");
 }
 
 struct RecordingSink {
@@ -57,16 +51,7 @@ double Scale(const SampledSpectrum &s) {
 // rounding (1e-12 relative: the events are the same products summed in another order).
 void CheckScene(const std::string &file, int pixelsX, int pixelsY, int spp,
                 std::vector<grpath::EventKind> expectedKinds, const std::string &text = "") {
-    std::unique_ptr<Scene> scene;
-    if (text.empty()) scene = LoadValidation(file);
-    else {
-        Diagnostics diag;
-        auto desc = ParseSceneString(text, file, DefineList{}, diag);
-        if (desc) scene = Scene::Build(*desc, diag);
-        std::ostringstream os;
-        diag.Print(os);
-        ASSERT_TRUE(scene) << os.str();
-    }
+    std::unique_ptr<Scene> scene = text.empty() ? LoadValidation(file) : BuildSceneText(text, "", {}, file);
     ASSERT_TRUE(scene);
     const grpath::GrPathSampler paths(16, 3, 1);
     auto proto = MakeSobolSampler(3);

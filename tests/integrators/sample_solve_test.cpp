@@ -21,6 +21,7 @@
 #include "core/render/pixel_integrator.h"
 #include "parser/parser.h"
 #include "support/replicas.h"
+#include "validation/render_row.h"
 #include "support/stats.h"
 
 namespace phasor::test {
@@ -28,25 +29,11 @@ namespace {
 
 std::unique_ptr<Scene> FromText(const std::string &text, const std::string &integrator = "",
                                 const DefineList &defines = {}) {
-    Diagnostics diag;
-    auto desc = ParseSceneString(text, "test.wscene", defines, diag);
-    std::unique_ptr<Scene> scene;
-    if (desc) scene = Scene::Build(*desc, diag, integrator);
-    std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(scene) << os.str();
-    return scene;
+    return BuildSceneText(text, integrator, defines);
 }
 
 std::unique_ptr<Scene> FromFile(const std::string &file, const std::string &integrator, const DefineList &defines = {}) {
-    Diagnostics diag;
-    auto desc = ParseSceneFile(std::string(PHASOR_SOURCE_DIR) + "/scenes/validation/" + file, defines, diag);
-    std::unique_ptr<Scene> scene;
-    if (desc) scene = Scene::Build(*desc, diag, integrator);
-    std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(scene) << file << ": " << os.str();
-    return scene;
+    return BuildValidation(ValidationScene(file), defines, integrator);
 }
 
 // ---- sample by sample ------------------------------------------------------------------------------

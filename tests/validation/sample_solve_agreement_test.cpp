@@ -49,17 +49,6 @@ Integrator "sample_solve" "solve" { max_depth = 1 }
 Integrator "sample_solve" "coherent" { max_depth = 1  force_coherent = true }
 )";
 
-std::unique_ptr<Scene> Text(const char *text, const std::string &integrator) {
-    Diagnostics diag;
-    auto desc = ParseSceneString(text, "grating_camera.wscene", DefineList{}, diag);
-    std::unique_ptr<Scene> scene;
-    if (desc) scene = Scene::Build(*desc, diag, integrator);
-    std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(scene) << os.str();
-    return scene;
-}
-
 /// Welch tests of the two render sets' replica means on every block and the whole image; returns
 /// the rejections. `gainB` scales the second set (a brighter source).
 int Rejections(const std::vector<Image> &a, const std::vector<Image> &b, double gainB, const std::string &what,
@@ -147,7 +136,7 @@ TEST(SampleSolveAgreement, HarveyShackPlate) {
 TEST(SampleSolveAgreement, GratingUnderADistantSource) {
     // The fully coherent solve's variance is ~80× grt's here (Fig. S10's point): its comparison
     // is shown to reject a 15 % brighter source at this cost.
-    Agree([](const std::string &integrator) { return Text(GratingCameraScene, integrator); }, "grating camera", 32, 16,
+    Agree([](const std::string &integrator) { return BuildSceneText(GratingCameraScene, integrator, {}, "grating_camera.wscene"); }, "grating camera", 32, 16,
           1.15);
 }
 
