@@ -83,6 +83,10 @@ int Render(const CliOptions &o) {
     std::filesystem::path exr(out), png(out);
     if (exr.extension() == ".png") exr.replace_extension(".exr");
     else png.replace_extension(".png");
+    // Stokes output (a detector's `stokes = true`): the degree of polarisation as a PNG beside.
+    std::filesystem::path dop = png;
+    dop.replace_extension(".dop.png");
+    const bool stokes = scene && scene->GetDetector().Polarization().stokes;
     if (exr.extension() != ".exr") {
         std::cerr << "error: output '" << out << "' must end in .exr or .png\n";
         return 1;
@@ -90,6 +94,7 @@ int Render(const CliOptions &o) {
     try {
         CheckWritable(exr.string());
         CheckWritable(png.string());
+        if (stokes) CheckWritable(dop.string());
         CheckMemory(*scene);  // refuse a resolution the machine cannot hold before allocating anything
     } catch (const Error &e) {
         PrintError(e);
@@ -124,13 +129,18 @@ int Render(const CliOptions &o) {
     StampMetadata(img, *scene, o.scene, opt, st);
     // The EXR and the PNG are written all or nothing (core/image/output_file.h): if either fails,
     // neither appears (and earlier files of those names are left as they were).
-    std::string shown;
+    std::string shown, dopWritten;
     try {
         OutputFiles files;
         WriteExr(files, exr.string(), img);
         shown = StageDisplayPng(files, png.string(), img,
                                 det.Response().GetKind() == SensorResponse::Kind::Radiometric, integrator.name,
                                 std::filesystem::path(o.scene).filename().string() + ": intensity");
+        if (stokes && img.ChannelIndex("DoP") >= 0) {
+            const SheetResult r = StageDegreeOfPolarizationPng(files, dop.string(), img);
+            if (!r.textDrawn) std::cerr << "warning: " << r.textProblem << "; '" << dop.string() << "' has no text\n";
+            dopWritten = dop.string();
+        }
         files.Commit();
     } catch (const Error &e) {
         std::cerr << "error: " << e.Message() << "\n";
@@ -149,7 +159,8 @@ int Render(const CliOptions &o) {
                       << (st.sppMax > st.sppReached ? " (" + std::to_string(st.sppMax) + " in some pixels)" : "")
                       << " in " << FormatDuration(st.seconds) << " with " << integrator.name << "\n";
         PrintRenderWarnings(*scene, st, img);
-        std::cerr << "wrote " << exr.string() << " and " << shown << "\n";
+        std::cerr << "wrote " << exr.string() << (dopWritten.empty() ? " and " : ", ") << shown
+                  << (dopWritten.empty() ? "" : " and " + dopWritten) << "\n";
     }
     if (StopSignal()) return StoppedStatus();
     return 0;

@@ -125,6 +125,18 @@ inline Mueller Mueller::Depolarizer(double a) {
 }
 
 inline Mueller Mueller::FromJones(const Jones &j) {
+    if (j.m[0][1] == Complex(0, 0) && j.m[1][0] == Complex(0, 0)) {
+        // diag(a, b) (every planar interface): theory §4.1's [[A, B, 0, 0], [B, A, 0, 0],
+        // [0, 0, C, S], [0, 0, −S, C]] with A, B = (|a|² ± |b|²)/2, C + iS = a·b*.
+        const Complex a = j.m[0][0], b = j.m[1][1], c = a * std::conj(b);
+        Mueller r;
+        r.m[0][0] = r.m[1][1] = 0.5 * (std::norm(a) + std::norm(b));
+        r.m[0][1] = r.m[1][0] = 0.5 * (std::norm(a) - std::norm(b));
+        r.m[2][2] = r.m[3][3] = c.real();
+        r.m[2][3] = c.imag();
+        r.m[3][2] = -c.imag();
+        return r;
+    }
     // Stokes S_k = tr(σ_k E E†) with σ0 = I, σ1 = diag(1, −1), σ2 = [[0,1],[1,0]],
     // σ3 = [[0,−i],[i,0]] (the convention above); E E† = ½ Σ_k S_k σ_k, so the outgoing
     // S'_i = tr(σ_i J E E† J†) gives M_ij = ½ Re tr(σ_i J σ_j J†).

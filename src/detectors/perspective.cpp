@@ -37,9 +37,10 @@ class PerspectiveCamera final : public Detector {
     }
     static std::unique_ptr<Detector> Create(const ParamDict &d, BuildContext &ctx) {
         auto [w, h] = CameraResolution(d);
-        return std::make_unique<PerspectiveCamera>(w, h, CameraResponse(d, ctx),
-                                                   ctx.GetTransform(d, "to_world"), d.GetNumber("fov"),
-                                                   d.GetString("pixel") == "gaussian");
+        auto cam = std::make_unique<PerspectiveCamera>(w, h, CameraResponse(d, ctx), ctx.GetTransform(d, "to_world"),
+                                                       d.GetNumber("fov"), d.GetString("pixel") == "gaussian");
+        cam->SetPolarization(PolarizationFromParams(d));
+        return cam;
     }
 
     Ray RayThrough(Vec2 pFilm) const {
@@ -57,6 +58,8 @@ class PerspectiveCamera final : public Detector {
     }
 
     bool SupportsGR() const override { return true; }
+    /// Image right: camera −x (screen-right, RayThrough).
+    Vec3 PolarizationX(const DetectorGrSample &) const override { return Normalize(toWorld_.Vector(Vec3(-1, 0, 0))); }
     std::optional<DetectorGrSample> GenerateGR(int x, int y, const PixelSampleIndex &, Sampler &sampler,
                                                const SampledWavelengths &wl) const override {
         const Vec2 u = sampler.GetPixel2D();

@@ -45,10 +45,11 @@ class ThinLensCamera final : public Detector {
     }
     static std::unique_ptr<Detector> Create(const ParamDict &d, BuildContext &ctx) {
         auto [w, h] = CameraResolution(d);
-        return std::make_unique<ThinLensCamera>(w, h, CameraResponse(d, ctx),
-                                                ctx.GetTransform(d, "to_world"), d.GetNumber("fov"),
-                                                d.GetNumber("aperture_radius"), d.GetNumber("focus_distance"),
-                                                d.GetString("pixel") == "gaussian");
+        auto cam = std::make_unique<ThinLensCamera>(w, h, CameraResponse(d, ctx), ctx.GetTransform(d, "to_world"),
+                                                    d.GetNumber("fov"), d.GetNumber("aperture_radius"),
+                                                    d.GetNumber("focus_distance"), d.GetString("pixel") == "gaussian");
+        cam->SetPolarization(PolarizationFromParams(d));
+        return cam;
     }
 
     // Lens point and focus point in camera space for film position pFilm and lens sample uLens.
@@ -66,6 +67,8 @@ class ThinLensCamera final : public Detector {
     }
 
     bool SupportsGR() const override { return true; }
+    /// Image right: camera −x (see perspective.cpp).
+    Vec3 PolarizationX(const DetectorGrSample &) const override { return Normalize(toWorld_.Vector(Vec3(-1, 0, 0))); }
     std::optional<DetectorGrSample> GenerateGR(int x, int y, const PixelSampleIndex &, Sampler &sampler,
                                                const SampledWavelengths &wl) const override {
         const Vec2 uPixel = sampler.GetPixel2D();

@@ -112,7 +112,7 @@ class VirtualPlane final : public Detector {
                  // are E/E_ref, so a smaller E_ref would only overflow.
                  .Min(1e-30)
                  .Max(1e30),
-             ResponseParam("radiometric")}};
+             ResponseParam("radiometric"), PolarizationParams()[0], PolarizationParams()[1]}};
         return s;
     }
     static std::unique_ptr<Detector> Create(const ParamDict &d, BuildContext &ctx) {
@@ -156,7 +156,9 @@ class VirtualPlane final : public Detector {
         if (d.Has("aim")) c.aim = ctx.GetRef<Shape>(d, "aim");
         c.autoAim = d.GetBool("auto_aim");
         c.referenceIrradiance = d.GetNumber("reference_irradiance");
-        return std::make_unique<VirtualPlane>(nx, ny, ResponseFromParams(d), std::move(c));
+        auto plane = std::make_unique<VirtualPlane>(nx, ny, ResponseFromParams(d), std::move(c));
+        plane->SetPolarization(PolarizationFromParams(d));
+        return plane;
     }
 
     /// World position for continuous image coordinates pFilm (pixel units).
@@ -214,6 +216,8 @@ class VirtualPlane final : public Detector {
     }
 
     bool SupportsGR() const override { return true; }
+    /// Image x: the plane's local x axis (light arriving from the front sees y = image down).
+    Vec3 PolarizationX(const DetectorGrSample &) const override { return frame_.s; }
     std::optional<DetectorGrSample> GenerateGR(int x, int y, const PixelSampleIndex &si, Sampler &sampler,
                                                const SampledWavelengths &wl) const override {
         const Vec2 uPixel = sampler.GetPixel2D();

@@ -177,17 +177,19 @@ bool LobeIncidence::Covers(const Shape *shape) const {
 }
 
 SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSample &ds, const SpectralGenRay &g,
-                                         const SampledWavelengths &wl, PathStats &stats) const {
+                                         const SampledWavelengths &wl, PathStats &stats, const Report *report,
+                                         const ModeOf *mode) const {
     SampledSpectrum sum(0.0);
     const Detector &detector = scene.GetDetector();
     for (const Shape *shape : shapes_) {
         const std::vector<Vec3> seeds = Seeds(*shape, ds.ray.o);
-        for (const Light *light : scene.Lights()) {
-            if (!light->MeasuredInClosedForm()) continue;
+        for (const Light *sceneLight : scene.Lights()) {
+            if (!sceneLight->MeasuredInClosedForm()) continue;
+            const Light *light = sceneLight;
             // The lobes listed where the first seed that reaches the shape hits it; each is then
             // followed by its id (a planar kernel lists the same ids over the surface).
             NearDeltaLobes seedLobes;
-            Vec3 seed;
+            Vec3 seed, seedHit;
             bool found = false;
             for (const Vec3 &d : seeds) {
                 ++stats.rays;
@@ -205,10 +207,14 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                 q.si = &*si;
                 si->material->ListNearDelta(q, seedLobes);
                 seed = d;
+                seedHit = si->p;
                 found = true;
                 break;
             }
             if (!found) continue;
+            // A replacement light (a coherent mode) is drawn once per light and shape, where the
+            // seed ray meets the shape.
+            if (mode) light = (*mode)(sceneLight, seedHit);
             for (const NearDeltaLobe &lobe : seedLobes) {
                 bool uniform = !(lobe.flags & ScatterDispersive);
                 for (int i = 1; i < wl.Count(); ++i) uniform = uniform && lobe.wo[i] == lobe.wo[0];
@@ -232,7 +238,25 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                     inc.wi = Normalize(st.si.p - ds.ray.o);
                     inc.dist = Length(st.si.p - ds.ray.o) + st.inc.dist;
                     inc.angularVariance = st.inc.angularVariance;
-                    sum += detector.IntegrateIncidence(ds, inc);
+                    const SampledSpectrum v = detector.IntegrateIncidence(ds, inc);
+                    sum += v;
+                    if (report && !v.IsZero()) {
+                        SpectralGenRay gp = g;  // as Evaluate placed it at p
+                        gp.o = st.si.p;
+                        gp.d = Normalize(st.si.p - ds.ray.o);
+                        Contribution c;
+                        c.value = v;
+                        c.light = sceneLight;
+                        c.ensemble = light == sceneLight;
+                        c.si = &st.si;
+                        c.gr = &gp;
+                        c.lobe = lobe.id;
+                        c.woLocal = st.si.shading.ToLocal(st.wo);
+                        c.wavelength = uniform ? -1 : i;
+                        c.travel = -s;
+                        c.dist = st.inc.dist;
+                        (*report)(c);
+                    }
                 }
             }
         }

@@ -28,6 +28,7 @@
 // through two near-delta vertices is still found by the sampled path (D14 at its second vertex).
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -48,11 +49,33 @@ class LobeIncidence {
     /// through its listed lobes at the first vertex again (D14), or they would count twice.
     bool Covers(const Shape *shape) const;
 
+    /// One term of Integrate, for integrators that re-evaluate it (sample_solve): the value, the
+    /// light, the surface point p with the GR the detector sends there, the lobe and the carried
+    /// wavelength it was solved for (−1: one solve for every wavelength).
+    struct Contribution {
+        SampledSpectrum value;             // what Integrate adds for this light and lobe
+        const Light *light = nullptr;      // the scene's light
+        bool ensemble = true;              // false if `mode` replaced the light for this measurement
+        const SurfaceInteraction *si = nullptr;
+        const SpectralGenRay *gr = nullptr;  // the detector's GR placed at p (tracing direction into the surface)
+        int lobe = 0;
+        Vec3 woLocal;                      // the lobe's direction at p towards the light (local)
+        int wavelength = -1;
+        Vec3 travel;                       // world direction in which the light arrives at p
+        double dist = Infinity;            // p to the light (Infinity for lights at infinity)
+    };
+    using Report = std::function<void(const Contribution &)>;
+    /// Replaces a light by the one to measure from p (sample_solve's coherent modes).
+    using ModeOf = std::function<const Light *(const Light *, const Vec3 &)>;
+
     /// The pixel value (the detector's IntegrateIncidence units) of every closed-form light seen
     /// from the sample's origin through one listed lobe of a covered shape, each unoccluded
     /// (detector → p → light). `g` is the sample's GR at its origin (footprint per wavelength).
+    /// `report` (if given) receives every term; `mode` (if given) picks the light measured for each
+    /// closed-form light.
     SampledSpectrum Integrate(const Scene &scene, const DetectorGrSample &ds, const SpectralGenRay &g,
-                              const SampledWavelengths &wl, PathStats &stats) const;
+                              const SampledWavelengths &wl, PathStats &stats, const Report *report = nullptr,
+                              const ModeOf *mode = nullptr) const;
 
   private:
     std::vector<const Shape *> shapes_;

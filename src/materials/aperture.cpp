@@ -264,6 +264,11 @@ class ApertureMaterial final : public Material {
         return RayLimit(q) ? CapNearDelta : (CapContinuous | CapFootprintAware);
     }
 
+    /// For a generalized ray, lobe 0 (the footprint's diffraction lobe).
+    void ContinuousLobes(const ScatterQuery &q, ContinuousLobeIds &out) const override {
+        if (!RayLimit(q)) out.Add(0);
+    }
+
     /// Ray-optics limit: lobe 1, straight through with the transmission t at the hit.
     void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
         if (!RayLimit(q)) return;

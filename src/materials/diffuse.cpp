@@ -67,6 +67,7 @@ class DiffuseMaterial final : public Material {
     }
 
     unsigned Capabilities(const ScatterQuery &) const override { return CapContinuous; }
+    void ContinuousLobes(const ScatterQuery &, ContinuousLobeIds &out) const override { out.Add(0); }
 
     /// Lobe 0 (the only one): a depolariser, M = (R/π)·|cosθo|·diag(1, 0, 0, 0) (theory §4.9).
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {

@@ -49,11 +49,13 @@
 // diag(r_s, r_p) at the source's θ (diag(t_s, t_p)·√(power factor)·(n_exit/n_source) when
 // transmitted), so M00 = a_j.
 // The rotation between the incident and the diffracted planes of incidence of conical orders is
-// not modelled (the thin-phase screen is scalar). No coherence terms (LobeCoherence::any =
-// false): a partially coherent field is an incoherent mixture of plane waves, each diffracted with
+// not modelled (the thin-phase screen is scalar). The relief has no coherence terms of its own: a
+// partially coherent field is an incoherent mixture of plane waves, each diffracted with
 // the same efficiencies, so only each order's angular spread depends on the coherence, and that is
 // the generalized ray's own spread; an order needs mutually coherent periods by definition (if they
 // were not, there would be no order at all, only a single period's diffraction, a continuous lobe).
+// A reflected order over a coated substrate carries the coating's coherence terms (its incoherent
+// response times the order's share, and its shear), which sample_solve weights by μ.
 //
 // Ray-optics limit (ScatterQuery::rayOptics: the `ray` integrator, GRs after an aperture): the
 // grooves are not resolved and the kernel is its smooth substrate — the zeroth orders only, with
@@ -439,6 +441,8 @@ void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) 
     listingCache.Store(id_, q, out, first);
 }
 
+bool GratingMaterial::HasCoherenceTerms() const { return surface_->LayerCount() > 0; }
+
 std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const {
     NearDeltaLobes lobes;
     ListNearDelta(q, lobes);
@@ -452,6 +456,10 @@ std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int
     const Vec3 g = GratingVector(q);
     LobeResponse r;
     r.hasJones = true;
+    // A reflected order over a coated substrate carries the coating's coherence terms (its incoherent
+    // response at the source's angle times the order's share, and its shear): sample_solve weights
+    // the coating's interference by the light's coherence. The relief itself has none (see above).
+    r.coherence.any = !transmitted && surface_->LayerCount() > 0;
     for (int i = 0; i < q.wl->Count(); ++i) {
         if (l->weight[i] == 0) continue;  // evanescent at this wavelength: no response
         // The orders of the light arriving along the lobe (its source direction at this wavelength).
@@ -475,6 +483,13 @@ std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int
         }
         r.jones[i] = base * Complex(amp, 0);
         r.mueller[i] = Mueller::FromJones(r.jones[i]);
+        if (r.coherence.any) {
+            const Vec3 &source = l->wo[std::size_t(i)];
+            const IncoherentStackResponse n =
+                surface_->IncoherentResponse(q.wl->lambda[i], q.etaOutside, std::abs(source.z), o.fromInside, q.tex);
+            r.coherence.incoherent[i] = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp) * (amp * amp);
+            r.coherence.shear[i] = surface_->ShearVector(q.wl->lambda[i], q.etaOutside, source, o.fromInside, q.tex);
+        }
     }
     return r;
 }

@@ -105,6 +105,8 @@ class GratingMaterial final : public Material {
 
     unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
     void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override;
+    /// Reflected orders carry a coated substrate's coherence terms.
+    bool HasCoherenceTerms() const override;
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override;
     /// Not reciprocal: m = k·h·cosθ_i depends on the light's incident direction only (D6), and the
     /// renormalisation on that direction's set of propagating orders.

@@ -8,7 +8,9 @@
 // (in the medium it arrives from) into two lobes:
 //   * a specular near-delta lobe (id 0, listed): the coherent part α_spec·F(θ), with the
 //     Debye–Waller factor α_spec = exp(−(kσ_h(cosθ_i + cosθ_o))²) = exp(−(2kσ_h cosθ)²) at the
-//     mirror direction (θ_i = θ_o = θ: the lobe is symmetric); Jones √α_spec·diag(r_s, r_p);
+//     mirror direction (θ_i = θ_o = θ: the lobe is symmetric); Jones √α_spec·diag(r_s, r_p) (over a coated substrate, with the coating's
+//     coherence terms times α_spec, LobeCoherence: sample_solve weights its interference by the
+//     light's coherence);
 //   * a continuous scattered lobe (id 1): theory §4.3's energy-normalised form, normalised for the
 //     light's incident direction,
 //         f(wi → wo) = (1 − α_spec(θ_o))·F(θ_o)·k²p_PSD(ζ)/V(θ_o, k²T),   ζ = k(wo∥ + wi∥)
@@ -182,6 +184,9 @@ class HarveyShackMaterial final : public Material {
     unsigned Capabilities(const ScatterQuery &) const override {
         return CapNearDelta | (sigma_ > 0 ? CapContinuous : 0u);
     }
+    void ContinuousLobes(const ScatterQuery &, ContinuousLobeIds &out) const override {
+        if (sigma_ > 0) out.Add(ScatterLobe);
+    }
 
     /// Lobe 0: the specular direction on wi's side, weight α_spec(λ)·F(λ) at θ_i (= θ_o), probability
     /// α_spec at the hero (the same as Sample's).
@@ -211,11 +216,18 @@ class HarveyShackMaterial final : public Material {
         r.hasJones = Coherent(q);
         if (lobe == SpecularLobe) {
             if (!SameDirection(wo, ReflectLocal(q.wi))) return std::nullopt;
+            // A coated substrate's coherence terms, times the specular share α_spec (sample_solve).
+            r.coherence.any = surface_->LayerCount() > 0;
             for (int i = 0; i < l.count; ++i) {
                 const Facet s = SubstrateResponse(q, l, i, l.cosI);
                 const double a = Alpha(l, i, l.cosI);
                 r.jones[i] = s.jones * Complex(std::sqrt(a), 0);
                 r.mueller[i] = s.mueller * a;
+                if (!r.coherence.any) continue;
+                const double lambda = q.wl->lambda[i];
+                const IncoherentStackResponse n = surface_->IncoherentResponse(lambda, q.etaOutside, l.cosI, l.inside, q.tex);
+                r.coherence.incoherent[i] = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp) * a;
+                r.coherence.shear[i] = surface_->ShearVector(lambda, q.etaOutside, l.wi, l.inside, q.tex);
             }
             return r;
         }
@@ -245,6 +257,8 @@ class HarveyShackMaterial final : public Material {
     bool IsReciprocal() const override { return false; }
     /// The light from one direction is reflected with exactly F (specular + halo).
     bool ConservesEnergyPerIncidentDirection() const override { return true; }
+    /// The specular lobe carries a coated substrate's coherence terms.
+    bool HasCoherenceTerms() const override { return surface_->LayerCount() > 0; }
 
     std::string ToString() const override {
         std::ostringstream os;

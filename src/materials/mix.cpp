@@ -140,6 +140,17 @@ class MixMaterial final : public Material {
         }
     }
 
+    /// a's continuous lobes (ids 2j) and b's (2j + 1), of the children with a non-zero share.
+    void ContinuousLobes(const ScatterQuery &q, ContinuousLobeIds &out) const override {
+        const double w = Weight(q);
+        ContinuousLobeIds c;
+        if (w < 1) a_->ContinuousLobes(q, c);
+        for (int id : c) out.Add(MixId(id, false));
+        c = ContinuousLobeIds{};
+        if (w > 0) b_->ContinuousLobes(q, c);
+        for (int id : c) out.Add(MixId(id, true));
+    }
+
     /// The child's response, times its share (the Jones matrix times √share).
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
         const bool isB = (lobe & 1) != 0;
@@ -158,6 +169,7 @@ class MixMaterial final : public Material {
 
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
+    bool HasCoherenceTerms() const override { return a_->HasCoherenceTerms() || b_->HasCoherenceTerms(); }
 
     void CheckShape(const Shape &shape) const override {
         a_->CheckShape(shape);

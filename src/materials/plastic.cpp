@@ -73,6 +73,9 @@ class PlasticMaterial final : public Material {
     unsigned Capabilities(const ScatterQuery &) const override {
         return CapNearDelta | (albedo_.MaxValue() > 0 ? CapContinuous : 0u);
     }
+    void ContinuousLobes(const ScatterQuery &, ContinuousLobeIds &out) const override {
+        if (albedo_.MaxValue() > 0) out.Add(1);
+    }
 
     /// Lobe 0: the coat's mirror reflection, weight F(θ_i, λ), picked with probability Coat::spec.
     void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {

@@ -118,7 +118,6 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
 
     const bool inside = FromInside(q);
     const double cosI = std::abs(q.wi.z);
-    const double tangential = std::hypot(q.wi.x, q.wi.y);
     LobeResponse r;
     // A bare surface has one response, a Jones matrix in both regimes; a coated one in the
     // ray-optics limit answers with the incoherent sum, which has none.
@@ -130,13 +129,16 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
         if (!w.ok) continue;  // zero response
         const double lambda = q.wl->lambda[i];
         const StackResponse c = surface_.Response(lambda, q.etaOutside, cosI, inside, q.tex, w.substrate);
-        const IncoherentStackResponse n = surface_.IncoherentResponse(lambda, q.etaOutside, cosI, inside, q.tex, w.substrate);
-        if (!std::isfinite(c.R() + c.T() + n.R() + n.T())) continue;  // as Evaluate: absorbed
+        // A bare interface has one response: its incoherent matrix is FromJones(j) (set below).
+        const bool layered = surface_.LayerCount() > 0;
+        IncoherentStackResponse n{};
+        if (layered) n = surface_.IncoherentResponse(lambda, q.etaOutside, cosI, inside, q.tex, w.substrate);
+        if (!std::isfinite(c.R() + c.T() + (layered ? n.R() + n.T() : 0.0))) continue;  // as Evaluate: absorbed
         Jones j;
         Mueller incoherent;
         if (lobe == 0) {
             j = Jones::Diagonal(c.rs, c.rp);
-            incoherent = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp);
+            if (layered) incoherent = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp);
         } else {
             // diag(t_s, t_p) with the power factors between the two media (theory §4.1) and the
             // radiance factor η_i/η_t, so that M00 = T·(η_i/η_t)², the listed weight.
@@ -144,8 +146,9 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
             const double ps = std::max(0.0, FresnelPowerFactorS(nI, cosIn, nT, c.cosSubstrate));
             const double pp = std::max(0.0, FresnelPowerFactorP(nI, cosIn, nT, c.cosSubstrate));
             j = Jones::Diagonal(c.ts * std::sqrt(ps), c.tp * std::sqrt(pp)) * Complex(1 / w.eta, 0);
-            incoherent = Mueller::FromDiagonalSums(n.Ts, n.Tp, n.Tsp) * (1 / (w.eta * w.eta));
+            if (layered) incoherent = Mueller::FromDiagonalSums(n.Ts, n.Tp, n.Tsp) * (1 / (w.eta * w.eta));
         }
+        if (!layered) incoherent = Mueller::FromJones(j);
         if (!coherent) {
             r.mueller[i] = incoherent;  // the ray-optics limit of a coating: no Jones matrix
         } else {
@@ -153,11 +156,8 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
             r.mueller[i] = Mueller::FromJones(j);
         }
         r.coherence.incoherent[i] = incoherent;
-        if (r.coherence.any && tangential > 0) {
-            // The deeper reflections exit displaced along the incident wave's tangential travel, −wi.xy.
-            const double shear = surface_.Shear(lambda, q.etaOutside, cosI, inside, q.tex);
-            r.coherence.shear[i] = Vec2(-q.wi.x, -q.wi.y) * (shear / tangential);
-        }
+        // The deeper reflections exit displaced along the incident wave's tangential travel, −wi.xy.
+        if (r.coherence.any) r.coherence.shear[i] = surface_.ShearVector(lambda, q.etaOutside, q.wi, inside, q.tex);
     }
     return r;
 }

@@ -59,6 +59,8 @@ class SmoothKernel : public Material {
     /// file) and, for a coated surface, its coherence terms.
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override;
     const SmoothSurface *Surface() const override { return &surface_; }
+    /// A coated surface reports the coating's coherence terms (EvalLobe).
+    bool HasCoherenceTerms() const override { return surface_.LayerCount() > 0; }
     bool Transmits() const { return transmits_; }
 
   protected:

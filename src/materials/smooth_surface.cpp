@@ -52,6 +52,13 @@ IncoherentStackResponse SmoothSurface::IncoherentResponse(double lambda, double 
     });
 }
 
+Vec2 SmoothSurface::ShearVector(double lambda, double etaOutside, const Vec3 &wi, bool fromInside,
+                                const TextureEvalContext &tex) const {
+    const double tangential = std::hypot(wi.x, wi.y);
+    if (LayerCount() == 0 || !(tangential > 0)) return Vec2(0, 0);
+    return Vec2(-wi.x, -wi.y) * (Shear(lambda, etaOutside, std::abs(wi.z), fromInside, tex) / tangential);
+}
+
 double SmoothSurface::Shear(double lambda, double etaOutside, double cosI, bool fromInside,
                             const TextureEvalContext &tex) const {
     if (!coating_) return 0;

@@ -82,6 +82,11 @@ class SmoothSurface {
     /// Lateral shear [m] of the coating for that wave (LayerStackShear: 2·d·tanθ_t for one film);
     /// 0 for a bare surface.
     double Shear(double lambda, double etaOutside, double cosI, bool fromInside, const TextureEvalContext &tex) const;
+    /// The same shear as a vector in the local tangent plane (z = normal) for the wave arriving
+    /// along −wi: Shear(|wi.z|) along −wi.xy, where the deeper reflections exit (LobeCoherence::shear);
+    /// zero at normal incidence and for a bare surface.
+    Vec2 ShearVector(double lambda, double etaOutside, const Vec3 &wi, bool fromInside,
+                     const TextureEvalContext &tex) const;
 
     std::string ToString() const;
 

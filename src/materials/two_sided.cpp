@@ -179,6 +179,12 @@ class TwoSidedMaterial final : public Material {
             for (Vec3 &w : out.lobe[k].wo) w = Mirror(w);
     }
 
+    /// The child's continuous lobes (same ids).
+    void ContinuousLobes(const ScatterQuery &q, ContinuousLobeIds &out) const override {
+        ScatterQuery local;
+        Side(q, &local).ContinuousLobes(local, out);
+    }
+
     /// The child's response; from below towards the mirrored wo, in the mirrored s/p basis.
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
         ScatterQuery local;
@@ -196,6 +202,7 @@ class TwoSidedMaterial final : public Material {
 
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
+    bool HasCoherenceTerms() const override { return front_->HasCoherenceTerms() || back_->HasCoherenceTerms(); }
 
     void CheckShape(const Shape &shape) const override {
         front_->CheckShape(shape);

@@ -854,6 +854,8 @@ TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
         for (const NearDeltaLobe &l : lobes) {
             auto r = material_->EvalLobe(*q, l.id, l.wo[0]);
             ASSERT_TRUE(r) << regime << ": no response of listed lobe " << l.id;
+            EXPECT_TRUE(!r->coherence.any || material_->HasCoherenceTerms())
+                << regime << ": lobe " << l.id << " reports coherence terms but HasCoherenceTerms() is false";
             for (int j = 0; j < wl_.Count(); ++j) {
                 if (j > 0 && !(l.wo[j] == l.wo[0])) continue;  // a dispersive companion elsewhere
                 EXPECT_NEAR(r->mueller[j].m[0][0], l.weight[j], 1e-9 * l.weight[j] + 1e-15)
@@ -879,6 +881,22 @@ TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
         }
         EXPECT_GT(r->mueller[0].m[0][0], 0) << "the sampled lobe has no value at its own sample";
         checkJones(*r, wl_.Count());
+        // The listed continuous lobes add up to Eval·|cosθo| (sample_solve weights a sampled
+        // direction by all of them), and the sampled one is among them.
+        ContinuousLobeIds ids;
+        material_->ContinuousLobes(q_, ids);
+        EXPECT_NE(std::find(ids.begin(), ids.end(), s->lobe), ids.end())
+            << "sampled continuous lobe " << s->lobe << " is not in ContinuousLobes";
+        auto sum = material_->EvalContinuousLobes(q_, s->wo);
+        ASSERT_TRUE(sum) << "ContinuousLobes' responses are empty at a sampled direction";
+        for (int j = 0; j < wl_.Count(); ++j)
+            EXPECT_NEAR(sum->mueller[j].m[0][0], f[j], 1e-9 * f[j] + 1e-300) << "Σ continuous M00 vs Eval·|cos|, slot " << j;
+    }
+    // A kernel with continuous lobes lists them.
+    if (material_->Capabilities(q_) & CapContinuous) {
+        ContinuousLobeIds ids;
+        material_->ContinuousLobes(q_, ids);
+        EXPECT_GT(ids.count, 0) << "CapContinuous but no ContinuousLobes";
     }
 }
 

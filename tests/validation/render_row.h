@@ -43,6 +43,20 @@ inline std::unique_ptr<Scene> BuildValidation(const std::string &scene, const De
     return built;
 }
 
+/// Builds a scene given as text (named `name` in diagnostics) with -D overrides and the given
+/// integrator ("" : the scene's own); nullptr on errors, which fail the calling test.
+inline std::unique_ptr<Scene> BuildSceneText(const std::string &text, const std::string &integrator = "",
+                                             const DefineList &defines = {}, const std::string &name = "test.wscene") {
+    Diagnostics diag;
+    auto desc = ParseSceneString(text, name, defines, diag);
+    std::unique_ptr<Scene> scene;
+    if (desc) scene = Scene::Build(*desc, diag, integrator);
+    std::ostringstream os;
+    diag.Print(os);
+    EXPECT_TRUE(scene) << os.str();
+    return scene;
+}
+
 /// Renders the scene with -D overrides and the given integrator; the middle row's intensity.
 inline Row RenderRow(const std::string &scene, const DefineList &defines, const std::string &integrator, int spp = 0) {
     auto built = BuildValidation(scene, defines, integrator);

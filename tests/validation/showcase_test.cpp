@@ -132,7 +132,9 @@ TEST_P(Showcase, RendersFiniteLitUnsaturatedAndShowsItsWaveEffect) {
         ASSERT_TRUE(scene);
         const std::string label = std::string(c.file) + " with " + (k == 0 ? "grt" : ref);
         SCOPED_TRACE(label);
-        if (k == 0) EXPECT_EQ(scene->GetIntegrator().ToString().rfind("grt", 0), 0u) << "the scene's own integrator";
+        if (k == 0) {
+            EXPECT_EQ(scene->GetIntegrator().ToString().rfind("grt", 0), 0u) << "the scene's own integrator";
+        }
         const Image img = RenderImage(*scene, 16);
         ASSERT_EQ(img.width, c.width);
         ASSERT_EQ(img.height, c.height);

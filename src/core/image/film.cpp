@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "core/diagnostics.h"
+#include "core/polarization.h"
 
 namespace phasor {
 
@@ -27,7 +28,7 @@ Film::Film(int width, int height, SensorResponse response)
     pixels_.resize(std::size_t(width) * std::size_t(height));
 }
 
-void Film::AddSample(int x, int y, const SampledSpectrum &L, const SampledWavelengths &wl) {
+bool Film::AddSample(int x, int y, const SampledSpectrum &L, const SampledWavelengths &wl) {
     // Monte Carlo estimate of ∫ L(λ) w(λ) dλ from the carried wavelengths: the average over the
     // Count() entries of L·w/pdf (hero wavelength sampling, theory §0 D10). An entry with pdf 0
     // (a terminated companion) contributes nothing; a delta sample uses only entry 0, whose pdf
@@ -41,7 +42,7 @@ void Film::AddSample(int x, int y, const SampledSpectrum &L, const SampledWavele
         channels += response_.Channels(wl.lambda[i]) * f;
         intensity += response_.Intensity(wl.lambda[i]) * f;
     }
-    AddReduced(x, y, channels / count, intensity / count);
+    return AddReduced(x, y, channels / count, intensity / count);
 }
 
 namespace {
@@ -53,12 +54,12 @@ bool Representable(double v) { return std::abs(v) <= FloatMax; }  // false also 
 
 }  // namespace
 
-void Film::AddReduced(int x, int y, const Vec3 &channels, double intensity) {
+bool Film::AddReduced(int x, int y, const Vec3 &channels, double intensity) {
     // NaN, Inf, negative, or too large for the float image: an invalid sample.
     auto bad = [](double v) { return !(v >= 0) || !Representable(v); };
     if (bad(channels.x) || bad(channels.y) || bad(channels.z) || bad(intensity)) {
         AddInvalidSample(x, y);
-        return;
+        return false;
     }
     assert(x >= 0 && x < width_ && y >= 0 && y < height_);
     Pixel &p = pixels_[std::size_t(y) * width_ + x];
@@ -69,6 +70,33 @@ void Film::AddReduced(int x, int y, const Vec3 &channels, double intensity) {
     double delta = intensity - p.meanI;
     p.meanI += delta * invN;
     p.m2I += delta * (intensity - p.meanI);
+    return true;
+}
+
+void Film::EnableStokes() {
+    stokes_ = true;
+    stokesMeans_.assign(pixels_.size(), StokesMean{});
+}
+
+void Film::AddStokesSample(int x, int y, const std::array<SampledSpectrum, 4> &S, const SampledWavelengths &wl) {
+    // The same reduction as AddSample's `intensity`, per Stokes parameter.
+    const int count = wl.Count();
+    std::array<double, 4> r{};
+    for (int i = 0; i < count; ++i) {
+        if (wl.pdf[i] == 0) continue;
+        const double w = response_.Intensity(wl.lambda[i]) / wl.pdf[i];
+        for (int c = 0; c < 4; ++c) r[std::size_t(c)] += S[std::size_t(c)][i] * w;
+    }
+    for (double &v : r) v /= count;
+    bool ok = std::isfinite(r[1]) && std::isfinite(r[2]) && std::isfinite(r[3]) && Representable(r[1]) &&
+              Representable(r[2]) && Representable(r[3]);
+    if (ok) ok = AddSample(x, y, S[0], wl);
+    else AddInvalidSample(x, y);
+    if (!stokes_) return;
+    StokesMean &m = stokesMeans_[std::size_t(y) * width_ + x];
+    ++m.n;
+    const double invN = 1.0 / double(m.n);
+    for (int c = 0; c < 4; ++c) m.mean[std::size_t(c)] += ((ok ? r[std::size_t(c)] : 0.0) - m.mean[std::size_t(c)]) * invN;
 }
 
 void Film::AddInvalidSample(int x, int y) {
@@ -116,15 +144,18 @@ Image Film::Resolve() const {
     img.width = width_;
     img.height = height_;
     img.channels = {"R", "G", "B", "intensity", "variance"};
+    if (stokes_)
+        for (const char *c : {"S0", "S1", "S2", "S3", "DoP"}) img.channels.push_back(c);
     // Pixels with different sample counts (a render stopped during a pass): each pixel's count
-    // goes into a sixth channel, so that every value can be weighed by its own n.
+    // goes into a last channel, so that every value can be weighed by its own n.
     const bool counts = minSamples != maxSamples;
     if (counts) img.channels.push_back("samples");
+    const int samplesChannel = int(img.channels.size()) - 1;
     img.data.assign(std::size_t(width_) * height_ * img.channels.size(), 0.0f);
     for (int y = 0; y < height_; ++y) {
         for (int x = 0; x < width_; ++x) {
             const Pixel &p = pixels_[std::size_t(y) * width_ + x];
-            if (counts) img.At(x, y, 5) = float(p.n);
+            if (counts) img.At(x, y, samplesChannel) = float(p.n);
             // A pixel whose mean or variance the float image cannot hold stays 0 (never Inf); its
             // samples are counted as invalid (InvalidSampleCount).
             const Resolved r = ResolvePixel(p);
@@ -134,6 +165,15 @@ Image Film::Resolve() const {
             img.At(x, y, 2) = float(r.rgb.z);
             img.At(x, y, 3) = float(r.intensity);
             img.At(x, y, 4) = float(r.varianceOfMean);
+            if (stokes_) {
+                const StokesMean &m = stokesMeans_[std::size_t(y) * width_ + x];
+                bool fits = true;
+                for (double v : m.mean) fits = fits && Representable(v);
+                for (int c = 0; c < 4 && fits; ++c) img.At(x, y, 5 + c) = float(m.mean[std::size_t(c)]);
+                // The degree of polarisation of the pixel's mean Stokes vector (0 where S0 = 0).
+                const Stokes s{m.mean[0], m.mean[1], m.mean[2], m.mean[3]};
+                if (fits) img.At(x, y, 9) = float(DegreeOfPolarization(s));
+            }
         }
     }
     img.metadata["phasor:samples_per_pixel"] = std::to_string(minSamples);

@@ -4,6 +4,7 @@
 // transform (image_io.h). Thread-safe for distinct pixels (tiles never share pixels).
 #pragma once
 
+#include <array>
 #include <map>
 #include <string>
 #include <vector>
@@ -34,10 +35,23 @@ class Film {
     /// Adds one sample's estimate for pixel (x, y): `L` holds the per-wavelength values
     /// (radiance, or irradiance for sensor planes), already divided by nothing; the film divides
     /// by the wavelength pdfs and averages over the carried wavelengths.
-    void AddSample(int x, int y, const SampledSpectrum &L, const SampledWavelengths &wl);
+    /// Returns false if the sample was invalid (counted as a zero, AddInvalidSample).
+    bool AddSample(int x, int y, const SampledSpectrum &L, const SampledWavelengths &wl);
     /// Adds a sample already reduced to (channels, intensity), e.g. from an integrator that
-    /// computes its own spectral integral.
-    void AddReduced(int x, int y, const Vec3 &channels, double intensity);
+    /// computes its own spectral integral. Returns false if the sample was invalid (then counted
+    /// by AddInvalidSample as a zero).
+    bool AddReduced(int x, int y, const Vec3 &channels, double intensity);
+
+    /// Polarisation output (a detector with `stokes = true`; `sample_solve`): keeps, besides the
+    /// usual channels, the running means of the Stokes parameters S0..S3, each reduced over the
+    /// carried wavelengths like `intensity` (the response's Intensity weight, divided by the
+    /// wavelength pdfs). Call before the first sample.
+    void EnableStokes();
+    bool HasStokes() const { return stokes_; }
+    /// One sample's Stokes vector per carried wavelength (S[0] = the value AddSample takes, in the
+    /// same units; S[1..3] may be negative). S[0] goes through AddSample; an invalid sample (or a
+    /// non-finite S1..S3) adds zeros to every Stokes mean.
+    void AddStokesSample(int x, int y, const std::array<SampledSpectrum, 4> &S, const SampledWavelengths &wl);
     /// Records a sample that was discarded because of numerical trouble (NaN/Inf/negative, or a
     /// value the float image cannot hold). AddSample/AddReduced call it for such samples.
     void AddInvalidSample(int x, int y);
@@ -57,8 +71,11 @@ class Film {
     /// estimate — exact in expectation for independent samples only; for Owen-scrambled Sobol'
     /// samples the real error is usually far smaller: docs/architecture.md, "Error estimates").
     /// Every value is finite: pixels that would overflow float are 0 (see InvalidSampleCount).
-    /// When pixels hold different numbers of samples (a render stopped during a pass) a sixth
-    /// channel, `samples`, holds each pixel's count (a pixel with 0 has no estimate: all 0).
+    /// With Stokes output (EnableStokes) five channels follow: S0, S1, S2, S3 (S0 equals
+    /// intensity; the frame is the detector's, docs/sample_solve.md) and DoP, the degree of
+    /// polarisation √(S1² + S2² + S3²)/S0 of the pixel's mean (0 where S0 = 0). When pixels hold different
+    /// numbers of samples (a render stopped during a pass) a last channel, `samples`, holds each
+    /// pixel's count (a pixel with 0 has no estimate: all 0).
     /// Metadata: phasor:samples_per_pixel (the fewest any pixel has), invalid_samples, sensor.
     Image Resolve() const;
 
@@ -69,6 +86,11 @@ class Film {
         double meanI = 0, m2I = 0;
         long long n = 0;
         long long invalid = 0;
+    };
+    /// Running means of S0..S3 (EnableStokes), over the same samples as the pixel's.
+    struct StokesMean {
+        std::array<double, 4> mean{};
+        long long n = 0;
     };
     /// A pixel's channels as written, in double, and whether all of them fit in a float.
     struct Resolved {
@@ -81,6 +103,8 @@ class Film {
     int width_, height_;
     SensorResponse response_;
     std::vector<Pixel> pixels_;
+    bool stokes_ = false;
+    std::vector<StokesMean> stokesMeans_;
 };
 
 /// Memory this process may still allocate [bytes]: MemAvailable from /proc/meminfo (else free

@@ -267,6 +267,25 @@ SheetResult WriteFalseColorPng(OutputFiles &files, const std::string &path, cons
                          channel + " in dB, " + std::to_string(rangeDb) + " dB range, " + bar.title);
 }
 
+SheetResult StageDegreeOfPolarizationPng(OutputFiles &files, const std::string &path, const Image &img) {
+    CheckShape(path, img);
+    Rgb8Image map;
+    try {
+        map = MapColours(ChannelValues(img, "DoP"), img.width, img.height, ColourMap::Viridis, 0, 1);
+    } catch (const Error &e) {
+        WriteError(path, e.Message());
+    }
+    ColourBar bar;
+    bar.map = ColourMap::Viridis;
+    bar.title = "degree of polarisation";
+    for (int i = 0; i <= 4; ++i) {
+        char label[16];
+        std::snprintf(label, sizeof label, "%g", i / 4.0);
+        bar.ticks.push_back({i / 4.0, label});
+    }
+    return StageSheetPng(files, path, {SheetTile{std::move(map), ""}}, &bar, "degree of polarisation (0 to 1)");
+}
+
 SheetResult WriteFalseColorPng(const std::string &path, const Image &img, const std::string &channel,
                                double rangeDb, double zeroDb) {
     OutputFiles files;

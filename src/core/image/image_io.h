@@ -72,4 +72,9 @@ SheetResult WriteFalseColorPng(const std::string &path, const Image &img, const 
 SheetResult WriteFalseColorPng(OutputFiles &files, const std::string &path, const Image &img,
                                const std::string &channel, double rangeDb = 40, double zeroDb = 0);
 
+/// The degree of polarisation (channel `DoP`, in [0, 1]) through viridis on a linear scale with its
+/// colour bar (0 at the bottom, 1 at the top): the PNG `phasor render` writes beside an image with
+/// Stokes channels. A missing font is not an error (the result says so).
+SheetResult StageDegreeOfPolarizationPng(OutputFiles &files, const std::string &path, const Image &img);
+
 }  // namespace phasor

@@ -80,6 +80,27 @@ SampledSpectrum Detector::IntegrateIncidence(const DetectorGrSample &, const GrI
     return SampledSpectrum(0.0);
 }
 
+std::vector<ParamSpec> PolarizationParams() {
+    return {P::Angle("polarizer",
+                     "ideal linear polariser in front of the pixels: its transmission axis, from the image x axis "
+                     "towards image up (cameras; a virtual_plane's frame: docs/sample_solve.md); needs sample_solve")
+                .Min(-2 * Pi)
+                .Max(2 * Pi),
+            P::Bool("stokes", "write the Stokes parameters S0, S1, S2, S3 as EXR channels (needs sample_solve)")
+                .Default(Value::Bool(false))};
+}
+
+DetectorPolarization PolarizationFromParams(const ParamDict &d) {
+    DetectorPolarization p;
+    if (d.Has("polarizer")) {
+        p.polarizer = d.GetNumber("polarizer");
+        p.polarizerLoc = d.Loc("polarizer");
+    }
+    p.stokes = d.GetBool("stokes");
+    if (p.stokes) p.stokesLoc = d.Loc("stokes");
+    return p;
+}
+
 std::vector<ParamSpec> CameraParams(std::vector<ParamSpec> extra) {
     std::vector<ParamSpec> p = {
         P::Transform("to_world", "camera-to-world transform, e.g. lookat(eye, target, up)")
@@ -105,6 +126,7 @@ std::vector<ParamSpec> CameraParams(std::vector<ParamSpec> extra) {
     p.push_back(P::Spectrum("white_balance",
                             "illuminant whose white is shown as white, e.g. blackbody(4500 K) or @lamp_spectrum "
                             "(Bradford adaptation to D65 in XYZ; cie_xyz only; default: none)"));
+    for (ParamSpec &e : PolarizationParams()) p.push_back(std::move(e));
     return p;
 }
 

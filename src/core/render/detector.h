@@ -51,6 +51,22 @@ struct PixelSampleIndex {
 /// the sampler's next (0,2)-stratified pair.
 Vec2 StratifiedPixelSample(int x, int y, const PixelSampleIndex &si, Sampler &sampler);
 
+/// Polarisation options of a detector (docs/sample_solve.md): an ideal linear polariser in front
+/// of the pixels and/or Stokes output. Only integrators that carry polarisation honour them
+/// (Integrator::SupportsPolarization: `sample_solve`); the scene refuses the others.
+/// The frame: x = the image's x axis (Detector::PolarizationX) projected ⊥ to the direction in
+/// which the light arrives, y = (that direction) × x — image up for cameras; angles count from x
+/// towards y.
+struct DetectorPolarization {
+    std::optional<double> polarizer;  // transmission axis [rad]
+    bool stokes = false;              // EXR channels S0..S3
+    FileLoc polarizerLoc, stokesLoc;  // where they were given (for errors)
+    bool Any() const { return polarizer.has_value() || stokes; }
+};
+/// The `polarizer` and `stokes` parameters every detector has, and their values.
+std::vector<ParamSpec> PolarizationParams();
+DetectorPolarization PolarizationFromParams(const ParamDict &d);
+
 /// The `response` parameter every detector has ("cie_xyz" or "radiometric"), and its value.
 ParamSpec ResponseParam(const char *defaultResponse);
 SensorResponse ResponseFromParams(const ParamDict &d);
@@ -106,6 +122,14 @@ class Detector {
     /// that reaches the sample's origin unobstructed, integrated analytically over the detector's
     /// directions. Only called when the sample has integratesIncidence.
     virtual SampledSpectrum IntegrateIncidence(const DetectorGrSample &s, const GrIncidence &inc) const;
+    /// The image's x axis in world space for the sample's polarisation frame (DetectorPolarization).
+    virtual Vec3 PolarizationX(const DetectorGrSample &s) const {
+        (void)s;
+        return Vec3(1, 0, 0);
+    }
+    const DetectorPolarization &Polarization() const { return polarization_; }
+    void SetPolarization(DetectorPolarization p) { polarization_ = std::move(p); }
+
     /// Sensor planes describe themselves for field-based integrators; nullptr for cameras.
     virtual const SensorPlaneGeometry *SensorPlane() const { return nullptr; }
     /// Sensor planes (D4b): the shape whose directions are sampled (nullptr: the whole acceptance
@@ -119,6 +143,7 @@ class Detector {
   private:
     int width_, height_;
     SensorResponse response_;
+    DetectorPolarization polarization_;
 };
 
 }  // namespace phasor

@@ -99,6 +99,9 @@ class Integrator {
     /// True for integrators that take no random samples (rs): no spp, seed or sampler applies;
     /// they report RenderStats::work and progress in their own steps.
     virtual bool Deterministic() const { return false; }
+    /// True for integrators that carry polarisation (`sample_solve`): only they honour a detector's
+    /// `polarizer` and `stokes` (Scene::Build refuses the others at those parameters).
+    virtual bool SupportsPolarization() const { return false; }
     std::string name;
 };
 

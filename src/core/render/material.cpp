@@ -18,6 +18,41 @@ NearDeltaLobe &NearDeltaLobes::Add() {
     return lobe[count++];
 }
 
+void ContinuousLobeIds::Add(int lobeId) {
+    if (count >= Capacity)
+        throw Error("a kernel listed more than " + std::to_string(Capacity) + " continuous lobes");
+    id[std::size_t(count++)] = lobeId;
+}
+
+Vec3 LobeSAxis(const Vec3 &wi, const Vec3 &wo) {
+    const Vec3 c = Cross(wi, wo);
+    const double l = Length(c);
+    if (l > 1e-9) return c / l;
+    const Vec3 n = Cross(Vec3(0, 0, 1), wi);
+    const double ln = Length(n);
+    if (ln > 1e-9) return n / ln;
+    return Vec3(0, 1, 0);
+}
+
+std::optional<LobeResponse> Material::EvalContinuousLobes(const ScatterQuery &q, const Vec3 &wo) const {
+    ContinuousLobeIds ids;
+    ContinuousLobes(q, ids);
+    std::optional<LobeResponse> sum;
+    for (int id : ids) {
+        auto r = EvalLobe(q, id, wo);
+        if (!r) continue;
+        if (!sum) {
+            sum = *r;
+            continue;
+        }
+        sum->hasJones = false;
+        for (int i = 0; i < q.wl->Count(); ++i) sum->mueller[i] = sum->mueller[i] + r->mueller[i];
+    }
+    // Continuous lobes have no interference terms (LobeCoherence is for near-delta lobes).
+    if (sum) sum->coherence = LobeCoherence{};
+    return sum;
+}
+
 namespace {
 unsigned MaskOf(unsigned scatterFlags) {
     return (scatterFlags & ScatterNearDelta) ? LobeNearDelta : LobeContinuous;

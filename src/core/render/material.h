@@ -154,6 +154,26 @@ struct NearDeltaLobes {
     const NearDeltaLobe *end() const { return lobe.data() + count; }
 };
 
+/// The ids of a query's continuous lobes (Material::ContinuousLobes); fixed capacity.
+struct ContinuousLobeIds {
+    static constexpr int Capacity = 8;
+    std::array<int, Capacity> id{};
+    int count = 0;
+    /// Appends an id; throws phasor::Error past Capacity (a kernel bug, not user input).
+    void Add(int lobeId);
+    const int *begin() const { return id.data(); }
+    const int *end() const { return id.data() + count; }
+};
+
+/// The s axis of the polarisation frame in which EvalLobe states a lobe's response (local, unit):
+/// normalise(wi × wo) — the normal of the plane through the two directions, which for an interface
+/// lobe (reflection, refraction, an in-plane grating order) is ±normalise(n̂ × k̂), the ŝ of
+/// core/polarization.h — or, where wi ∥ wo (normal incidence, straight transmission, back-scatter),
+/// normalise(ẑ × wi), else ŷ (so that the local x axis is p's reference at normal incidence). The
+/// sign of ŝ does not matter for the (s, p) responses kernels give (a diagonal Jones matrix is the
+/// same in the basis (−ŝ, −p̂)).
+Vec3 LobeSAxis(const Vec3 &wi, const Vec3 &wo);
+
 /// Coherence-dependent terms of one lobe's response (read by `sample_solve`, which defines how
 /// they are weighted). Bare interfaces have none: coherent == incoherent, shear 0.
 struct LobeCoherence {
@@ -168,9 +188,11 @@ struct LobeCoherence {
 };
 
 /// The response of one given lobe towards one given direction (Material::EvalLobe), per carried
-/// wavelength, in the s/p frame of the plane of incidence (core/polarization.h: s = the normal ×
-/// propagation direction, p completing a right-handed frame with the propagation direction; for
-/// normal incidence the local x axis is p's reference).
+/// wavelength, in the s/p frame of LobeSAxis(wi, wo) — for interface lobes the plane of incidence
+/// (core/polarization.h: s = the normal × propagation direction, p completing a right-handed frame
+/// with the propagation direction; for normal incidence the local x axis is p's reference). The
+/// kernel's convention is the backward tracer's: the wave arrives along −wi and leaves along wo
+/// (theory S6.1); `sample_solve` applies the reciprocal matrix to light arriving along −wo.
 ///   * `mueller[i]`: the Mueller matrix; its M00 is the unpolarised value: for a near-delta lobe its
 ///     weight a_j(λ_i) (ListNearDelta), for a continuous lobe f(wi→wo)·|cosθo| per unit solid angle.
 ///   * `jones[i]`: the Jones matrix whose Mueller matrix is `mueller[i]`, when the lobe is
@@ -222,6 +244,21 @@ class Material {
     /// ListNearDelta gave for this query) towards wo; nullopt if the lobe does not reach wo (for a
     /// near-delta lobe: wo is not its direction at the hero wavelength, to 1e-9). See LobeResponse.
     virtual std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const = 0;
+    /// The ids of the continuous lobes for the query: those Sample returns with a finite pdf. Their
+    /// EvalLobe responses add up to Eval·|cosθo| at every wo (checked by the contract suite), so a
+    /// polarised integrator can weight a sampled direction by all of them, as Eval does. Kernels
+    /// without continuous lobes list none.
+    virtual void ContinuousLobes(const ScatterQuery &q, ContinuousLobeIds &out) const {
+        (void)q;
+        (void)out;
+    }
+    /// Σ over ContinuousLobes of EvalLobe towards wo (the Mueller sum; a Jones matrix only when
+    /// exactly one lobe answers; no coherence terms); nullopt if none answers.
+    std::optional<LobeResponse> EvalContinuousLobes(const ScatterQuery &q, const Vec3 &wo) const;
+    /// True if some lobe's EvalLobe may report coherence terms (LobeCoherence::any: a coated
+    /// surface, thin_film, multilayer); false promises that none does (checked by the contract
+    /// suite), which lets a polarised integrator skip evaluating lobes whose response cannot matter.
+    virtual bool HasCoherenceTerms() const { return false; }
     /// True if f(wi→wo) = f(wo→wi) (checked by the contract suite).
     virtual bool IsReciprocal() const { return true; }
     /// For a non-reciprocal kernel, the sense in which it conserves energy (the contract suite

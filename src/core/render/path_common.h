@@ -33,14 +33,22 @@ inline double LightSelectPdf(const Scene &scene) {
     return scene.Lights().empty() ? 0 : 1.0 / double(scene.Lights().size());
 }
 
+/// What SampleDirectLight picked (for integrators that re-evaluate the connection, sample_solve).
+struct DirectLightInfo {
+    const Light *light = nullptr;
+    Vec3 wi;                  // unit direction from the vertex towards the light sample
+    double dist = Infinity;   // distance to it (Infinity for lights at infinity)
+};
+
 /// Next-event estimation at a surface vertex (pbrt-style): one light chosen uniformly with
 /// uLight, sampled with uPos; the kernel is evaluated with the query as given (so the caller
 /// decides which lobes Eval reports). Delta lights get f·|cosθ|·E; area and infinite lights are
 /// MIS-weighted (power heuristic) against kernel sampling. Returns the contribution without the
-/// path throughput; counts the shadow ray in stats.
+/// path throughput; counts the shadow ray in stats; fills `info` (if given) with the light sample.
 inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceInteraction &si,
                                          const Material &mat, const ScatterQuery &q, double uLight,
-                                         const Vec2 &uPos, const SampledWavelengths &wl, PathStats &stats) {
+                                         const Vec2 &uPos, const SampledWavelengths &wl, PathStats &stats,
+                                         DirectLightInfo *info = nullptr) {
     const auto &lights = scene.Lights();
     if (lights.empty()) return SampledSpectrum(0.0);
     const double selectPdf = LightSelectPdf(scene);
@@ -49,6 +57,7 @@ inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceIntera
     const LightSampleContext ctx{si.p, si.n};
     auto ls = light->SampleLi(ctx, uPos, wl);
     if (!ls || !(ls->pdf > 0) || (ls->L.IsZero() && !ls->beam)) return SampledSpectrum(0.0);
+    if (info) *info = DirectLightInfo{light, ls->wi, ls->dist};
     const Vec3 wo = si.shading.ToLocal(ls->wi);
     // A footprint-aware kernel integrates a Gaussian beam's own field over the GR's footprint and
     // answers per unit on-axis irradiance (IncidentWave); every other kernel sees the local

@@ -45,6 +45,11 @@ void PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Rende
     if (!msg.empty()) opt.warn(msg);
 }
 
+std::array<SampledSpectrum, 4> PixelIntegrator::EstimatePixelStokes(const Scene &, int, int, SampledWavelengths &,
+                                                                    Sampler &, PathStats &) const {
+    throw Error("integrator '" + name + "' carries no polarisation and cannot write Stokes channels");
+}
+
 RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const RenderOptions &opt) const {
     auto start = std::chrono::steady_clock::now();
     std::unique_ptr<tbb::global_control> threads;
@@ -79,8 +84,12 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                             ps.sample = PixelSampleIndex{s, opt.spp, opt.seed};
                             // Wavelengths first, so they are stratified across the pixel's samples.
                             SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
-                            SampledSpectrum L = EstimatePixel(scene, x, y, wl, *sampler, ps);
-                            film.AddSample(x, y, L, wl);
+                            if (film.HasStokes()) {
+                                film.AddStokesSample(x, y, EstimatePixelStokes(scene, x, y, wl, *sampler, ps), wl);
+                            } else {
+                                SampledSpectrum L = EstimatePixel(scene, x, y, wl, *sampler, ps);
+                                film.AddSample(x, y, L, wl);
+                            }
                         }
                     }
             },

@@ -35,6 +35,12 @@ class PixelIntegrator : public Integrator {
     void EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt, const Sampler &prototype) const;
     virtual SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl,
                                           Sampler &sampler, PathStats &stats) const = 0;
+    /// The same estimate as a Stokes vector per carried wavelength (S[0] = EstimatePixel's value),
+    /// for a film with Stokes output (Film::EnableStokes). Integrators that carry no polarisation
+    /// throw phasor::Error (the scene check refuses such pairs before rendering).
+    virtual std::array<SampledSpectrum, 4> EstimatePixelStokes(const Scene &scene, int x, int y,
+                                                               SampledWavelengths &wl, Sampler &sampler,
+                                                               PathStats &stats) const;
 };
 
 }  // namespace phasor

@@ -129,6 +129,18 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     if (renderValid) render->ReportUnused(diag, "Render");  // (after an error, nothing was read)
     if (!whole || diag.HasErrors() || !scene->detector_ || !scene->integrator_) return nullptr;
 
+    // Polarisation options need an integrator that carries polarisation (sample_solve).
+    if (const DetectorPolarization &pol = scene->detector_->Polarization();
+        pol.Any() && !scene->integrator_->SupportsPolarization()) {
+        const std::string what = pol.polarizer ? "a polarizer" : "Stokes output";
+        diag.Error(pol.polarizer ? pol.polarizerLoc : pol.stokesLoc,
+                   "detector '" + scene->detector_->name + "' asks for " + what + ", but integrator '" +
+                       scene->integrator_->name +
+                       "' carries no polarisation (it renders unpolarised intensity); use "
+                       "integrator \"sample_solve\" (e.g. --integrator sample_solve) or remove the parameter");
+        return nullptr;
+    }
+
     // Geometry and lights.
     scene->shapes_ = ctx.All<Shape>();
     std::vector<const Shape *> shapes;

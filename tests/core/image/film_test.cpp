@@ -2,6 +2,7 @@
 // The film: exact means, the variance of the pixel mean, invalid samples, spectral reduction
 // against the sensor response (CIE flat spectrum → Y = 1, radiometric, delta lines).
 
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -37,6 +38,39 @@ TEST(Film, ResolvesTheDocumentedChannels) {
     EXPECT_EQ(img.ChannelIndex("variance"), V);
     EXPECT_EQ(img.ChannelIndex("alpha"), -1);
     EXPECT_THROW(Film(0, 4, SensorResponse(SensorResponse::Kind::Radiometric)), Error);
+}
+
+// Stokes output: S0..S3 reduced like `intensity` (S0 is the intensity), their means, the degree of
+// polarisation of the mean, and an invalid sample (NaN in S2) counted as zeros everywhere.
+TEST(Film, StokesChannelsAreMeansOfTheReducedStokesVectors) {
+    Film film(2, 1, SensorResponse(SensorResponse::Kind::Radiometric));
+    film.EnableStokes();
+    ASSERT_TRUE(film.HasStokes());
+    const SampledWavelengths wl = DeltaLine(600e-9, 0.5);  // the film divides by pdf 0.5
+    auto stokes = [](double s0, double s1, double s2, double s3) {
+        return std::array<SampledSpectrum, 4>{SampledSpectrum(s0), SampledSpectrum(s1), SampledSpectrum(s2),
+                                              SampledSpectrum(s3)};
+    };
+    film.AddStokesSample(0, 0, stokes(1, 0.5, 0, 0), wl);
+    film.AddStokesSample(0, 0, stokes(1, -0.25, 0.5, 0.25), wl);
+    film.AddStokesSample(1, 0, stokes(1, 0.5, std::nan(""), 0), wl);
+    film.AddStokesSample(1, 0, stokes(2, 0, 0, 0), wl);
+    const Image img = film.Resolve();
+    EXPECT_EQ(img.channels, (std::vector<std::string>{"R", "G", "B", "intensity", "variance", "S0", "S1", "S2", "S3",
+                                                      "DoP"}));
+    auto at = [&](int x, const char *c) { return img.At(x, 0, img.ChannelIndex(c)); };
+    EXPECT_FLOAT_EQ(at(0, "S0"), 2);  // (1 + 1)/2 / 0.5
+    EXPECT_FLOAT_EQ(at(0, "intensity"), 2);
+    EXPECT_FLOAT_EQ(at(0, "S1"), 0.25);
+    EXPECT_FLOAT_EQ(at(0, "S2"), 0.5);
+    EXPECT_FLOAT_EQ(at(0, "S3"), 0.25);
+    EXPECT_FLOAT_EQ(at(0, "DoP"), float(std::sqrt(0.25 * 0.25 + 0.5 * 0.5 + 0.25 * 0.25) / 2));
+    // Pixel 1: the NaN sample is invalid (a zero), the other reads (4, 0, 0, 0): mean (2, 0, 0, 0).
+    EXPECT_EQ(film.InvalidSampleCount(), 1);
+    EXPECT_FLOAT_EQ(at(1, "S0"), 2);
+    EXPECT_FLOAT_EQ(at(1, "intensity"), 2);
+    EXPECT_FLOAT_EQ(at(1, "S1"), 0);
+    EXPECT_FLOAT_EQ(at(1, "DoP"), 0);
 }
 
 TEST(Film, ConstantSamplesGiveTheExactMeanAndZeroVariance) {
