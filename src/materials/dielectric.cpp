@@ -12,7 +12,7 @@
 // footprint) and a non-absorbing interior. The shading normal points outside: wi.z > 0 means the
 // path arrives from the outside medium (index ScatterQuery::etaOutside) and enters the interior
 // (index `ior`), wi.z < 0 that it is inside and leaves (through the coating's layers in reverse
-// order). Lobe choice is ∝ R and T at the hero wavelength (theory §3.1); the refracted radiance
+// order). Lobe choice is ∝ R and T, half at the hero wavelength, half over the carried ones (smooth_kernel.h, theory §3.1); the refracted radiance
 // carries the (η_i/η_t)² factor (camera paths transport radiance, whose basic invariant is L/n²).
 // A wavelength-dependent index makes refraction dispersive: its direction is the hero's, and the
 // integrator drops the companions (theory §0 D10). Both lobes are listed (ListNearDelta: ids 0

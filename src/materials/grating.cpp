@@ -59,7 +59,8 @@
 //
 // Ray-optics limit (ScatterQuery::rayOptics: the `ray` integrator, GRs after an aperture): the
 // grooves are not resolved and the kernel is its smooth substrate — the zeroth orders only, with
-// J_0 = 1 (the h → 0 limit): reflection F, transmission T. Chosen over J_0(m)²·F so that a `ray`
+// J_0 = 1 (the h → 0 limit): reflection F, transmission T (of a coated substrate, the incoherent
+// sum of its layers, as the smooth kernels). Chosen over J_0(m)²·F so that a `ray`
 // render of a grating on a lossless substrate keeps the energy the wave-optical kernel
 // (renormalised) reflects and `phasor compare` shows only what diffraction redistributes.
 //
@@ -281,6 +282,10 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, co
     if (q.wi.z == 0 || !(o.period > 0)) return;
     const double cosI = std::abs(q.wi.z);
     o.surface = surface_->Response(lambda, q.etaOutside, cosI, o.fromInside, q.tex);
+    // The ray-optics limit of a coated substrate is the incoherent sum of its layers (as the smooth
+    // kernels: SmoothKernel::Evaluate).
+    o.incoherent = q.rayOptics && surface_->LayerCount() > 0;
+    if (o.incoherent) o.layers = surface_->IncoherentResponse(lambda, q.etaOutside, cosI, o.fromInside, q.tex);
     // Ray-optics limit: the smooth substrate (zeroth orders, J_0(0) = 1).
     const int maxOrder = q.rayOptics ? 0 : maxOrder_;
     const double h = q.rayOptics ? 0 : height_, k0 = 2 * Pi / lambda;
@@ -312,11 +317,11 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, co
         s.scale = !renormalize_ ? 1.0 : (s.propagatingSum > 0 ? 1 / s.propagatingSum : 0.0);
     };
     // Reflection: the phase 2·k·z·cosθ_i of the double pass, a = −k₀·n_i·h·cosθ_i (D6).
-    if (sides & SideReflected) fill(o.reflected, false, -k0 * nI * h * cosI, o.surface.R());
+    if (sides & SideReflected) fill(o.reflected, false, -k0 * nI * h * cosI, o.incoherent ? o.layers.R() : o.surface.R());
     if (transmission_ && (sides & SideTransmitted)) {
         // Transmission: a = k₀·(h/2)·(n_t cosθ_t − n_i cosθ_i) with the zeroth order's θ_t.
         const double sin2T = (nI / nT) * (nI / nT) * (1 - cosI * cosI);
-        const double t = o.surface.T();
+        const double t = o.incoherent ? o.layers.T() : o.surface.T();
         if (sin2T < 1 && t > 0) fill(o.transmitted, true, k0 * h / 2 * (nT * std::sqrt(1 - sin2T) - nI * cosI), t);
     }
 }
@@ -455,7 +460,8 @@ std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int
     const double period = period_.Eval(q.tex);
     const Vec3 g = GratingVector(q);
     LobeResponse r;
-    r.hasJones = true;
+    // In the ray-optics limit a coated substrate answers with its incoherent Mueller matrix, no Jones.
+    r.hasJones = !q.rayOptics || surface_->LayerCount() == 0;
     // A reflected order over a coated substrate carries the coating's coherence terms (its incoherent
     // response at the source's angle times the order's share, and its shear): sample_solve weights
     // the coating's interference by the light's coherence. The relief itself has none (see above).
@@ -481,8 +487,15 @@ std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int
             base = Jones::Diagonal(powered(o.surface.ts, o.surface.Ts), powered(o.surface.tp, o.surface.Tp)) *
                    Complex(s.nOut / s.nIn, 0);
         }
-        r.jones[i] = base * Complex(amp, 0);
-        r.mueller[i] = Mueller::FromJones(r.jones[i]);
+        if (o.incoherent) {
+            const double radiance = transmitted ? (s.nOut / s.nIn) * (s.nOut / s.nIn) : 1.0;
+            r.mueller[i] = (transmitted ? Mueller::FromDiagonalSums(o.layers.Ts, o.layers.Tp, o.layers.Tsp)
+                                        : Mueller::FromDiagonalSums(o.layers.Rs, o.layers.Rp, o.layers.Rsp)) *
+                           (amp * amp * radiance);
+        } else {
+            r.jones[i] = base * Complex(amp, 0);
+            r.mueller[i] = Mueller::FromJones(r.jones[i]);
+        }
         if (r.coherence.any) {
             const Vec3 &source = l->wo[std::size_t(i)];
             const IncoherentStackResponse n =

@@ -78,6 +78,10 @@ struct GratingOrders {
     Vec2 vector;        // unit grating vector ĝ ⟂ grooves, local x, y (groove rotated by +90°)
     bool fromInside = false;  // wi lies in the substrate (transmission gratings with wi.z < 0)
     StackResponse surface;    // the substrate's plane-wave response at θ_i (r, t, R, T per polarisation)
+    /// The coated substrate's incoherent response at θ_i (its layers' interference averaged out),
+    /// set in the ray-optics limit of a coated substrate (`incoherent`), where it replaces `surface`.
+    bool incoherent = false;
+    IncoherentStackResponse layers;
 };
 
 /// The `grating` kernel (see grating.cpp for the physics and the parameters).

@@ -79,14 +79,28 @@ int SmoothKernel::Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out
     }
     Vec3 hero;
     transmits = transmits && transmits_ && RefractLocal(q.wi, w[0].eta, &hero);
-    // Lobe probabilities ∝ the energy each carries at the hero.
-    const double total = w[0].R + (transmits ? w[0].T : 0);
+    // Lobe probabilities: half ∝ the energy each carries at the hero, half ∝ its mean over the
+    // carried wavelengths. A film's reflectance swings with λ: by the hero alone a lobe that is dark
+    // at the hero but bright at a companion would be picked rarely and weighted by up to 1/1e-6
+    // (fireflies on a soap bubble); by the mean alone a path that carries only the hero (after a
+    // dispersive lobe) could lose its likely lobe. The mixture bounds each weight by twice the better
+    // of the two.
+    double meanR = 0, meanT = 0;
+    for (int i = 0; i < count; ++i) {
+        meanR += w[i].R;
+        meanT += transmits ? w[i].T : 0;
+    }
+    const double heroTotal = w[0].R + (transmits ? w[0].T : 0), meanTotal = meanR + meanT;
+    auto probability = [&](double hero, double mean) {
+        const double a = heroTotal > 0 ? hero / heroTotal : 0, b = meanTotal > 0 ? mean / meanTotal : 0;
+        return heroTotal > 0 && meanTotal > 0 ? 0.5 * (a + b) : a + b;
+    };
     if (reflects) {
         NearDeltaLobe &r = out[listed++];
         r.id = 0;
         r.flags = ScatterReflection | ScatterNearDelta;
         r.wo.fill(ReflectLocal(q.wi));
-        r.prob = total > 0 ? w[0].R / total : 0;
+        r.prob = probability(w[0].R, meanR);
         for (int i = 0; i < count; ++i) {
             r.weight[i] = w[i].R;
             r.nIn[i] = r.nOut[i] = w[i].nI;
@@ -96,7 +110,7 @@ int SmoothKernel::Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out
         NearDeltaLobe &t = out[listed++];
         t.id = 1;
         t.flags = ScatterTransmission | ScatterNearDelta | (dispersive_ ? ScatterDispersive : 0u);
-        t.prob = total > 0 ? w[0].T / total : 0;
+        t.prob = probability(w[0].T, meanT);
         for (int i = 0; i < count; ++i) {
             t.nIn[i] = w[i].nI;
             t.nOut[i] = w[i].nT;

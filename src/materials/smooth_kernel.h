@@ -28,9 +28,12 @@
 // from above, mirrored on wi's side (the inside of a metal is unreachable; this only matters for
 // thin sheets and flipped normals), and never transmits.
 //
-// Sampling (Material's default SampleLobes): lobe 0 with probability R/(R + T) and lobe 1 with
-// T/(R + T) at the hero, so a sample's weight is R + T there (1 for a lossless surface); the
-// rest, 1 − R − T, is absorbed by the substrate or the layers.
+// Sampling (Material's default SampleLobes): lobe 0 with probability ½·R/(R + T) at the hero plus
+// ½·R̄/(R̄ + T̄) over the carried wavelengths (R̄, T̄ their means), lobe 1 likewise with T: a film whose
+// reflectance is dark at the hero and bright at a companion still reflects often (no fireflies),
+// and no weight exceeds twice that of either rule alone. For a surface whose R and T vary little
+// with λ a sample's weight is ≈ R + T (1 for a lossless surface); the rest, 1 − R − T, is absorbed
+// by the substrate or the layers.
 #pragma once
 
 #include <array>

@@ -99,11 +99,15 @@ TEST(Dielectric, CauchyDispersion) {
         const double n = 1.5 + b / (lambda * lambda);  // η(λ) = A + B/λ²
         EXPECT_NEAR(s->eta, n, 1e-14) << lambda;
         EXPECT_TRUE(s->flags & ScatterDispersive);
-        // The companions' weights use their own index: T(λ_j)/T(λ_hero)/η_j².
+        // The companions' weights use their own index: T(λ_j)/η_j²/p, where the lobe's probability
+        // p = ½·T(λ_hero) + ½·mean_i T(λ_i) (lossless: R + T = 1; smooth_kernel.h).
+        double meanT = 0;
+        for (int j = 0; j < NumWavelengths; ++j) meanT += (1 - FresnelDielectric(0.5, 1.5 + b / Sqr(wl.lambda[j])));
+        meanT /= NumWavelengths;
+        const double pT = 0.5 * (1 - FresnelDielectric(0.5, n)) + 0.5 * meanT;
         for (int j = 1; j < NumWavelengths; ++j) {
             const double nj = 1.5 + b / Sqr(wl.lambda[j]);
-            const double expected =
-                (1 - FresnelDielectric(0.5, nj)) / (1 - FresnelDielectric(0.5, n)) / (nj * nj);
+            const double expected = (1 - FresnelDielectric(0.5, nj)) / pT / (nj * nj);
             EXPECT_NEAR(s->weight[j], expected, 1e-14);
         }
         // Reflection is not dispersive (the mirror direction does not depend on λ).

@@ -490,6 +490,75 @@ TEST(Grating, RayOpticsLimitIsTheSmoothSubstrate) {
     }
 }
 
+TEST(Grating, RayOpticsLimitOfACoatedSubstrateIsTheIncoherentSum) {
+    // In the ray-optics limit a grating over a coated substrate is that coated substrate as the
+    // smooth kernel answers there: the coating's incoherent sum (lobe weights R and T(η_i/η_t)², a
+    // Jones-free Mueller matrix), not its coherent (Airy) response, which stays the wave regime's.
+    // A 150 nm Cu₂O film on gold and a two-layer stack on BK7 (transmitting): their coherent and
+    // incoherent reflectances differ by ≥ 1e-2 at these angles, so a grating that ignored the
+    // regime fails every check by far more than the tolerance.
+    struct Case {
+        const char *type;
+        ParamDict params;
+        bool transmission;
+    };
+    const Case cases[] = {
+        {"conductor", ParamDict().Set("ior", Value::String("Au")).Set("coating", Value::Ref("contract_film")), false},
+        {"dielectric", ParamDict().Set("ior", Value::String("BK7")).Set("coating", Value::Ref("contract_stack")), true},
+    };
+    const SampledWavelengths wl = TestWavelengths(520 * Nm);
+    for (const Case &c : cases) {
+        MiniScene scene;
+        scene.WithFixtures()
+            .Add("Material", c.type, "coated", c.params)
+            .Add("Material", "grating", "g",
+                 ParamDict()
+                     .Set("substrate", Value::Ref("coated"))
+                     .Set("transmission", Value::Bool(c.transmission))
+                     .Set("period", Len(1.2 * Um))
+                     .Set("height", Len(0.15 * Um)));
+        auto coated = scene.Build<Material>("coated"), grating = scene.Build<Material>("g");
+        ASSERT_TRUE(coated && grating) << scene.FirstError();
+        double largest = 0;
+        for (double theta : {0.0, 40 * Deg, 75 * Deg, 150 * Deg}) {
+            if (theta > 90 * Deg && !c.transmission) continue;
+            ScatterQuery ray = Wave(theta, 0.3, wl), wave = ray;
+            ray.rayOptics = true;
+            NearDeltaLobes expected, got, coherent;
+            coated->ListNearDelta(ray, expected);
+            grating->ListNearDelta(ray, got);
+            coated->ListNearDelta(wave, coherent);
+            ASSERT_EQ(got.count, expected.count) << c.type << ", θ = " << theta / Deg;
+            for (int k = 0; k < got.count; ++k) {
+                const NearDeltaLobe &a = got.lobe[std::size_t(k)], &b = expected.lobe[std::size_t(k)];
+                for (int i = 0; i < wl.Count(); ++i) {
+                    EXPECT_NEAR(a.weight[i], b.weight[i], 1e-12) << c.type << ", θ " << theta / Deg << ", lobe " << a.id;
+                    largest = std::max(largest, std::abs(b.weight[i] - coherent.lobe[std::size_t(k)].weight[i]));
+                }
+                auto ga = grating->EvalLobe(ray, a.id, a.wo[0]);
+                auto ca = coated->EvalLobe(ray, b.id, b.wo[0]);
+                ASSERT_TRUE(ga && ca);
+                EXPECT_FALSE(ga->hasJones) << "the incoherent sum has no Jones matrix";
+                for (int i = 0; i < wl.Count(); ++i) {
+                    if (b.weight[i] == 0) continue;
+                    for (int x = 0; x < 4; ++x)
+                        for (int y = 0; y < 4; ++y)
+                            EXPECT_NEAR(ga->mueller[i].m[x][y], ca->mueller[i].m[x][y], 1e-12)
+                                << c.type << ", θ " << theta / Deg << ", lobe " << a.id << ", slot " << i;
+                }
+            }
+            // The wave regime keeps the coherent response (J_j² of it): its Jones matrices exist.
+            NearDeltaLobes orders;
+            grating->ListNearDelta(wave, orders);
+            ASSERT_GT(orders.count, 0);
+            auto w = grating->EvalLobe(wave, orders.lobe[0].id, orders.lobe[0].wo[0]);
+            ASSERT_TRUE(w);
+            EXPECT_TRUE(w->hasJones);
+        }
+        EXPECT_GT(largest, 1e-2) << c.type << ": the case does not tell the regimes apart";
+    }
+}
+
 TEST(Grating, TexturesDrivePeriodAndGrooveDirection) {
     // @contract_pitch: Λ = 1.2 µm + 1.2 µm·u; @contract_groove_angle: α = 120°·v (gradients,
     // clamped to [0, 1]). Order j's tangential shift must be j·2π/Λ(uv)·ĝ(α(uv)) at the hit, and

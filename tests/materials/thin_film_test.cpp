@@ -145,6 +145,47 @@ TEST(ThinFilm, QuarterWaveAntiReflection) {
     EXPECT_GT(List(*film, OneWave(lambda0 + 20e-9, 1.0)).R, r0 + 1e-5);
 }
 
+TEST(ThinFilm, LobeChoiceSeesTheCompanions) {
+    // A free-standing soap film (n = 1.33) half a wave thick at 550 nm reflects nothing there at
+    // normal incidence (the two faces cancel), yet 1–8 % at the companions. Picking the lobe by the
+    // hero alone would never reflect (probability 0: the companions' reflected light lost, or with
+    // a tiny probability, fireflies); the kernel's mixture (smooth_kernel.h) reflects with
+    // probability ½·R̄/(R̄ + T̄), and each companion's sampled weight R_i/p averages to R_i.
+    const double n = 1.33, lambda0 = 550e-9;
+    auto film = Kernel("thin_film", Film(Value::Number(n), lambda0 / (2 * n) * 1e9));
+    ASSERT_TRUE(film);
+    const SampledWavelengths wl = TestWavelengths(lambda0);
+    ScatterQuery q;
+    q.wi = DirectionFromCosTheta(1.0, 0.0);
+    q.wl = &wl;
+    q.rayOptics = false;
+    double r[NumWavelengths], t[NumWavelengths], meanR = 0, meanT = 0;
+    for (int i = 0; i < NumWavelengths; ++i) {
+        const Listed l = List(*film, OneWave(wl.lambda[i], 1.0));
+        r[i] = l.R, t[i] = l.T;
+        meanR += r[i] / NumWavelengths, meanT += t[i] / NumWavelengths;
+    }
+    EXPECT_LT(r[0], 1e-15) << "the hero is the film's zero";
+    for (int i = 1; i < NumWavelengths; ++i) EXPECT_GT(r[i], 1e-3) << "companion " << i;
+    NearDeltaLobes lobes;
+    film->ListNearDelta(q, lobes);
+    ASSERT_EQ(lobes.count, 2);
+    const double pR = 0.5 * meanR / (meanR + meanT);
+    EXPECT_NEAR(lobes.lobe[0].prob, pR, 1e-12);
+    EXPECT_NEAR(lobes.lobe[1].prob, 1 - pR, 1e-12);
+    // Sample with u0 below / above pR: each lobe's weights are its listed weights over its probability.
+    auto refl = film->Sample(q, 0.5 * pR, Vec2(0.5, 0.5)), tran = film->Sample(q, 0.5 + 0.5 * pR, Vec2(0.5, 0.5));
+    ASSERT_TRUE(refl && tran);
+    EXPECT_TRUE(refl->flags & ScatterReflection);
+    EXPECT_TRUE(tran->flags & ScatterTransmission);
+    for (int i = 0; i < NumWavelengths; ++i) {
+        EXPECT_NEAR(refl->weight[i] * pR, r[i], 1e-12) << i;
+        EXPECT_NEAR(tran->weight[i] * (1 - pR), t[i], 1e-12) << i;
+        // No weight exceeds twice the mean-only rule's (r_i/(R̄/(R̄ + T̄)), t_i likewise).
+        EXPECT_LE(refl->weight[i], 2 * r[i] * (meanR + meanT) / meanR + 1e-12) << i;
+    }
+}
+
 TEST(ThinFilm, MatchesAnIndependentAiryFormula) {
     // R, T and the Jones amplitudes r_s, r_p of the kernel against AiryFilm above, over 400–700 nm
     // and 0–86°: an absorbing Cu₂O-like film on copper (opaque), a dielectric film on glass seen
