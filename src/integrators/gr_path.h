@@ -82,6 +82,11 @@ struct Event {
     Vec3 travel;
     /// The distance the light travels to get there (Infinity for lights at infinity).
     double dist = Infinity;
+    /// Per carried wavelength, the angular variance [rad²] of the Gaussian window through which a
+    /// closed form measured the light (Detector, ThroughLobe: the GR's σ_k²/k², D14); Infinity where
+    /// the detector integrates every direction of its acceptance (Incidence, LobeIncidence) or the
+    /// path sampled the light.
+    std::array<double, NumWavelengths> window = [] { std::array<double, NumWavelengths> a; a.fill(Infinity); return a; }();
 };
 
 /// Where a detector sample sits, for the polarisation frame of a forward solve.
@@ -288,6 +293,7 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
                 e.ensemble = light == sceneLight;
                 e.travel = -m->wi;
                 e.dist = m->dist;
+                for (int i = 0; i < physical.count; ++i) e.window[std::size_t(i)] = physical.At(i).AngularVariance();
                 report(e);
             }
         } else {
@@ -434,6 +440,7 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
                             e.wavelength = uniform ? -1 : i;
                             e.travel = -m->wi;
                             e.dist = m->dist;
+                            for (int j = 0; j < out.count; ++j) e.window[std::size_t(j)] = out.At(j).AngularVariance();
                             report(e);
                         }
                     }

@@ -191,7 +191,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
                 if (r->coherence.any && !forceCoherent) {
                     // theory §4.4: μR_coh + (1 − μ)R_incoh, μ at the two waves' shear (D5).
                     const Vec2 sh = r->coherence.shear[i];
-                    const double mu = beam.MutualCoherence(si.shading.ToWorld(Vec3(sh.x, sh.y, 0)), 2 * Pi / wl.lambda[i]);
+                    const double mu = beam.MutualCoherence(si.shading.ToWorld(Vec3(sh.x, sh.y, 0)), 2 * Pi / wl.lambda[i], i);
                     mi = mi * mu + r->coherence.incoherent[i] * (1 - mu);
                 }
                 m[std::size_t(i)] = ReciprocalMueller(mi) * (1 / n);
@@ -285,6 +285,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
                 return;
             }
             PltBeam beam = PltBeam::Source(e.travel, wl.Count(), omega);
+            for (int i = 0; i < wl.Count(); ++i) beam.SetWindow(i, e.window[std::size_t(i)]);
             if (std::isfinite(e.dist)) beam.Propagate(e.dist);
             if (e.at) {
                 const ScatterQuery q = grpath::GrQuery(*e.at, *e.gr, e.rayOptics, wl);

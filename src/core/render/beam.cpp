@@ -69,10 +69,15 @@ void PltBeam::RotateFrame(const Vec3 &newT) {
     t = newT;
 }
 
-double PltBeam::MutualCoherence(const Vec3 &v, double k0) const {
+void PltBeam::SetWindow(int i, double windowVariance) {
+    const double omega = K.xx;
+    share[std::size_t(i)] = !(omega > 0) || !(windowVariance < Infinity) ? 1.0 : windowVariance / (omega + windowVariance);
+}
+
+double PltBeam::MutualCoherence(const Vec3 &v, double k0, int i) const {
     if (K.IsZero()) return 1;
     const Vec3 y = Cross(d, t);
-    return std::exp(-0.5 * k0 * k0 * K.Quadratic(Dot(v, t), Dot(v, y)));
+    return std::exp(-0.5 * k0 * k0 * share[std::size_t(i)] * K.Quadratic(Dot(v, t), Dot(v, y)));
 }
 
 void PltBeam::Interact(const Vec3 &s, const Vec3 &out, const std::array<Mueller, NumWavelengths> &m,

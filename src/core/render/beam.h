@@ -73,6 +73,10 @@ struct PltBeam {
     Vec3 t{1, 0, 0};                         // Stokes and coherence x axis, unit, ⊥ d
     Sym2 K;                                  // transverse-wavevector covariance / k₀² in (t, d × t) [rad²]
     double dist = 0;                         // travelled distance [m]
+    /// Per carried wavelength, the share of K the measurement integrates: Ω_w/(Ω + Ω_w) when the
+    /// closed form saw the source's profile (isotropic Ω) through a Gaussian angular window of
+    /// variance Ω_w (SetWindow), 1 without a window. μ uses K times this share.
+    std::array<double, NumWavelengths> share = [] { std::array<double, NumWavelengths> a; a.fill(1.0); return a; }();
 
     /// A beam leaving a source along `travel`: unpolarised, S = (1, 0, 0, 0) at each of `count`
     /// wavelengths; isotropic coherence K = omega·I (omega [rad²], D5; 0: a coherent mode).
@@ -82,9 +86,15 @@ struct PltBeam {
     void Propagate(double length);
     /// Re-expresses the Stokes vectors and K in the basis whose x axis is `newT` (⊥ d).
     void RotateFrame(const Vec3 &newT);
-    /// μ(v) = exp(−½k₀²·v⊥ᵀKv⊥) at vacuum wavenumber k0 [rad/m] for a world displacement v,
-    /// projected onto the plane ⊥ d (theory §0 D5).
-    double MutualCoherence(const Vec3 &v, double k0) const;
+    /// The measurement saw the source through an isotropic Gaussian angular window of variance
+    /// `windowVariance` [rad²] at carried wavelength i (a GR's σ_k²/k², D14; Infinity: none). The
+    /// ensemble it integrates is the source's profile times that window, whose covariance is
+    /// (Ω⁻¹ + Ω_w⁻¹)⁻¹ = Ω·Ω_w/(Ω + Ω_w) for the source's isotropic Ω = K.xx (call right after Source):
+    /// a camera pixel narrower than the source sees a narrow, nearly coherent part of it.
+    void SetWindow(int i, double windowVariance);
+    /// μ(v) = exp(−½k₀²·share[i]·v⊥ᵀKv⊥) at vacuum wavenumber k0 [rad/m] of carried wavelength i, for
+    /// a world displacement v projected onto the plane ⊥ d (theory §0 D5).
+    double MutualCoherence(const Vec3 &v, double k0, int i) const;
 
     /// An interaction with a lobe whose s axis is `s` (world, ⊥ to d and to `out`): rotates into
     /// the lobe's frame, applies per wavelength i < count the Mueller matrix m[i] (expressed in
