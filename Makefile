@@ -40,8 +40,8 @@ bench: build
 docs: build
 	@$(BUILD)/bin/phasor describe --markdown > docs/plugins.md
 
-# Renders the showcase scenes with `phasor compare` (grt, ray) into docs/gallery/ (a few minutes
-# per scene); INTEGRATORS=grt,ray,sample_solve for others (scripts/make_gallery.sh).
+# Renders the showcase scenes with `phasor compare` (grt, ray, sample_solve) into docs/gallery/ (minutes
+# per scene); INTEGRATORS=grt,ray for fewer (scripts/make_gallery.sh).
 gallery: build
 	@scripts/make_gallery.sh $(BUILD)
 

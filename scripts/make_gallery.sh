@@ -5,7 +5,7 @@
 # bornite_bare.png, the scene without its tarnish film.
 #
 #   scripts/make_gallery.sh [BUILD_DIR]            (make gallery)
-#   INTEGRATORS=grt,ray,sample_solve scripts/make_gallery.sh      another set of integrators
+#   INTEGRATORS=grt,ray scripts/make_gallery.sh                   another set of integrators
 #   SCENES="cd beetle" scripts/make_gallery.sh                    some scenes only
 #   REUSE=1 scripts/make_gallery.sh                               reuse out/<scene>_compare/
 #
@@ -16,7 +16,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 BUILD=${1:-build}
-INTEGRATORS=${INTEGRATORS:-grt,ray}
+INTEGRATORS=${INTEGRATORS:-grt,ray,sample_solve}
 SCENES=${SCENES:-"bornite boa beetle cd soap_bubble"}
 mkdir -p docs/gallery out
 

@@ -5,7 +5,8 @@
 // frame's first tangent dp/du = +x, y = dp/dv = +y; the texture context is uv = --uv (default
 // (0.5, 0.5)), p = (u, v, 0) m, n = +z, β = 0. Light of vacuum wavelength λ arrives from
 // wi = (sinθ cosφ, sinθ sinφ, cosθ) (θ from the normal, φ from x; θ > 90° = from below) out of a
-// medium of index 1. Per discrete lobe and in total, probe reports *power* fractions:
+// medium of index 1, where x is the kernel's reference direction if it has one (Material::
+// ReferenceAngle: a grating's grating vector, so φ = 0 is the classical mount), else dp/du. Per discrete lobe and in total, probe reports *power* fractions:
 //   * a near-delta lobe's listed weight a_j is a radiance throughput that includes the factor
 //     (n_in/n_out)² on refraction (core/render/material.h), so its efficiency is a_j·(n_out/n_in)²
 //     — a lossless interface gives R + T = 1 (the contract suite's energy test counts the same way);
@@ -105,6 +106,12 @@ struct ProbeResult {
 };
 
 // θ from the +z normal [0, π] and φ from +x in (−π, π] (0 on the normal, where it is undefined).
+// w turned by ψ [rad] about the normal (counter-clockwise).
+Vec3 RotateZ(const Vec3 &w, double psi) {
+    const double c = std::cos(psi), s = std::sin(psi);
+    return {c * w.x - s * w.y, s * w.x + c * w.y, w.z};
+}
+
 double ThetaOf(const Vec3 &w) { return std::acos(Clamp(w.z, -1.0, 1.0)); }
 double PhiOf(const Vec3 &w) {
     if (std::hypot(w.x, w.y) < 1e-15) return 0.0;
@@ -213,11 +220,12 @@ std::string CsvText(const ProbeResult &r) {
 std::string DegText(double rad) { return Num(Degrees(rad), 6); }
 
 std::string ReportText(const std::string &material, const std::string &type, const CliOptions &o, double theta,
-                       double phi, double lambda, const Vec2 &uv, uint64_t seed, const ProbeResult &r) {
+                       double phi, double lambda, const Vec2 &uv, uint64_t seed, const ProbeResult &r,
+                       const std::string &xAxis) {
     std::ostringstream os;
     os << "probe: material '" << material << "' (" << type << ") of " << o.scene << "\n"
        << "  light from theta = " << DegText(theta) << " deg, phi = " << DegText(phi)
-       << " deg (local frame: z = normal, x = dp/du), lambda = " << Num(lambda * 1e9, 6) << " nm, uv = ("
+       << " deg (local frame: z = normal, x = " << xAxis << "), lambda = " << Num(lambda * 1e9, 6) << " nm, uv = ("
        << Num(uv.x, 6) << ", " << Num(uv.y, 6) << "), "
        << (o.probe.rayOptics ? "ray-optics limit" : "wave optics (plane wave)") << "\n"
        << "  power fractions; near-delta lobes exact";
@@ -259,7 +267,7 @@ std::string ReportText(const std::string &material, const std::string &type, con
 // near-delta lobes as rings (bigger for larger efficiency, labelled with it) and the direction
 // towards the source as a cross on the reflection disc. Drawn by the plot module (app/plot.h
 // StageDiscMap): one dB scale (0 dB = the maximum, 40 dB), θ = 30° and 60° circles, a colour bar.
-DiscMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int size) {
+DiscMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int size, double psi) {
     DiscMap map;
     map.n = size;
     // What the light from the source sends into wo: f(wi → wo), or for a kernel that conserves
@@ -278,7 +286,8 @@ DiscMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int siz
                 const double x = 2 * (i + 0.5) / size - 1, y = 2 * (j + 0.5) / size - 1;
                 const double s2 = x * x + y * y;
                 if (s2 >= 1) continue;  // (not drawn)
-                const Vec3 wo(x, y, (disc == 0 ? side : -side) * std::sqrt(1 - s2));
+                // (x, y) in the probe's frame; the kernel's local frame is turned by ψ from it.
+                const Vec3 wo = RotateZ(Vec3(x, y, (disc == 0 ? side : -side) * std::sqrt(1 - s2)), psi);
                 qo.wi = wo;
                 const double f = !r.continuous ? 0.0
                                  : fromSource  ? m.Eval(qo, q.wi)[0] * std::abs(wo.z)
@@ -292,7 +301,8 @@ DiscMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int siz
         const double size = 6 + 8 * Clamp(1 + std::log10(std::max(l.efficiency, 1e-12)) / 6, 0.0, 1.0);
         map.markers.push_back({l.transmission ? 1 : 0, l.wo.x, l.wo.y, Num(l.efficiency, 3), 'o', size});
     }
-    map.markers.push_back({0, q.wi.x, q.wi.y, "source", 'x', 10});
+    const Vec3 source = RotateZ(q.wi, -psi);
+    map.markers.push_back({0, source.x, source.y, "source", 'x', 10});
     return map;
 }
 
@@ -385,10 +395,19 @@ int RunProbe(const CliOptions &o) {
         q.tex.dpdu = Vec3(1, 0, 0);
         q.tex.dpdv = Vec3(0, 1, 0);
         q.tex.n = Vec3(0, 0, 1);
+        // φ is measured from the kernel's reference direction (a grating's grating vector), which
+        // lies at ψ from dp/du: the kernel is asked in its own frame, its answers turned back by −ψ.
+        const std::optional<double> reference = material->ReferenceAngle(q.tex);
+        const double psi = reference.value_or(0.0);
+        q.wi = RotateZ(q.wi, psi);
         const uint64_t seed = o.seed >= 0 ? uint64_t(o.seed) : 0;
-        const ProbeResult result = Measure(*material, q, p.samples, seed);
+        ProbeResult result = Measure(*material, q, p.samples, seed);
+        for (ProbeLobe &l : result.lobes) l.wo = RotateZ(l.wo, -psi);
 
-        const std::string report = ReportText(name, type, o, theta, phi, lambda, uv, seed, result);
+        const std::string report = ReportText(name, type, o, theta, phi, lambda, uv, seed, result,
+                                              reference ? "the kernel's reference direction (" +
+                                                              DegText(psi) + " deg from dp/du)"
+                                                        : std::string("dp/du"));
         const std::string csv = CsvText(result);
         const bool csvToStdout = p.csv == "-";
         OutputFiles files;
@@ -398,7 +417,7 @@ int RunProbe(const CliOptions &o) {
         }
         std::string mapData;  // the map's data, written instead of the plot without matplotlib
         if (!p.plot.empty()) {
-            DiscMap map = MakeMap(*material, q, result, 300);
+            DiscMap map = MakeMap(*material, q, result, 300, psi);
             map.title = "phasor probe " + name + " (" + type + "), theta = " + DegText(theta) + " deg, phi = " +
                         DegText(phi) + " deg, lambda = " + Num(lambda * 1e9, 6) + " nm";
             MakeParentDirectory(p.plot);

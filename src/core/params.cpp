@@ -558,6 +558,14 @@ bool ParamDict::Validate(const Schema &schema, Diagnostics &diag) const {
             p.used = true;  // reported once, here
             continue;
         }
+        // A texture given to a number whose textured form is a separate parameter (thin_film's
+        // thickness / thickness_texture): say where it goes.
+        if (p.value.kind == Value::Kind::Ref && s->kind == ParamKind::Number && schema.Find(p.name + "_texture")) {
+            diag.Error(WhereOf(p.value, p), "'" + p.name + "' expects " + s->dim.Describe() + "; got " +
+                                                p.value.DescribeKind() + " — a texture goes in '" + p.name +
+                                                "_texture' (" + p.name + "_texture = " + p.value.ToString() + ")");
+            continue;
+        }
         CheckValue(p.value, *s, p, diag);
     }
     for (const ParamSpec &s : schema.params)

@@ -448,6 +448,10 @@ void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) 
 
 bool GratingMaterial::HasCoherenceTerms() const { return surface_->LayerCount() > 0; }
 
+std::optional<double> GratingMaterial::ReferenceAngle(const TextureEvalContext &tex) const {
+    return angle_.Eval(tex) + Pi / 2;  // as GratingVector
+}
+
 std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const {
     NearDeltaLobes lobes;
     ListNearDelta(q, lobes);

@@ -111,6 +111,8 @@ class GratingMaterial final : public Material {
     void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override;
     /// Reflected orders carry a coated substrate's coherence terms.
     bool HasCoherenceTerms() const override;
+    /// The grating vector ĝ: the groove direction (`angle`) + 90°.
+    std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override;
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override;
     /// Not reciprocal: m = k·h·cosθ_i depends on the light's incident direction only (D6), and the
     /// renormalisation on that direction's set of propagating orders.

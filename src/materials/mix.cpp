@@ -170,6 +170,11 @@ class MixMaterial final : public Material {
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
     bool HasCoherenceTerms() const override { return a_->HasCoherenceTerms() || b_->HasCoherenceTerms(); }
+    /// a's reference direction, else b's.
+    std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override {
+        const std::optional<double> a = a_->ReferenceAngle(tex);
+        return a ? a : b_->ReferenceAngle(tex);
+    }
 
     void CheckShape(const Shape &shape) const override {
         a_->CheckShape(shape);

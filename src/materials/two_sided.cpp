@@ -203,6 +203,10 @@ class TwoSidedMaterial final : public Material {
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
     bool HasCoherenceTerms() const override { return front_->HasCoherenceTerms() || back_->HasCoherenceTerms(); }
+    /// The front face's reference direction (the side the shading frame describes).
+    std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override {
+        return front_->ReferenceAngle(tex);
+    }
 
     void CheckShape(const Shape &shape) const override {
         front_->CheckShape(shape);

@@ -179,8 +179,17 @@ for case in "20 550 0.1" "0 633 0.15" "45 450 0.08"; do
         read -r eff theta <<<"$ref"
         near "grating $case order $j efficiency" "$(field "$r" 5)" "$eff" "$(calc "1e-9 * $eff + 1e-15")"
         near "grating $case order $j theta_o" "$(field "$r" 3)" "$theta" 1e-9
+        # Classical mount: every order in the plane of incidence and ĝ (φ measured from ĝ).
+        near "grating $case order $j sin(phi_o)" "$(calc "sin($(field "$r" 4))")" 0 1e-9
     done
     [[ $rows -ge 6 ]] || fail "grating $case: too few orders: '$stdout'"
+    # φ is measured from the grating vector: turning the grooves leaves the report unchanged.
+    a=$stdout
+    run --material lines --theta "${th}deg" --lambda "${lam}nm" --csv - -D "height=${h}um" -D "groove_angle=37deg"
+    paste -d, <(cut -d, -f1-4 <<<"$a") <(cut -d, -f1-4 <<<"$stdout") | awk -F, 'NR > 3 {
+            d = $4 - $8; while (d > 3.14159265358979) d -= 6.28318530717959; while (d < -3.14159265358979) d += 6.28318530717959
+            if ($2 != $6 || ($3 - $7) ^ 2 > 1e-24 || d ^ 2 > 1e-18) bad = 1 } END { exit bad }' ||
+        fail "grating $case: the directions depend on the groove angle: $stdout"
 done
 
 # 5c. Layer stacks, against the Airy formula written above (complex arithmetic, both polarisations)

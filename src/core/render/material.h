@@ -259,6 +259,13 @@ class Material {
     /// surface, thin_film, multilayer); false promises that none does (checked by the contract
     /// suite), which lets a polarised integrator skip evaluating lobes whose response cannot matter.
     virtual bool HasCoherenceTerms() const { return false; }
+    /// The kernel's reference direction in the tangent plane at `tex`, as an angle [rad]
+    /// counter-clockwise from the shading frame's x axis (dp/du) — a grating's grating vector — or
+    /// nullopt for a kernel without one (isotropic). `phasor probe` measures azimuths from it.
+    virtual std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const {
+        (void)tex;
+        return std::nullopt;
+    }
     /// True if f(wi→wo) = f(wo→wi) (checked by the contract suite).
     virtual bool IsReciprocal() const { return true; }
     /// For a non-reciprocal kernel, the sense in which it conserves energy (the contract suite
