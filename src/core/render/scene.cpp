@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/render/scene.h"
 
+#include <algorithm>
+
 namespace phasor {
 
 // The `Render` block is not a plug-in but is validated and documented the same way.
@@ -96,7 +98,11 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
             if (e && (e->name == integratorOverride || (e->type == integratorOverride && !scene->integrator_)))
                 scene->integrator_ = i;
         }
-        if (!scene->integrator_) {
+        // An Integrator of that name whose build failed has its own error already.
+        const bool failedEntity = std::any_of(desc.entities.begin(), desc.entities.end(), [&](const SceneEntity &e) {
+            return e.keyword == "Integrator" && e.name == integratorOverride;
+        });
+        if (!scene->integrator_ && !failedEntity) {
             auto *entry = Registry<Integrator>::Find(integratorOverride);
             if (!entry) {
                 std::string s = Suggest(integratorOverride, Registry<Integrator>::Names());
