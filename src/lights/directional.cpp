@@ -18,7 +18,11 @@ class DirectionalLight final : public Light {
         static const Schema s{
             "light", "directional", "Parallel light from one direction (delta direction).",
             {P::Vector("direction", "direction in which the light travels").Default(Value::Vector({0, 0, -1})),
-             P::Number("irradiance", "irradiance normal to the direction", Dim::Irradiance())
+             P::Number("irradiance",
+                       "irradiance scale normal to the direction: the light's spectral distribution is "
+                       "irradiance × spectrum(λ) (a scale times a shape, as for point, spot and area lights) — not "
+                       "a total as for plane_wave and distant, whose spectrum is normalised to unit integral",
+                       Dim::Irradiance())
                  .Default(Value::Number(1, Dim::Irradiance()))
                  .Min(0)
                  .Max(MaxLightStrength),
