@@ -6,7 +6,8 @@
 // (0.5, 0.5)), p = (u, v, 0) m, n = +z, β = 0. Light of vacuum wavelength λ arrives from
 // wi = (sinθ cosφ, sinθ sinφ, cosθ) (θ from the normal, φ from x; θ > 90° = from below) out of a
 // medium of index 1, where x is the kernel's reference direction if it has one (Material::
-// ReferenceAngle: a grating's grating vector, so φ = 0 is the classical mount), else dp/du. Per discrete lobe and in total, probe reports *power* fractions:
+// ReferenceAngle: a grating's grating vector, so φ = 0 is the classical mount), else dp/du. Per
+// discrete lobe and in total, probe reports *power* fractions:
 //   * a near-delta lobe's listed weight a_j is a radiance throughput that includes the factor
 //     (n_in/n_out)² on refraction (core/render/material.h), so its efficiency is a_j·(n_out/n_in)²
 //     — a lossless interface gives R + T = 1 (the contract suite's energy test counts the same way);
@@ -105,13 +106,13 @@ struct ProbeResult {
     double T() const { return discreteT + contT; }
 };
 
-// θ from the +z normal [0, π] and φ from +x in (−π, π] (0 on the normal, where it is undefined).
 // w turned by ψ [rad] about the normal (counter-clockwise).
 Vec3 RotateZ(const Vec3 &w, double psi) {
     const double c = std::cos(psi), s = std::sin(psi);
     return {c * w.x - s * w.y, s * w.x + c * w.y, w.z};
 }
 
+// θ from the +z normal [0, π] and φ from +x in (−π, π] (0 on the normal, where it is undefined).
 double ThetaOf(const Vec3 &w) { return std::acos(Clamp(w.z, -1.0, 1.0)); }
 double PhiOf(const Vec3 &w) {
     if (std::hypot(w.x, w.y) < 1e-15) return 0.0;
