@@ -2,6 +2,7 @@
 #include "core/diagnostics.h"
 
 #include <algorithm>
+#include <cctype>
 #include <sstream>
 
 namespace phasor {
@@ -122,8 +123,15 @@ std::size_t EditDistance(const std::string &a, const std::string &b) {
 std::string Suggest(const std::string &name, const std::vector<std::string> &candidates) {
     std::string best;
     std::size_t bestD = std::string::npos;
+    // A difference of case alone counts as one edit ("cu2o" → "Cu2O", "bk7" → "BK7").
+    auto lower = [](std::string s) {
+        for (char &ch : s) ch = char(std::tolower(static_cast<unsigned char>(ch)));
+        return s;
+    };
+    const std::string folded = lower(name);
     for (const std::string &c : candidates) {
         std::size_t d = EditDistance(name, c);
+        if (d > 1 && lower(c) == folded) d = 1;
         if (d < bestD) { bestD = d; best = c; }
     }
     // Accept up to a third of the name's length (at least 1, at most 3 edits).

@@ -23,6 +23,15 @@ TEST(Suggest, FindsPlausibleTyposOnly) {
     EXPECT_EQ(Suggest("colour", names), "");
 }
 
+TEST(Suggest, CaseAloneIsOneEdit) {
+    // Named materials are case-sensitive; a name that differs only in case is suggested.
+    std::vector<std::string> names = {"Cu2O", "TiO2", "BK7", "chitin"};
+    EXPECT_EQ(Suggest("cu2o", names), "Cu2O");  // 2 substitutions by plain distance, over the limit of 1
+    EXPECT_EQ(Suggest("bk7", names), "BK7");
+    EXPECT_EQ(Suggest("Chitin", names), "chitin");
+    EXPECT_EQ(Suggest("zno", names), "");
+}
+
 TEST(Diagnostics, QuotesTheSourceLineWithACaretAndNotes) {
     Diagnostics d;
     d.AddSource("s.wscene", "wscene 1\nShape \"sphere\" { radius = 1 }\n");
