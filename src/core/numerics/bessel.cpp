@@ -64,10 +64,29 @@ void Hankel01(double x, Complex *h0, Complex *h1) {
 }
 
 double BesselI0Scaled(double x) {
-    if (x < 600) return std::cyl_bessel_i(0.0, x) * std::exp(-x);
-    // Asymptotic expansion (Abramowitz & Stegun 9.7.1).
-    const double t = 1 / (8 * x);
-    return (1 + t * (1 + t * (4.5 + t * 37.5))) / std::sqrt(2 * Pi * x);
+    x = std::max(0.0, x);
+    if (x < 22) {
+        // I₀(x) = Σ_k (x²/4)^k/(k!)² (A&S 9.6.12): positive terms, no cancellation; at x = 22 the
+        // terms fall below 1e-17 of the sum after ~45 of them.
+        const double q = 0.25 * x * x;
+        double term = 1, sum = 1;
+        for (int k = 1; k < 200 && term > 1e-17 * sum; ++k) {
+            term *= q / (double(k) * k);
+            sum += term;
+        }
+        return sum * std::exp(-x);
+    }
+    // √(2πx)·I₀(x)e^{−x} ~ Σ_k ((2k−1)!!)²/(k!(8x)^k) (A&S 9.7.1), summed until the terms stop
+    // falling or drop below 1e-17: the smallest term near k ≈ 2x is ~e^{−2x} < 1e-19 for x ≥ 22.
+    const double y = 1 / (8 * x);
+    double term = 1, sum = 1;
+    for (int k = 1; k < 60; ++k) {
+        const double next = term * (2 * k - 1) * (2 * k - 1) * y / k;
+        if (next >= term || next < 1e-17 * sum) break;
+        term = next;
+        sum += term;
+    }
+    return sum / std::sqrt(2 * Pi * x);
 }
 
 void BesselJSequence(double x, int nMax, double *out) {

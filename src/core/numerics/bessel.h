@@ -22,8 +22,9 @@ void HankelAsymptoticFactors(double x, Complex *p0, Complex *p1);
 /// x ≥ HankelAsymptoticMin, std::cyl_bessel_j / cyl_neumann below); relative error ≲ 1e-14.
 void Hankel01(double x, Complex *h0, Complex *h1);
 
-/// The exponentially scaled modified Bessel function I₀(x)·e^{−x} for x ≥ 0 (std::cyl_bessel_i
-/// below 600, the asymptotic expansion A&S 9.7.1 to four terms above, relative error < 1e-12).
+/// The exponentially scaled modified Bessel function I₀(x)·e^{−x} for x ≥ 0: the power series
+/// below 22, the asymptotic expansion A&S 9.7.1 summed to convergence above (relative error
+/// < 1e-14 against std::cyl_bessel_i; ~6× faster — the disc-source overlap calls it 192 times).
 double BesselI0Scaled(double x);
 
 /// J_0(x), J_1(x), …, J_nMax(x) for x ≥ 0 into out[0 … nMax], by Miller's backward recurrence
