@@ -42,10 +42,12 @@ constexpr int TimeModeSpp = (1 << 25) + 1;
 
 // Sets `stop` when the time budget is spent (budget > 0) or a stop signal arrived, polling every
 // 5 ms from its own thread, so that a render is stopped within a pixel's batch of the deadline.
+// Extend moves the deadline (time spent on snapshots does not count against the budget).
 class Watchdog {
   public:
     explicit Watchdog(double budget)
-        : deadline_(Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget))) {
+        : start_(Clock::now()),
+          deadline_(start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget))) {
         thread_ = std::thread([this, budget] {
             std::unique_lock<std::mutex> lock(mutex_);
             while (!done_) {
@@ -63,8 +65,14 @@ class Watchdog {
         thread_.join();
     }
     const std::atomic<bool> *Flag() const { return &stop_; }
+    Clock::time_point Start() const { return start_; }
+    void Extend(double seconds) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        deadline_ += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+    }
 
   private:
+    Clock::time_point start_;
     Clock::time_point deadline_;
     std::atomic<bool> stop_{false};
     std::mutex mutex_;
@@ -148,7 +156,9 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
         }
         run.snapshots.push_back(std::move(s));
         next = std::max(done + 1, int(std::ceil(done * 1.5)));
-        snapshotCost += std::chrono::duration<double>(Clock::now() - t0).count();
+        const double cost = std::chrono::duration<double>(Clock::now() - t0).count();
+        snapshotCost += cost;
+        if (timed) watchdog.Extend(cost);
     };
 
     RenderStats st;
@@ -163,7 +173,10 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
         return;
     }
     if (bar) std::cerr << "\n";
-    run.seconds = std::max(0.0, st.seconds - snapshotCost);
+    // Equal time: the time since the budget started (the watchdog's clock, which the deadline is
+    // on), so that a run stopped by its budget reports at least the budget; otherwise the render's own.
+    const double spent = timed ? std::chrono::duration<double>(Clock::now() - watchdog.Start()).count() : st.seconds;
+    run.seconds = std::max(0.0, spent - snapshotCost);
     run.sppReached = st.sppReached;
     run.work = st.work;
     // A run stopped by its time budget is complete; one stopped by a signal is not.

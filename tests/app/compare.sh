@@ -142,7 +142,8 @@ errors)
     no_temporaries "$dir"
     ;;
 modes)
-    # Equal time: each sampling integrator renders for the budget (never stopped before it).
+    # Equal time: each sampling integrator renders for the budget (never stopped before it; the
+    # convergence snapshots taken meanwhile extend the deadline and are not counted).
     dir=$out/time
     run compare "$small" --integrators grt,ray --time 0.3 -o "$dir" --quiet
     [[ $rc -eq 0 ]] || fail "--time: exit status $rc: $stderr"
