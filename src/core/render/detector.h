@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — detectors: cameras and sensors that generate rays (design.md §3 "detectors").
+// phasor — detectors: cameras and sensors that generate rays (docs/generalized_rays.md §3).
 // Image coordinates: x to the right, y down, pixel (i, j) covers [i, i+1) × [j, j+1).
 #pragma once
 

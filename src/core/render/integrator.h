@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — integrators (design.md §4.3). All render into the same Film from the same Scene.
+// phasor — integrators (docs/architecture.md). All render into the same Film from the same Scene.
 #pragma once
 
 #include <array>
@@ -40,7 +40,7 @@ struct RenderOptions {
 /// render.cpp's Describe, the CLI prints every non-zero counter).
 enum class RenderEvent {
     /// A footprint-aware kernel (aperture) met a GR that had already left one: it acted
-    /// geometrically (re-fitting the footprint after an aperture is future work; theory §9.5).
+    /// geometrically (re-fitting the footprint after an aperture is future work; theory §9 item 5).
     FootprintAfterSpreadFree,
     /// Specular (delta) scattering of a spread-free GR in a scene with delta lights: a classical
     /// ray cannot reach those through a specular surface, so their light behind it is missing

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// `rs`: the forward Rayleigh–Sommerfeld reference (theory §6.2, §9; design.md §4.3). Coherent,
+// `rs`: the forward Rayleigh–Sommerfeld reference (theory §6.2, §9; docs/rs.md). Coherent,
 // monochromatic sources (`plane_wave` with a line spectrum at any incidence, isotropic `point`
 // with a line spectrum, `gaussian_beam` with a line spectrum: its exact paraxial TEM₀₀ field,
 // GaussianBeamGeometry, with the waist anywhere) shine on ONE planar aperture plate — the scene's only shape, whose
