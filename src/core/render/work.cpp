@@ -51,6 +51,7 @@ void TilePasses::Done(TileTask &task) {
         rays_ += task.rays;
         counters_ += task.counters;
         --out_;
+        ++done_;
     }
     returned_.notify_all();
 }
@@ -66,6 +67,11 @@ void TilePasses::Snapshot(std::vector<Film::PixelState> &pixels, long long *rays
     film_.GetPixels(0, 0, film_.Width(), film_.Height(), pixels.data());
     if (rays) *rays = rays_;
     if (counters) *counters = counters_;
+}
+
+long long TilePasses::TilesDone() const {
+    std::lock_guard<std::mutex> lock(mutex_);
+    return done_;
 }
 
 long long TilePasses::Rays() const {

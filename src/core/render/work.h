@@ -72,6 +72,8 @@ class TilePasses final : public TileSource {
     /// events of the tiles taken back so far. Safe while a pass runs: tiles out for rendering are
     /// copied as they were handed out.
     void Snapshot(std::vector<Film::PixelState> &pixels, long long *rays, RenderCounters *counters) const;
+    /// Tiles taken back so far (over every pass).
+    long long TilesDone() const;
     /// Rays traced and events counted by every tile taken back.
     long long Rays() const;
     RenderCounters Counters() const;
@@ -84,7 +86,7 @@ class TilePasses final : public TileSource {
     mutable std::mutex mutex_;
     std::condition_variable returned_;
     int sampleEnd_ = 0, out_ = 0;
-    long long rays_ = 0;
+    long long done_ = 0, rays_ = 0;
     RenderCounters counters_;
 };
 
