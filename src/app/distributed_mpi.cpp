@@ -1,0 +1,775 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — the processes of one run under MPI (distributed.h; docs/distributed.md). Plain MPI-3.
+//
+// Work is shared in phases (one sampling render, one batch of rs's field, one set of whole units):
+// rank 0 runs a server thread that hands items to the other ranks on request and takes their
+// results back, while its own threads take items from the same source; every other rank runs a
+// client thread that keeps a few items queued for its threads and sends the results. Only these
+// threads call MPI during a phase and the main thread only outside one (MPI_THREAD_SERIALIZED).
+// Every wait polls with non-blocking calls and short sleeps, so a waiting rank does not spin on a
+// core its render threads need. Every rank makes the same sequence of phases (they run the same
+// command on the same scene), and each phase has its own tag, so messages of consecutive phases
+// never mix.
+#include <mpi.h>
+#include <sched.h>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <cstdlib>
+#include <cstring>
+#include <deque>
+#include <iostream>
+#include <list>
+#include <mutex>
+#include <streambuf>
+#include <thread>
+
+#include <tbb/global_control.h>
+
+#include "app/distributed.h"
+#include "app/render_common.h"
+#include "core/diagnostics.h"
+
+namespace phasor::dist {
+namespace {
+
+bool gMpi = false;  // MPI_Init was called here
+int gRank = 0, gSize = 1, gNode = 1, gThreads = 0;
+int gPhase = 0;  // phases begun so far (the same sequence on every rank)
+
+constexpr int ControlTag = 1;  // AllOk's message
+int NextTag() { return 100 + (gPhase++ % 30000); }  // MPI guarantees tags up to 32767
+
+// A stream buffer that drops everything: the std::cout and std::cerr of ranks other than 0.
+class NullBuffer : public std::streambuf {
+  protected:
+    int overflow(int c) override { return c == EOF ? 0 : c; }
+    std::streamsize xsputn(const char *, std::streamsize n) override { return n; }
+};
+NullBuffer gNull;
+
+// Sleeps between polls: 50 µs after activity, doubling to 2 ms while idle.
+class Idle {
+  public:
+    void Busy() { us_ = 50; }
+    void Wait() {
+        std::this_thread::sleep_for(std::chrono::microseconds(us_));
+        us_ = std::min(us_ * 2, 2000);
+    }
+
+  private:
+    int us_ = 50;
+};
+
+void WaitFor(MPI_Request &r) {
+    Idle idle;
+    for (int done = 0;;) {
+        MPI_Test(&r, &done, MPI_STATUS_IGNORE);
+        if (done) return;
+        idle.Wait();
+    }
+}
+
+// ---- messages -------------------------------------------------------------------------------------
+// Every message of a phase is bytes whose first byte says what it is.
+enum : char {
+    MsgRequest = 1,  // → 0: int32 items wanted
+    MsgResult,       // → 0: one item's result
+    MsgStopped,      // → 0: int32 signal: this rank was stopped by a signal
+    MsgAckEnd,       // → 0: this rank is out of the phase
+    MsgItems,        // 0 →: int32 count, then (int32 length, bytes) per item
+    MsgStop,         // 0 →: stop rendering (the phase ends soon)
+    MsgEnd,          // 0 →: the phase is over
+};
+
+using Bytes = std::vector<char>;
+
+struct Writer {
+    Bytes b;
+    template <typename T>
+    void Put(const T &v) {
+        PutBytes(&v, sizeof v);
+    }
+    void PutBytes(const void *p, std::size_t n) {
+        const char *c = static_cast<const char *>(p);
+        b.insert(b.end(), c, c + n);
+    }
+};
+
+struct Reader {
+    const char *p, *end;
+    explicit Reader(const Bytes &b) : p(b.data()), end(b.data() + b.size()) {}
+    Reader(const char *data, std::size_t n) : p(data), end(data + n) {}
+    template <typename T>
+    T Get() {
+        T v;
+        GetBytes(&v, sizeof v);
+        return v;
+    }
+    void GetBytes(void *out, std::size_t n) {
+        if (std::size_t(end - p) < n) throw Error("internal error: a short message between MPI ranks");
+        std::memcpy(out, p, n);
+        p += n;
+    }
+};
+
+// One phase's traffic on one thread: non-blocking sends kept until complete, polled receives.
+class Channel {
+  public:
+    explicit Channel(int tag) : tag_(tag) {}
+    ~Channel() { Drain(); }
+    void Send(int to, Bytes &&bytes) {
+        sends_.push_back({std::move(bytes), MPI_REQUEST_NULL});
+        Out &o = sends_.back();
+        MPI_Isend(o.data.data(), int(o.data.size()), MPI_BYTE, to, tag_, MPI_COMM_WORLD, &o.request);
+    }
+    void Send(int to, char type) { Send(to, Bytes{type}); }
+    /// A message of this phase from `from` (MPI_ANY_SOURCE: anyone) if one has arrived.
+    bool Receive(int from, int *source, Bytes *bytes) {
+        int flag = 0;
+        MPI_Status st;
+        MPI_Iprobe(from, tag_, MPI_COMM_WORLD, &flag, &st);
+        if (!flag) return false;
+        int count = 0;
+        MPI_Get_count(&st, MPI_BYTE, &count);
+        bytes->resize(std::size_t(count));
+        MPI_Recv(bytes->data(), count, MPI_BYTE, st.MPI_SOURCE, tag_, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        *source = st.MPI_SOURCE;
+        return true;
+    }
+    void Progress() {
+        for (auto it = sends_.begin(); it != sends_.end();) {
+            int done = 0;
+            MPI_Test(&it->request, &done, MPI_STATUS_IGNORE);
+            it = done ? sends_.erase(it) : std::next(it);
+        }
+    }
+    void Drain() {
+        Idle idle;
+        for (Progress(); !sends_.empty(); Progress()) idle.Wait();
+    }
+
+  private:
+    struct Out {
+        Bytes data;
+        MPI_Request request;
+    };
+    int tag_;
+    std::list<Out> sends_;
+};
+
+// Rank 0's side of a phase, on its own thread: answers the other ranks' requests with items from
+// `next` (false: none now), hands their results to `result`, relays a stop (`stop` set here, or a
+// rank reporting a signal) to every rank, and after Finish() ends the phase on every rank.
+class Server {
+  public:
+    using Next = std::function<bool(Bytes &)>;
+    using Result = std::function<void(int source, Reader &)>;
+    Server(int tag, std::atomic<bool> *stop, std::atomic<int> *signal, Next next, Result result)
+        : tag_(tag), stop_(stop), signal_(signal), next_(std::move(next)), result_(std::move(result)) {
+        thread_ = std::thread([this] { Run(); });
+    }
+    ~Server() { Finish(); }
+    /// Ends the phase (every rank acknowledges) and joins the thread. No callback runs afterwards.
+    void Finish() {
+        if (!thread_.joinable()) return;
+        finish_.store(true);
+        thread_.join();
+    }
+
+  private:
+    void Run() {
+        Channel ch(tag_);
+        std::vector<int> want(std::size_t(gSize), 0);
+        bool stopSent = false, endSent = false;
+        int acks = 0;
+        Idle idle;
+        for (;;) {
+            bool busy = false;
+            int src = 0;
+            Bytes m;
+            while (ch.Receive(MPI_ANY_SOURCE, &src, &m)) {
+                busy = true;
+                Reader r(m);
+                switch (r.Get<char>()) {
+                    case MsgRequest: want[std::size_t(src)] += r.Get<int32_t>(); break;
+                    case MsgResult:
+                        if (!endSent) result_(src, r);  // after the end (an aborted phase) nobody takes it
+                        break;
+                    case MsgStopped: {
+                        const int sig = r.Get<int32_t>();
+                        int none = 0;
+                        if (signal_) signal_->compare_exchange_strong(none, sig);
+                        if (stop_) stop_->store(true);
+                        break;
+                    }
+                    case MsgAckEnd: ++acks; break;
+                    default: break;
+                }
+            }
+            if (stop_ && stop_->load() && !stopSent && !endSent) {
+                for (int w = 1; w < gSize; ++w) ch.Send(w, MsgStop);
+                stopSent = busy = true;
+            }
+            if (!endSent)
+                for (int w = 1; w < gSize; ++w) {
+                    Writer items;
+                    int32_t count = 0;
+                    items.Put(MsgItems);
+                    items.Put(count);
+                    for (Bytes item; want[std::size_t(w)] > 0 && next_(item); --want[std::size_t(w)]) {
+                        items.Put(int32_t(item.size()));
+                        items.PutBytes(item.data(), item.size());
+                        ++count;
+                    }
+                    if (count == 0) continue;
+                    std::memcpy(items.b.data() + 1, &count, sizeof count);
+                    ch.Send(w, std::move(items.b));
+                    busy = true;
+                }
+            if (finish_.load() && !endSent) {
+                for (int w = 1; w < gSize; ++w) ch.Send(w, MsgEnd);
+                endSent = busy = true;
+            }
+            if (endSent && acks == gSize - 1) break;
+            ch.Progress();
+            busy ? idle.Busy() : idle.Wait();
+        }
+        ch.Drain();
+    }
+
+    int tag_;
+    std::atomic<bool> *stop_;
+    std::atomic<int> *signal_;
+    Next next_;
+    Result result_;
+    std::atomic<bool> finish_{false};
+    std::thread thread_;
+};
+
+// Another rank's side of a phase, on its own thread: keeps up to `depth` items in hand (queued or
+// being worked on), sends results, stops on rank 0's word (`stop` set) and reports its own stop
+// (`localStop` set: MsgStopped with the signal) so that rank 0 stops everyone.
+class Client {
+  public:
+    Client(int tag, int depth, std::atomic<bool> *stop, const std::atomic<bool> *localStop)
+        : tag_(tag), depth_(depth), stop_(stop), localStop_(localStop) {
+        thread_ = std::thread([this] { Run(); });
+    }
+    ~Client() {
+        {
+            std::unique_lock<std::mutex> lock(mutex_);
+            if (!ended_) {
+                // Left before rank 0 ended the phase (an exception on this rank): the other ranks
+                // would wait for it for ever.
+                lock.unlock();
+                std::cerr.flush();
+                std::fprintf(stderr, "phasor: rank %d failed during a distributed render; aborting the job\n", gRank);
+                MPI_Abort(MPI_COMM_WORLD, 2);
+            }
+        }
+        thread_.join();
+    }
+    /// The next item (blocks until one arrives); false once the phase is over.
+    bool Next(Bytes &item) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        cv_.wait(lock, [&] { return !queue_.empty() || ended_; });
+        if (queue_.empty()) return false;
+        item = std::move(queue_.front());
+        queue_.pop_front();
+        ++working_;
+        return true;
+    }
+    /// The result of an item Next gave.
+    void Done(Bytes &&result) {
+        std::lock_guard<std::mutex> lock(mutex_);
+        results_.push_back(std::move(result));
+        --working_;
+    }
+
+  private:
+    void Run() {
+        Channel ch(tag_);
+        int requested = 0;  // asked for and not received yet
+        bool stoppedSent = false, ended = false;
+        Idle idle;
+        while (!ended) {
+            bool busy = false;
+            int src = 0;
+            Bytes m;
+            while (!ended && ch.Receive(0, &src, &m)) {
+                busy = true;
+                Reader r(m);
+                switch (r.Get<char>()) {
+                    case MsgItems: {
+                        const int32_t count = r.Get<int32_t>();
+                        std::lock_guard<std::mutex> lock(mutex_);
+                        for (int32_t i = 0; i < count; ++i) {
+                            Bytes item(std::size_t(r.Get<int32_t>()));
+                            r.GetBytes(item.data(), item.size());
+                            queue_.push_back(std::move(item));
+                        }
+                        requested -= count;
+                        cv_.notify_all();
+                        break;
+                    }
+                    case MsgStop:
+                        if (stop_) stop_->store(true);
+                        break;
+                    case MsgEnd: ended = true; break;
+                    default: break;
+                }
+            }
+            std::deque<Bytes> results;
+            int inHand = 0;
+            {
+                std::lock_guard<std::mutex> lock(mutex_);
+                results.swap(results_);
+                inHand = int(queue_.size()) + working_;
+            }
+            if (!ended) {
+                for (Bytes &r : results) ch.Send(0, std::move(r));
+                busy |= !results.empty();
+                if (localStop_ && localStop_->load() && !stoppedSent) {
+                    Writer w;
+                    w.Put(MsgStopped);
+                    w.Put(int32_t(StopSignal()));
+                    ch.Send(0, std::move(w.b));
+                    stoppedSent = busy = true;
+                }
+                const int want = depth_ - inHand - requested;
+                if (want > 0 && !(stop_ && stop_->load())) {
+                    Writer w;
+                    w.Put(MsgRequest);
+                    w.Put(int32_t(want));
+                    ch.Send(0, std::move(w.b));
+                    requested += want;
+                    busy = true;
+                }
+            }
+            ch.Progress();
+            busy ? idle.Busy() : idle.Wait();
+        }
+        {
+            std::lock_guard<std::mutex> lock(mutex_);
+            ended_ = true;
+            queue_.clear();
+        }
+        cv_.notify_all();
+        ch.Send(0, MsgAckEnd);
+        ch.Drain();
+    }
+
+    int tag_, depth_;
+    std::atomic<bool> *stop_;
+    const std::atomic<bool> *localStop_;
+    std::mutex mutex_;
+    std::condition_variable cv_;
+    std::deque<Bytes> queue_, results_;
+    int working_ = 0;
+    bool ended_ = false;
+    std::thread thread_;
+};
+
+// ---- tiles as bytes -------------------------------------------------------------------------------
+
+void PutTile(Writer &w, const TileTask &t) {
+    for (int v : {t.tile, t.x0, t.y0, t.x1, t.y1, t.sampleEnd}) w.Put(int32_t(v));
+    w.Put(int64_t(t.rays));
+    for (long long n : t.counters.n) w.Put(int64_t(n));
+    w.Put(int64_t(t.pixels.size()));
+    w.PutBytes(t.pixels.data(), t.pixels.size() * sizeof(Film::PixelState));
+}
+
+void GetTile(Reader &r, TileTask &t) {
+    int32_t v[6];
+    for (int32_t &x : v) x = r.Get<int32_t>();
+    t.tile = v[0], t.x0 = v[1], t.y0 = v[2], t.x1 = v[3], t.y1 = v[4], t.sampleEnd = v[5];
+    t.rays = r.Get<int64_t>();
+    for (long long &n : t.counters.n) n = r.Get<int64_t>();
+    const int64_t count = r.Get<int64_t>();
+    if (count != int64_t(t.x1 - t.x0) * (t.y1 - t.y0)) throw Error("internal error: a malformed tile between MPI ranks");
+    t.pixels.resize(std::size_t(count));
+    r.GetBytes(t.pixels.data(), t.pixels.size() * sizeof(Film::PixelState));
+}
+
+// A helper rank's tiles: from its client, back through it.
+class RemoteTiles final : public TileSource {
+  public:
+    RemoteTiles(int tag, int depth, std::atomic<bool> *stop, const std::atomic<bool> *localStop)
+        : client_(tag, depth, stop, localStop) {}
+    bool Next(TileTask &task) override {
+        Bytes b;
+        if (!client_.Next(b)) return false;
+        Reader r(b);
+        GetTile(r, task);
+        return true;
+    }
+    void Done(TileTask &task) override {
+        Writer w;
+        w.Put(MsgResult);
+        PutTile(w, task);
+        client_.Done(std::move(w.b));
+    }
+
+  private:
+    Client client_;
+};
+
+class MpiShare final : public Share {
+  public:
+    explicit MpiShare(const std::atomic<bool> *cancel) : cancel_(cancel) {
+        // The caller's flag (a signal, a time budget) becomes this render's stop on this rank.
+        watch_ = std::thread([this] {
+            while (!quit_.load()) {
+                if (cancel_ && cancel_->load() && !localStop_.load()) {
+                    localStop_.store(true);
+                    stop_.store(true);
+                }
+                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            }
+        });
+    }
+    ~MpiShare() override {
+        server_.reset();
+        tiles_.reset();
+        quit_.store(true);
+        watch_.join();
+    }
+    bool Coordinates() const override { return gRank == 0; }
+    const std::atomic<bool> *Stop() const override { return &stop_; }
+    int Signal() const override { return signal_.load(); }
+    std::vector<long long> WorkByRank() const override {
+        std::lock_guard<std::mutex> lock(countMutex_);
+        return byRank_;
+    }
+
+    void BeginTiles(TilePasses &passes) override {
+        passes_ = &passes;
+        server_ = std::make_unique<Server>(
+            NextTag(), &stop_, &signal_,
+            [&passes](Bytes &item) {
+                TileTask t;
+                if (!passes.Next(t)) return false;
+                Writer w;
+                PutTile(w, t);
+                item = std::move(w.b);
+                return true;
+            },
+            [this, &passes](int source, Reader &r) {
+                TileTask t;
+                GetTile(r, t);
+                passes.Done(t);
+                Count(source, 1);
+            });
+    }
+    void EndTiles() override {
+        server_.reset();
+        // Rank 0's own tiles: every tile taken back that came from no other rank.
+        long long remote = 0;
+        for (long long c : WorkByRank()) remote += c;
+        if (passes_) Count(0, passes_->TilesDone() - remote);
+        passes_ = nullptr;
+    }
+    TileSource *HelperTiles(Film &) override {
+        // Enough tiles in hand that each render thread finds the next one waiting.
+        const int threads =
+            int(std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+        tiles_ = std::make_unique<RemoteTiles>(NextTag(), threads + 1, &stop_, &localStop_);
+        return tiles_.get();
+    }
+
+    bool Batches(std::vector<double> &values, int units, const BatchFunction &compute,
+                 const std::function<bool(int)> &done, const std::atomic<bool> *) override {
+        const std::size_t n = values.size();
+        const int tag = NextTag();
+        if (gRank != 0) {
+            Client client(tag, 2, &stop_, &localStop_);
+            for (Bytes item; client.Next(item);) {
+                Reader r(item);
+                const int u = r.Get<int32_t>();
+                const std::size_t b = BatchBegin(n, units, u), e = BatchBegin(n, units, u + 1);
+                compute(b, e);
+                Writer w;
+                w.Put(MsgResult);
+                w.Put(int32_t(u));
+                w.PutBytes(values.data() + b, (e - b) * sizeof(double));
+                client.Done(std::move(w.b));
+            }
+            return false;
+        }
+        std::mutex m;
+        std::condition_variable cv;
+        int next = 0, finished = 0;
+        auto take = [&]() {
+            std::lock_guard<std::mutex> lock(m);
+            return stop_.load() || next >= units ? -1 : next++;
+        };
+        Server server(
+            tag, &stop_, &signal_,
+            [&](Bytes &item) {
+                const int u = take();
+                if (u < 0) return false;
+                Writer w;
+                w.Put(int32_t(u));
+                item = std::move(w.b);
+                return true;
+            },
+            [&](int source, Reader &r) {
+                const int u = r.Get<int32_t>();
+                if (stop_.load() || u < 0 || u >= units) return;  // a stopped rank's batch is incomplete
+                Count(source, 1);
+                const std::size_t b = BatchBegin(n, units, u), e = BatchBegin(n, units, u + 1);
+                r.GetBytes(values.data() + b, (e - b) * sizeof(double));
+                std::lock_guard<std::mutex> lock(m);
+                ++finished;
+                cv.notify_all();
+            });
+        int reported = 0;
+        for (;;) {
+            const int u = take();
+            if (u >= 0) {
+                compute(BatchBegin(n, units, u), BatchBegin(n, units, u + 1));
+                Count(0, 1);
+                std::lock_guard<std::mutex> lock(m);
+                if (!stop_.load()) ++finished;
+            }
+            int f;
+            {
+                std::unique_lock<std::mutex> lock(m);
+                if (u < 0 && finished < units && !stop_.load())
+                    cv.wait_for(lock, std::chrono::milliseconds(20));
+                f = finished;
+            }
+            while (reported < f && !stop_.load())
+                if (done && !done(++reported)) stop_.store(true);
+            if (stop_.load() || f == units) break;
+        }
+        server.Finish();
+        return !stop_.load() && finished == units;
+    }
+
+  private:
+    void Count(int rank, long long n) {
+        std::lock_guard<std::mutex> lock(countMutex_);
+        byRank_[std::size_t(rank)] += n;
+    }
+
+    const std::atomic<bool> *cancel_;
+    mutable std::mutex countMutex_;
+    std::vector<long long> byRank_ = std::vector<long long>(static_cast<std::size_t>(gSize), 0);
+    TilePasses *passes_ = nullptr;
+    std::atomic<bool> stop_{false}, localStop_{false}, quit_{false};
+    std::atomic<int> signal_{0};
+    std::thread watch_;
+    std::unique_ptr<Server> server_;
+    std::unique_ptr<RemoteTiles> tiles_;
+};
+
+// Whether the environment says an MPI launcher started this process.
+bool LaunchedByMpi() {
+    if (const char *force = std::getenv("PHASOR_MPI")) {
+        if (std::strcmp(force, "0") == 0) return false;
+        if (std::strcmp(force, "1") == 0) return true;
+    }
+    for (const char *v : {"OMPI_COMM_WORLD_SIZE", "PMIX_RANK", "PMI_RANK", "PMI_SIZE"})
+        if (std::getenv(v)) return true;
+    return false;
+}
+
+// Threads per rank: the cores this rank may run on, shared with the ranks of its node that are
+// bound to the same cores.
+int ThreadsPerRank(MPI_Comm node) {
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    if (sched_getaffinity(0, sizeof set, &set) != 0) return 0;
+    const int mine = CPU_COUNT(&set);
+    uint64_t h = 1469598103934665603ull;  // FNV-1a of the mask
+    for (std::size_t i = 0; i < sizeof set; ++i) h = (h ^ reinterpret_cast<const unsigned char *>(&set)[i]) * 1099511628211ull;
+    std::vector<uint64_t> all(static_cast<std::size_t>(gNode));
+    MPI_Allgather(&h, 1, MPI_UINT64_T, all.data(), 1, MPI_UINT64_T, node);
+    const int same = int(std::count(all.begin(), all.end(), h));
+    return std::max(1, mine / std::max(1, same));
+}
+
+}  // namespace
+
+bool Available() { return true; }
+
+bool Start(int &argc, char **&argv) {
+    if (!LaunchedByMpi()) return true;
+    int provided = 0;
+    if (MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS) {
+        std::fprintf(stderr, "error: MPI could not be started\n");
+        return false;
+    }
+    gMpi = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &gRank);
+    MPI_Comm_size(MPI_COMM_WORLD, &gSize);
+    if (provided < MPI_THREAD_SERIALIZED) {
+        if (gRank == 0)
+            std::fprintf(stderr, "error: this MPI library gives no MPI_THREAD_SERIALIZED support, which phasor needs\n");
+        return false;
+    }
+    MPI_Comm node;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, gRank, MPI_INFO_NULL, &node);
+    MPI_Comm_size(node, &gNode);
+    gThreads = gSize > 1 ? ThreadsPerRank(node) : 0;
+    MPI_Comm_free(&node);
+    if (gRank != 0) {  // one voice: rank 0's
+        std::cout.rdbuf(&gNull);
+        std::cerr.rdbuf(&gNull);
+    }
+    return true;
+}
+
+void Finish() {
+    if (!gMpi) return;
+    int finalized = 0;
+    MPI_Finalized(&finalized);
+    if (!finalized) MPI_Finalize();
+    gMpi = false;
+}
+
+int Rank() { return gRank; }
+int Size() { return gSize; }
+int RanksOnNode() { return gNode; }
+int DefaultThreads() { return gThreads; }
+
+int Agree(int status) {
+    if (gSize == 1) return status;
+    MPI_Request r;
+    MPI_Ibcast(&status, 1, MPI_INT, 0, MPI_COMM_WORLD, &r);
+    WaitFor(r);
+    return status;
+}
+
+bool AllOk(bool ok, const std::string &message, std::string *failure) {
+    if (gSize == 1) return ok;
+    int mine = ok ? 1 : 0;
+    std::vector<int> all(static_cast<std::size_t>(gSize));
+    MPI_Request r;
+    MPI_Iallgather(&mine, 1, MPI_INT, all.data(), 1, MPI_INT, MPI_COMM_WORLD, &r);
+    WaitFor(r);
+    const auto bad = std::find(all.begin(), all.end(), 0);
+    if (bad == all.end()) return true;
+    const int first = int(bad - all.begin());
+    if (first == 0) return false;  // rank 0 failed: it has said why
+    // The first failing rank tells rank 0 why (rank 0 loaded the same scene without error: a file
+    // missing on that node, say).
+    if (gRank == first) {
+        MPI_Request s;
+        MPI_Isend(message.data(), int(message.size()), MPI_CHAR, 0, ControlTag, MPI_COMM_WORLD, &s);
+        WaitFor(s);
+    } else if (gRank == 0) {
+        MPI_Status st;
+        int flag = 0;
+        Idle idle;
+        for (; MPI_Iprobe(first, ControlTag, MPI_COMM_WORLD, &flag, &st), !flag;) idle.Wait();
+        int count = 0;
+        MPI_Get_count(&st, MPI_CHAR, &count);
+        std::string text(std::size_t(count), '\0');
+        MPI_Recv(text.data(), count, MPI_CHAR, first, ControlTag, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
+        if (failure) *failure = "rank " + std::to_string(first) + ": " + text;
+    }
+    return false;
+}
+
+void Broadcast(std::string &text) {
+    if (gSize == 1) return;
+    long long n = (long long)text.size();
+    MPI_Request r;
+    MPI_Ibcast(&n, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD, &r);
+    WaitFor(r);
+    text.resize(std::size_t(n));
+    MPI_Ibcast(text.data(), int(n), MPI_CHAR, 0, MPI_COMM_WORLD, &r);
+    WaitFor(r);
+}
+
+std::unique_ptr<Share> MakeShare(const std::atomic<bool> *cancel) {
+    if (gSize == 1) return nullptr;
+    return std::make_unique<MpiShare>(cancel);
+}
+
+void ForEachUnit(int units, const std::function<std::string(int)> &compute,
+                 const std::function<void(int, std::string &&)> &collect, const std::atomic<bool> *stop) {
+    const int tag = NextTag();
+    if (gSize == 1 || gRank != 0) {
+        if (gSize == 1) {
+            for (int u = 0; u < units && !(stop && stop->load()); ++u) collect(u, compute(u));
+            return;
+        }
+        Client client(tag, 1, nullptr, nullptr);
+        for (Bytes item; client.Next(item);) {
+            Reader r(item);
+            const int u = r.Get<int32_t>();
+            const std::string result = compute(u);
+            Writer w;
+            w.Put(MsgResult);
+            w.Put(int32_t(u));
+            w.PutBytes(result.data(), result.size());
+            client.Done(std::move(w.b));
+        }
+        return;
+    }
+    std::mutex m;
+    std::condition_variable cv;
+    int next = 0, out = 0;
+    std::deque<std::pair<int, std::string>> arrived;
+    auto take = [&]() {
+        std::lock_guard<std::mutex> lock(m);
+        if ((stop && stop->load()) || next >= units) return -1;
+        ++out;
+        return next++;
+    };
+    Server server(
+        tag, nullptr, nullptr,
+        [&](Bytes &item) {
+            const int u = take();
+            if (u < 0) return false;
+            Writer w;
+            w.Put(int32_t(u));
+            item = std::move(w.b);
+            return true;
+        },
+        [&](int, Reader &r) {
+            const int u = r.Get<int32_t>();
+            std::string bytes(std::size_t(r.end - r.p), '\0');
+            r.GetBytes(bytes.data(), bytes.size());
+            std::lock_guard<std::mutex> lock(m);
+            arrived.emplace_back(u, std::move(bytes));
+            cv.notify_all();
+        });
+    auto collectArrived = [&] {
+        for (;;) {
+            std::pair<int, std::string> one;
+            {
+                std::lock_guard<std::mutex> lock(m);
+                if (arrived.empty()) return;
+                one = std::move(arrived.front());
+                arrived.pop_front();
+                --out;
+            }
+            collect(one.first, std::move(one.second));
+        }
+    };
+    for (;;) {
+        const int u = take();
+        if (u >= 0) {
+            std::string result = compute(u);
+            {
+                std::lock_guard<std::mutex> lock(m);
+                --out;
+            }
+            collect(u, std::move(result));
+        }
+        collectArrived();
+        std::unique_lock<std::mutex> lock(m);
+        if (out == 0 && ((stop && stop->load()) || next >= units)) break;
+        if (u < 0) cv.wait_for(lock, std::chrono::milliseconds(20));
+    }
+    server.Finish();
+}
+
+}  // namespace phasor::dist
