@@ -549,6 +549,7 @@ std::string RenderWhole(const CliOptions &o) {
         RenderOptions opt = OptionsFor(*scene, o);
         try {
             r.st = scene->GetIntegrator().Render(*scene, film, opt);
+            r.st.metadata["phasor:mpi_rank"] = std::to_string(dist::Rank());  // who rendered it
             r.stokes = film.HasStokes();
             r.pixels.resize(std::size_t(film.Width()) * film.Height());
             film.GetPixels(0, 0, film.Width(), film.Height(), r.pixels.data());
