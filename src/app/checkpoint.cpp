@@ -214,8 +214,8 @@ Checkpoint ReadCheckpoint(const std::string &path) {
     get(pixels);
     get(pixelBytes);
     if (pixelBytes != sizeof(Film::PixelState))
-        Bad(path, "pixels of " + std::to_string(pixelBytes) + " bytes, but this phasor's are " +
-                      std::to_string(sizeof(Film::PixelState)));
+        Bad(path, "corrupt (pixels of " + std::to_string(pixelBytes) + " bytes; this phasor's are " +
+                      std::to_string(sizeof(Film::PixelState)) + ")");
     const uint64_t expected = at + pixels * pixelBytes + sizeof(uint64_t);
     if (pixels > (uint64_t(1) << 40) || bytes.size() != expected)
         Bad(path, bytes.size() < expected ? "truncated (" + std::to_string(bytes.size()) + " of " +
