@@ -4,7 +4,7 @@
 // Under MPI every rank runs the same command with the same arguments: each loads the scene, the
 // render's work is shared (WorkShare: tiles handed out dynamically by rank 0, which renders too),
 // and rank 0 alone talks to the user and writes the outputs; every rank ends with rank 0's status.
-// The other ranks' std::cout and std::cerr are silenced (Start), so messages appear once.
+// The other ranks' standard output and error go to /dev/null (Start), so messages appear once.
 #pragma once
 
 #include <atomic>

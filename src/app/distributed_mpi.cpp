@@ -10,8 +10,10 @@
 // core its render threads need. Every rank makes the same sequence of phases (they run the same
 // command on the same scene), and each phase has its own tag, so messages of consecutive phases
 // never mix.
+#include <fcntl.h>
 #include <mpi.h>
 #include <sched.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
@@ -22,11 +24,11 @@
 #include <iostream>
 #include <list>
 #include <mutex>
-#include <streambuf>
 #include <thread>
 
 #include <tbb/global_control.h>
 
+#include "app/bytes.h"
 #include "app/distributed.h"
 #include "app/render_common.h"
 #include "core/diagnostics.h"
@@ -41,13 +43,7 @@ int gPhase = 0;  // phases begun so far (the same sequence on every rank)
 constexpr int ControlTag = 1;  // AllOk's message
 int NextTag() { return 100 + (gPhase++ % 30000); }  // MPI guarantees tags up to 32767
 
-// A stream buffer that drops everything: the std::cout and std::cerr of ranks other than 0.
-class NullBuffer : public std::streambuf {
-  protected:
-    int overflow(int c) override { return c == EOF ? 0 : c; }
-    std::streamsize xsputn(const char *, std::streamsize n) override { return n; }
-};
-NullBuffer gNull;
+int gErr = 2;  // where a rank other than 0 reports a fatal error (its stderr before Start silenced it)
 
 // Sleeps between polls: 50 µs after activity, doubling to 2 ms while idle.
 class Idle {
@@ -83,36 +79,7 @@ enum : char {
     MsgEnd,          // 0 →: the phase is over
 };
 
-using Bytes = std::vector<char>;
-
-struct Writer {
-    Bytes b;
-    template <typename T>
-    void Put(const T &v) {
-        PutBytes(&v, sizeof v);
-    }
-    void PutBytes(const void *p, std::size_t n) {
-        const char *c = static_cast<const char *>(p);
-        b.insert(b.end(), c, c + n);
-    }
-};
-
-struct Reader {
-    const char *p, *end;
-    explicit Reader(const Bytes &b) : p(b.data()), end(b.data() + b.size()) {}
-    Reader(const char *data, std::size_t n) : p(data), end(data + n) {}
-    template <typename T>
-    T Get() {
-        T v;
-        GetBytes(&v, sizeof v);
-        return v;
-    }
-    void GetBytes(void *out, std::size_t n) {
-        if (std::size_t(end - p) < n) throw Error("internal error: a short message between MPI ranks");
-        std::memcpy(out, p, n);
-        p += n;
-    }
-};
+using Bytes = std::string;
 
 // One phase's traffic on one thread: non-blocking sends kept until complete, polled receives.
 class Channel {
@@ -124,7 +91,7 @@ class Channel {
         Out &o = sends_.back();
         MPI_Isend(o.data.data(), int(o.data.size()), MPI_BYTE, to, tag_, MPI_COMM_WORLD, &o.request);
     }
-    void Send(int to, char type) { Send(to, Bytes{type}); }
+    void Send(int to, char type) { Send(to, Bytes(1, type)); }
     /// A message of this phase from `from` (MPI_ANY_SOURCE: anyone) if one has arrived.
     bool Receive(int from, int *source, Bytes *bytes) {
         int flag = 0;
@@ -165,7 +132,7 @@ class Channel {
 class Server {
   public:
     using Next = std::function<bool(Bytes &)>;
-    using Result = std::function<void(int source, Reader &)>;
+    using Result = std::function<void(int source, ByteReader &)>;
     Server(int tag, std::atomic<bool> *stop, std::atomic<int> *signal, Next next, Result result)
         : tag_(tag), stop_(stop), signal_(signal), next_(std::move(next)), result_(std::move(result)) {
         thread_ = std::thread([this] { Run(); });
@@ -191,7 +158,7 @@ class Server {
             Bytes m;
             while (ch.Receive(MPI_ANY_SOURCE, &src, &m)) {
                 busy = true;
-                Reader r(m);
+                ByteReader r(m);
                 switch (r.Get<char>()) {
                     case MsgRequest: want[std::size_t(src)] += r.Get<int32_t>(); break;
                     case MsgResult:
@@ -214,7 +181,7 @@ class Server {
             }
             if (!endSent)
                 for (int w = 1; w < gSize; ++w) {
-                    Writer items;
+                    ByteWriter items;
                     int32_t count = 0;
                     items.Put(MsgItems);
                     items.Put(count);
@@ -224,8 +191,8 @@ class Server {
                         ++count;
                     }
                     if (count == 0) continue;
-                    std::memcpy(items.b.data() + 1, &count, sizeof count);
-                    ch.Send(w, std::move(items.b));
+                    std::memcpy(items.bytes.data() + 1, &count, sizeof count);
+                    ch.Send(w, std::move(items.bytes));
                     busy = true;
                 }
             if (finish_.load() && !endSent) {
@@ -264,8 +231,10 @@ class Client {
                 // Left before rank 0 ended the phase (an exception on this rank): the other ranks
                 // would wait for it for ever.
                 lock.unlock();
-                std::cerr.flush();
-                std::fprintf(stderr, "phasor: rank %d failed during a distributed render; aborting the job\n", gRank);
+                const std::string msg =
+                    "phasor: rank " + std::to_string(gRank) + " failed during a distributed render; aborting the job\n";
+                ssize_t ignored = ::write(gErr, msg.data(), msg.size());
+                (void)ignored;
                 MPI_Abort(MPI_COMM_WORLD, 2);
             }
         }
@@ -300,13 +269,13 @@ class Client {
             Bytes m;
             while (!ended && ch.Receive(0, &src, &m)) {
                 busy = true;
-                Reader r(m);
+                ByteReader r(m);
                 switch (r.Get<char>()) {
                     case MsgItems: {
                         const int32_t count = r.Get<int32_t>();
                         std::lock_guard<std::mutex> lock(mutex_);
                         for (int32_t i = 0; i < count; ++i) {
-                            Bytes item(std::size_t(r.Get<int32_t>()));
+                            Bytes item(std::size_t(r.Get<int32_t>()), '\0');
                             r.GetBytes(item.data(), item.size());
                             queue_.push_back(std::move(item));
                         }
@@ -332,18 +301,18 @@ class Client {
                 for (Bytes &r : results) ch.Send(0, std::move(r));
                 busy |= !results.empty();
                 if (localStop_ && localStop_->load() && !stoppedSent) {
-                    Writer w;
+                    ByteWriter w;
                     w.Put(MsgStopped);
                     w.Put(int32_t(StopSignal()));
-                    ch.Send(0, std::move(w.b));
+                    ch.Send(0, std::move(w.bytes));
                     stoppedSent = busy = true;
                 }
                 const int want = depth_ - inHand - requested;
                 if (want > 0 && !(stop_ && stop_->load())) {
-                    Writer w;
+                    ByteWriter w;
                     w.Put(MsgRequest);
                     w.Put(int32_t(want));
-                    ch.Send(0, std::move(w.b));
+                    ch.Send(0, std::move(w.bytes));
                     requested += want;
                     busy = true;
                 }
@@ -374,7 +343,7 @@ class Client {
 
 // ---- tiles as bytes -------------------------------------------------------------------------------
 
-void PutTile(Writer &w, const TileTask &t) {
+void PutTile(ByteWriter &w, const TileTask &t) {
     for (int v : {t.tile, t.x0, t.y0, t.x1, t.y1, t.sampleEnd}) w.Put(int32_t(v));
     w.Put(int64_t(t.rays));
     for (long long n : t.counters.n) w.Put(int64_t(n));
@@ -382,7 +351,7 @@ void PutTile(Writer &w, const TileTask &t) {
     w.PutBytes(t.pixels.data(), t.pixels.size() * sizeof(Film::PixelState));
 }
 
-void GetTile(Reader &r, TileTask &t) {
+void GetTile(ByteReader &r, TileTask &t) {
     int32_t v[6];
     for (int32_t &x : v) x = r.Get<int32_t>();
     t.tile = v[0], t.x0 = v[1], t.y0 = v[2], t.x1 = v[3], t.y1 = v[4], t.sampleEnd = v[5];
@@ -402,15 +371,15 @@ class RemoteTiles final : public TileSource {
     bool Next(TileTask &task) override {
         Bytes b;
         if (!client_.Next(b)) return false;
-        Reader r(b);
+        ByteReader r(b);
         GetTile(r, task);
         return true;
     }
     void Done(TileTask &task) override {
-        Writer w;
+        ByteWriter w;
         w.Put(MsgResult);
         PutTile(w, task);
-        client_.Done(std::move(w.b));
+        client_.Done(std::move(w.bytes));
     }
 
   private:
@@ -452,12 +421,12 @@ class MpiShare final : public Share {
             [&passes](Bytes &item) {
                 TileTask t;
                 if (!passes.Next(t)) return false;
-                Writer w;
+                ByteWriter w;
                 PutTile(w, t);
-                item = std::move(w.b);
+                item = std::move(w.bytes);
                 return true;
             },
-            [this, &passes](int source, Reader &r) {
+            [this, &passes](int source, ByteReader &r) {
                 TileTask t;
                 GetTile(r, t);
                 passes.Done(t);
@@ -487,15 +456,15 @@ class MpiShare final : public Share {
         if (gRank != 0) {
             Client client(tag, 2, &stop_, &localStop_);
             for (Bytes item; client.Next(item);) {
-                Reader r(item);
+                ByteReader r(item);
                 const int u = r.Get<int32_t>();
                 const std::size_t b = BatchBegin(n, units, u), e = BatchBegin(n, units, u + 1);
                 compute(b, e);
-                Writer w;
+                ByteWriter w;
                 w.Put(MsgResult);
                 w.Put(int32_t(u));
                 w.PutBytes(values.data() + b, (e - b) * sizeof(double));
-                client.Done(std::move(w.b));
+                client.Done(std::move(w.bytes));
             }
             return false;
         }
@@ -511,12 +480,12 @@ class MpiShare final : public Share {
             [&](Bytes &item) {
                 const int u = take();
                 if (u < 0) return false;
-                Writer w;
+                ByteWriter w;
                 w.Put(int32_t(u));
-                item = std::move(w.b);
+                item = std::move(w.bytes);
                 return true;
             },
-            [&](int source, Reader &r) {
+            [&](int source, ByteReader &r) {
                 const int u = r.Get<int32_t>();
                 if (stop_.load() || u < 0 || u >= units) return;  // a stopped rank's batch is incomplete
                 Count(source, 1);
@@ -617,9 +586,15 @@ bool Start(int &argc, char **&argv) {
     MPI_Comm_size(node, &gNode);
     gThreads = gSize > 1 ? ThreadsPerRank(node) : 0;
     MPI_Comm_free(&node);
-    if (gRank != 0) {  // one voice: rank 0's
-        std::cout.rdbuf(&gNull);
-        std::cerr.rdbuf(&gNull);
+    if (gRank != 0) {  // one voice: rank 0's (the other ranks' output, libraries' included, goes nowhere)
+        std::fflush(nullptr);
+        gErr = ::dup(2);
+        const int null = ::open("/dev/null", O_WRONLY | O_CLOEXEC);
+        if (null >= 0) {
+            ::dup2(null, 1);
+            ::dup2(null, 2);
+            ::close(null);
+        }
     }
     return true;
 }
@@ -702,14 +677,14 @@ void ForEachUnit(int units, const std::function<std::string(int)> &compute,
         }
         Client client(tag, 1, nullptr, nullptr);
         for (Bytes item; client.Next(item);) {
-            Reader r(item);
+            ByteReader r(item);
             const int u = r.Get<int32_t>();
             const std::string result = compute(u);
-            Writer w;
+            ByteWriter w;
             w.Put(MsgResult);
             w.Put(int32_t(u));
             w.PutBytes(result.data(), result.size());
-            client.Done(std::move(w.b));
+            client.Done(std::move(w.bytes));
         }
         return;
     }
@@ -728,14 +703,14 @@ void ForEachUnit(int units, const std::function<std::string(int)> &compute,
         [&](Bytes &item) {
             const int u = take();
             if (u < 0) return false;
-            Writer w;
+            ByteWriter w;
             w.Put(int32_t(u));
-            item = std::move(w.b);
+            item = std::move(w.bytes);
             return true;
         },
-        [&](int, Reader &r) {
+        [&](int, ByteReader &r) {
             const int u = r.Get<int32_t>();
-            std::string bytes(std::size_t(r.end - r.p), '\0');
+            std::string bytes(r.Left(), '\0');
             r.GetBytes(bytes.data(), bytes.size());
             std::lock_guard<std::mutex> lock(m);
             arrived.emplace_back(u, std::move(bytes));

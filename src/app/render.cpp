@@ -24,6 +24,7 @@
 #include <sstream>
 #include <thread>
 
+#include "app/bytes.h"
 #include "app/checkpoint.h"
 #include "app/distributed.h"
 #include "app/plot.h"
@@ -443,59 +444,24 @@ struct UnitResult {
     std::vector<Film::PixelState> pixels;
 };
 
-// Little serialisation helpers for UnitResult (bytes between ranks).
-struct Bytes {
-    std::string b;
-    template <typename T>
-    void Put(const T &v) {
-        b.append(reinterpret_cast<const char *>(&v), sizeof v);
-    }
-    void PutString(const std::string &s) {
-        Put(uint64_t(s.size()));
-        b += s;
-    }
-};
-struct Unbytes {
-    const std::string &b;
-    std::size_t at = 0;
-    template <typename T>
-    T Get() {
-        T v;
-        std::memcpy(&v, b.data() + at, sizeof v);
-        at += sizeof v;
-        return v;
-    }
-    std::string GetString() {
-        const auto n = std::size_t(Get<uint64_t>());
-        std::string s = b.substr(at, n);
-        at += n;
-        return s;
-    }
-};
-
 std::string Serialize(const UnitResult &r) {
-    Bytes w;
+    ByteWriter w;
     w.PutString(r.error);
     const RenderStats &s = r.st;
     for (int v : {s.sppReached, s.sppMax, int(s.cancelled), int(s.hasImage), int(r.stokes)}) w.Put(int32_t(v));
     w.PutString(s.work);
-    w.Put(uint64_t(s.metadata.size()));
-    for (const auto &[k, v] : s.metadata) {
-        w.PutString(k);
-        w.PutString(v);
-    }
+    w.PutMap(s.metadata);
     w.Put(s.seconds);
     w.Put(int64_t(s.invalidSamples));
     w.Put(int64_t(s.rays));
-    for (long long n : s.counters.n) w.Put(int64_t(n));
-    w.Put(uint64_t(r.pixels.size()));
-    w.b.append(reinterpret_cast<const char *>(r.pixels.data()), r.pixels.size() * sizeof(Film::PixelState));
-    return std::move(w.b);
+    w.Put(s.counters.n);
+    w.PutVector(r.pixels);
+    return std::move(w.bytes);
 }
 
 UnitResult Deserialize(const std::string &bytes) {
     UnitResult r;
-    Unbytes in{bytes};
+    ByteReader in(bytes);
     r.error = in.GetString();
     RenderStats &s = r.st;
     s.sppReached = in.Get<int32_t>();
@@ -504,16 +470,12 @@ UnitResult Deserialize(const std::string &bytes) {
     s.hasImage = in.Get<int32_t>() != 0;
     r.stokes = in.Get<int32_t>() != 0;
     s.work = in.GetString();
-    for (auto n = in.Get<uint64_t>(); n > 0; --n) {
-        std::string k = in.GetString();
-        s.metadata[k] = in.GetString();
-    }
+    s.metadata = in.GetMap();
     s.seconds = in.Get<double>();
     s.invalidSamples = in.Get<int64_t>();
     s.rays = in.Get<int64_t>();
-    for (long long &n : s.counters.n) n = in.Get<int64_t>();
-    r.pixels.resize(std::size_t(in.Get<uint64_t>()));
-    std::memcpy(r.pixels.data(), bytes.data() + in.at, r.pixels.size() * sizeof(Film::PixelState));
+    s.counters.n = in.Get<decltype(s.counters.n)>();
+    r.pixels = in.GetVector<Film::PixelState>();
     return r;
 }
 

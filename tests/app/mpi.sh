@@ -6,6 +6,9 @@
 #            samples included), and every rank did part of the work (phasor:mpi_work)
 #   errors   a scene error: exit status 1 on every rank and the error printed once; an unwritable
 #            output: one error; a usage error: one message
+#   compare  `phasor compare` of 3 integrators on 2 ranks (whole runs on ranks) and of 2 on 3 ranks
+#            (each run's tiles shared): every run's EXR equals the one-process compare's and the
+#            table's error columns are the same; equal time (--time) on 2 ranks runs
 #   sigterm  SIGTERM to mpirun (which passes it on to the ranks after odls_base_sigkill_timeout)
 #            and SIGTERM to the ranks themselves (a batch system): the job stops, says so once, and
 #            rank 0 writes the partial image (cancelled, per-pixel sample counts)
@@ -74,6 +77,26 @@ errors)
     mpi 2 render --bogus 2>"$out/usage.log"; rc=$?
     [[ $rc -eq 1 && $(grep -c "unknown option '--bogus'" "$out/usage.log") -eq 1 ]] || fail "usage error: $rc, $(cat "$out/usage.log")"
     echo "errors: once, exit status 1"
+    ;;
+compare)
+    args=("$val/grt_cornell.wscene" -D res=24 --quiet)
+    "$phasor" compare "${args[@]}" --spp 8 --integrators grt,ray,sample_solve -o "$out/one" || fail "one-process compare failed"
+    # The table without its time and rate columns (5 and 6).
+    errors() { cut -d, -f1-4,7- "$1/results.csv"; }
+    for run in "2 grt,ray,sample_solve" "3 grt,ray"; do
+        read -r n list <<<"$run"
+        mpi "$n" compare "${args[@]}" --spp 8 --integrators "$list" -o "$out/n$n" 2>"$out/n$n.log" ||
+            { cat "$out/n$n.log"; fail "compare on $n ranks failed"; continue; }
+        for name in ${list//,/ }; do
+            d=$("$exr_equal" "$out/one/$name.exr" "$out/n$n/$name.exr") || fail "compare on $n ranks: $name differs: $d"
+        done
+        [[ -f "$out/n$n/index.html" && -f "$out/n$n/grid.png" ]] || fail "compare on $n ranks: no page or grid"
+        echo "compare of $list on $n ranks: every run equal"
+    done
+    diff <(errors "$out/one") <(errors "$out/n2") >/dev/null || fail "the table's errors differ on 2 ranks"
+    mpi 2 compare "${args[@]}" --integrators grt,ray --time 1 -o "$out/timed" 2>"$out/timed.log" ||
+        { cat "$out/timed.log"; fail "equal-time compare on 2 ranks failed"; }
+    [[ -f "$out/timed/results.csv" ]] || fail "equal-time compare on 2 ranks: no table"
     ;;
 sigterm)
     STOP_BOUND=4  # seconds from a rank's signal to the job's end (the stop itself takes ~0.1 s)
