@@ -457,8 +457,21 @@ int RunCompare(const CliOptions &o) {
         if (run.isReferenceRun && run.image && run.status == CompareRun::Status::Done) snap.reference = &run.intensity;
     };
     // Under MPI (docs/distributed.md): with more runs than ranks each rank renders whole runs and
-    // rank 0 gathers them; else every run's tiles are shared by all ranks, one run after another.
-    const bool whole = dist::Size() > 1 && int(runs.size()) > dist::Size();
+    // rank 0 gathers them (if a run fits in a message to rank 0); else every run's tiles are shared
+    // by all ranks, one run after another.
+    bool whole = dist::Size() > 1 && int(runs.size()) > dist::Size();
+    if (whole) {
+        for (CompareRun &run : runs)
+            if (auto scene = build(run)) {
+                if (!firstScene(*scene)) {
+                    RemoveStopHandlers();
+                    return 1;
+                }
+                break;
+            }
+        for (CompareRun &run : runs) run.status = CompareRun::Status::NotRun;  // (built again where rendered)
+        whole = double(width) * height <= dist::MaxWholeRenderPixels;
+    }
     if (!whole) {
         for (std::size_t i = 0; i < runs.size(); ++i) {
             if (dist::Agree(StopFlag().load() ? 1 : 0)) break;  // rank 0's word; the rest stay NotRun
@@ -471,15 +484,6 @@ int RunCompare(const CliOptions &o) {
             render(i, *scene, dist::Size() > 1);
         }
     } else {
-        for (CompareRun &run : runs)
-            if (auto scene = build(run)) {
-                if (!firstScene(*scene)) {
-                    RemoveStopHandlers();
-                    return 1;
-                }
-                break;
-            }
-        for (CompareRun &run : runs) run.status = CompareRun::Status::NotRun;  // (built again where rendered)
         dist::ForEachUnit(
             int(runs.size()),
             [&](int u) {

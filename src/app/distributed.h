@@ -59,6 +59,11 @@ class Share : public WorkShare {
 };
 std::unique_ptr<Share> MakeShare(const std::atomic<bool> *cancel);
 
+/// The largest image whose whole render (its film's accumulators, or compare's images and
+/// snapshots) travels in one MPI message to rank 0 (MPI counts bytes in an int: < 2 GB); larger
+/// renders of a sweep or compare share their tiles instead.
+inline constexpr double MaxWholeRenderPixels = 4e6;
+
 /// Whole units of work (a sweep's renders, compare's runs) spread over the ranks, handed out one at a
 /// time by rank 0, which computes units too. `compute(u)` runs on the rank that takes unit u and
 /// returns its result as bytes; `collect(u, bytes)` runs on rank 0, on the calling thread, for every

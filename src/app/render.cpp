@@ -533,6 +533,7 @@ int RunSweep(const CliOptions &o) {
     std::vector<std::string> outputs(count), labels(count);
     int status = 0;
     std::string base;
+    double largest = 0;  // pixels of the largest render
     for (int i = 0; i < n; ++i) {
         CliOptions &r = runs[std::size_t(i)];
         r = o;
@@ -552,6 +553,7 @@ int RunSweep(const CliOptions &o) {
                 break;
             }
             if (i == 0) base = OutputOf(o, *scene);
+            largest = std::max(largest, double(scene->GetDetector().Width()) * scene->GetDetector().Height());
             fs::path p(base);
             const std::string ext = p.extension() == ".png" ? ".exr" : p.extension().string();
             p.replace_extension();
@@ -570,7 +572,8 @@ int RunSweep(const CliOptions &o) {
     }
     if (dist::Agree(status)) return 1;
     for (std::string &out : outputs) dist::Broadcast(out);
-    const bool whole = dist::Size() > 1 && n > dist::Size();
+    // Whole renders when there are more renders than ranks and each fits in a message to rank 0.
+    const bool whole = dist::Agree(dist::Size() > 1 && n > dist::Size() && largest <= dist::MaxWholeRenderPixels) != 0;
     if (root && !o.quiet) {
         std::cerr << "sweep: " << n << " render" << (n == 1 ? "" : "s") << " of " << o.scene;
         if (dist::Size() > 1)

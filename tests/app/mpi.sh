@@ -25,7 +25,7 @@ val=$src/scenes/validation
 
 case $part in
 images)
-    # A glass plate at Brewster's angle seen by a 24×24 camera with Stokes output (sample_solve.sh's).
+    # A glass plate at Brewster's angle seen by a 48×48 camera with Stokes output (sample_solve.sh's).
     cat >"$out/plate.wscene" <<'SCENE'
 wscene 1
 Material "dielectric" "glass" { ior = 1.5 }
@@ -33,10 +33,10 @@ Shape "rectangle" "plate" { material = @glass  to_world = scale(10) }
 Light "distant" "sun" { direction = [-0.83205 0 -0.5547]  angular_radius = 20 mrad  profile = "gaussian"  spectrum = line(550 nm) }
 Detector "perspective" "cam" {
     to_world = lookat(eye = [-0.83205 0 0.5547] m, target = [0 0 0] m, up = [0 0 1])
-    fov = 0.4 deg  resolution = [24 24]  response = "radiometric"  stokes = true
+    fov = 0.8 deg  resolution = [48 48]  response = "radiometric"  stokes = true
 }
 Integrator "sample_solve" "ss" { max_depth = 1 }
-Render { integrator = @ss  spp = 6 }
+Render { integrator = @ss  spp = 12 }
 SCENE
     # name, tiled (every rank must get work), arguments
     cases=(
@@ -106,10 +106,17 @@ sigterm)
         [[ $(meta "$1" cancelled) == true ]] || fail "$1: not marked cancelled"
         [[ $(grep -c "^stopping" "$2") -eq 1 ]] || { cat "$2"; fail "$2: 'stopping' not said once"; }
     }
+    # started LOG: waits (up to 60 s) until the render is under way: its work estimate, printed just
+    # before the first pass (a signal before the handlers are installed would simply kill it).
+    started() {
+        for _ in $(seq 600); do grep -q "this render would take" "$1" && return; sleep 0.1; done
+        fail "$1: the render did not start within 60 s"
+    }
     # 1. The ranks signalled themselves (Slurm's scancel and time limit, `kill` of the ranks).
     "${PH[@]}" render "$src/tests/app/scenes/slow.wscene" -o "$out/ranks.exr" --threads 1 2>"$out/ranks.log" &
     pid=$!
-    sleep 6
+    started "$out/ranks.log"
+    sleep 1
     start=$(date +%s%3N)
     signal_job TERM $pid
     wait $pid; rc=$?
@@ -124,7 +131,8 @@ sigterm)
     mpirun -q --oversubscribe --allow-run-as-root -n 2 "$phasor" render "$src/tests/app/scenes/slow.wscene" \
         -o "$out/mpirun.exr" --threads 1 2>"$out/mpirun.log" &
     pid=$!
-    sleep 6
+    started "$out/mpirun.log"
+    sleep 1
     start=$(date +%s%3N)
     kill -TERM $pid
     wait $pid
