@@ -365,6 +365,18 @@ class Client {
     std::thread thread_;
 };
 
+// A server's items that are indices (rs's batches, whole units): the next from `take` (< 0: none now).
+Server::Next IndexItems(std::function<int()> take) {
+    return [take = std::move(take)](Bytes &item) {
+        const int u = take();
+        if (u < 0) return false;
+        ByteWriter w;
+        w.Put(int32_t(u));
+        item = std::move(w.bytes);
+        return true;
+    };
+}
+
 // ---- tiles as bytes -------------------------------------------------------------------------------
 
 // A pixel's accumulators as sent: without Stokes output its Stokes means (all zero) stay behind,
@@ -509,15 +521,7 @@ class MpiShare final : public Share {
             return stop_.load() || next >= units ? -1 : next++;
         };
         Server server(
-            tag, &stop_, &signal_,
-            [&](Bytes &item) {
-                const int u = take();
-                if (u < 0) return false;
-                ByteWriter w;
-                w.Put(int32_t(u));
-                item = std::move(w.bytes);
-                return true;
-            },
+            tag, &stop_, &signal_, IndexItems(take),
             [&](int source, ByteReader &r) {
                 const int u = r.Get<int32_t>();
                 if (stop_.load() || u < 0 || u >= units) return;  // a stopped rank's batch is incomplete
@@ -732,15 +736,7 @@ void ForEachUnit(int units, const std::function<std::string(int)> &compute,
         return next++;
     };
     Server server(
-        tag, nullptr, nullptr,
-        [&](Bytes &item) {
-            const int u = take();
-            if (u < 0) return false;
-            ByteWriter w;
-            w.Put(int32_t(u));
-            item = std::move(w.bytes);
-            return true;
-        },
+        tag, nullptr, nullptr, IndexItems(take),
         [&](int, ByteReader &r) {
             const int u = r.Get<int32_t>();
             std::string bytes(r.Left(), '\0');

@@ -4,8 +4,9 @@
 #   images   grt, ray, sample_solve (with Stokes channels) and rs on 2 and 3 ranks: every image
 #            equals the one-process image bit for bit (exr_equal: every channel, variance and
 #            samples included), and every rank did part of the work (phasor:mpi_work)
-#   errors   a scene error: exit status 1 on every rank and the error printed once; an unwritable
-#            output: one error; a usage error: one message
+#   errors   a scene error: exit status 1 on every rank and the error printed once; a scene only
+#            rank 1 cannot read: rank 0 names the rank and the error; an unwritable output: one
+#            error; a usage error: one message
 #   compare  `phasor compare` of 3 integrators on 2 ranks (whole runs on ranks) and of 2 on 3 ranks
 #            (each run's tiles shared): every run's EXR equals the one-process compare's and the
 #            table's error columns are the same; equal time (--time) on 2 ranks runs
@@ -71,6 +72,13 @@ errors)
     [[ $(grep -c "error: unknown parameter 'fvo'" "$out/load.log") -eq 1 && $(grep -c "^1 error in" "$out/load.log") -eq 1 ]] ||
         { cat "$out/load.log"; fail "scene error: not printed exactly once"; }
     [[ ! -e "$out/x.exr" ]] || fail "scene error: an image was written"
+    # A scene only rank 1 cannot read (as on a node without the file; Open MPI's MPMD syntax gives
+    # that rank another path): rank 0 names the rank and its error; nothing is written.
+    mpirun -q --oversubscribe --allow-run-as-root -n 1 "$phasor" render "$src/tests/app/scenes/small.wscene" -o "$out/y.exr" \
+        : -n 1 "$phasor" render "$out/elsewhere/small.wscene" -o "$out/y.exr" 2>"$out/rank.log"; rc=$?
+    [[ $rc -eq 1 && $(grep -c "^error: rank 1: .*elsewhere/small.wscene" "$out/rank.log") -eq 1 ]] ||
+        { cat "$out/rank.log"; fail "a rank's own load error: exit status $rc, or not named once"; }
+    [[ ! -e "$out/y.exr" ]] || fail "a rank's own load error: an image was written"
     mpi 2 render "$src/tests/app/scenes/small.wscene" -o /proc/phasor-test/x.exr 2>"$out/write.log"; rc=$?
     [[ $rc -eq 1 && $(grep -c "cannot write '/proc/phasor-test/x.exr'" "$out/write.log") -eq 1 ]] ||
         { cat "$out/write.log"; fail "unwritable output: exit status $rc or not one message"; }
