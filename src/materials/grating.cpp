@@ -188,6 +188,15 @@ std::unique_ptr<Material> GratingMaterial::Create(const ParamDict &d, BuildConte
                                          what + ": a sinusoidal relief deeper than its period is far outside "
                                                 "the thin-phase model (use height ≲ 0.2·λ)");
     }
+    // Far outside the thin-phase model (h/λ ≲ 0.2) for every visible wavelength: a warning.
+    if (height > 830e-9)
+        ctx.Diag().Warning(d.Loc("height"),
+                           "'height' = " + Value::Number(height, Dim::Length()).ToString() + " is " +
+                               FormatRatio(height / 830e-9) +
+                               " times the longest visible wavelength (830 nm): the thin-phase model holds for "
+                               "h/λ ≲ 0.2 (docs/kernels.md, grating), so this grating is outside it for any light "
+                               "shorter than " + Value::Number(5 * height, Dim::Length()).ToString() +
+                               "; a deep grating needs a rigorous method (RCWA, FDTD)");
     if (d.Has("angle") && d.Has("angle_texture"))
         throw Error(d.Loc("angle_texture"), "give either 'angle' or 'angle_texture', not both");
     FloatTexture angle;
@@ -450,6 +459,11 @@ bool GratingMaterial::HasCoherenceTerms() const { return surface_->LayerCount() 
 
 std::optional<double> GratingMaterial::ReferenceAngle(const TextureEvalContext &tex) const {
     return angle_.Eval(tex) + Pi / 2;  // as GratingVector
+}
+
+std::string GratingMaterial::LobeName(int id) const {
+    // (reflected orders stay far below TransmittedId / 2 in magnitude: Capacity lobes in all)
+    return std::to_string(id >= TransmittedId / 2 ? id - TransmittedId : id);
 }
 
 std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const {

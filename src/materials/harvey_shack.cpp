@@ -144,7 +144,17 @@ class HarveyShackMaterial final : public Material {
             if (!(a < 1)) throw Error(dict.Loc("alpha_r"), "'alpha_r' must lie in (0, 1); it is " + std::to_string(a));
             t = TFromAlphaR(a);
         }
-        return std::make_unique<HarveyShackMaterial>(substrate, dict.GetNumber("sigma_h"), t, dict.GetNumber("gamma"));
+        const double sigma = dict.GetNumber("sigma_h");
+        // Far outside the smooth-surface regime (σ_h ≪ λ) for every visible wavelength: a warning.
+        if (sigma > 830e-9)
+            ctx.Diag().Warning(dict.Loc("sigma_h"),
+                               "'sigma_h' = " + Value::Number(sigma, Dim::Length()).ToString() + " is " +
+                                   FormatRatio(sigma / 830e-9) +
+                                   " times the longest visible wavelength (830 nm): Harvey–Shack's smooth-surface "
+                                   "model needs σ_h ≪ λ (docs/kernels.md, harvey_shack), so it holds only for light "
+                                   "far longer than " + Value::Number(10 * sigma, Dim::Length()).ToString() +
+                                   "; a surface this rough is a diffuse (Lambertian-like) scatterer");
+        return std::make_unique<HarveyShackMaterial>(substrate, sigma, t, dict.GetNumber("gamma"));
     }
 
     /// theory §4.3: T = (1 − α_r²)/(4 k̄² α_r²), k̄ = 2π/0.55 µm [m²].
