@@ -7,6 +7,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 namespace phasor {
 
@@ -14,7 +15,15 @@ namespace {
 template <typename T>
 bool ParseInt(const std::string &s, T &out) {
     auto [p, ec] = std::from_chars(s.data(), s.data() + s.size(), out);
-    return ec == std::errc() && p == s.data() + s.size();
+    if (ec == std::errc() && p == s.data() + s.size()) return true;
+    // A whole number written in scientific notation ("1e6" samples).
+    char *end = nullptr;
+    const double d = s.empty() || std::isspace(static_cast<unsigned char>(s[0])) ? NAN : std::strtod(s.c_str(), &end);
+    if (!(end == s.c_str() + s.size() && std::isfinite(d) && d == std::floor(d) &&
+          std::abs(d) < double(std::numeric_limits<T>::max())))
+        return false;
+    out = T(d);
+    return true;
 }
 // A finite decimal number, the whole string.
 bool ParseDouble(const std::string &s, double &out) {
@@ -67,8 +76,7 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
                       : a == "--threads" ? ParseInt(v, o.threads) && o.threads >= 0
                                          : ParseInt(v, o.seed) && o.seed >= 0;
             if (!ok) {
-                err = "'" + a + "' expects a non-negative whole number" + std::string(a == "--spp" ? " (≥ 1)" : "") +
-                      "; got '" + v + "'";
+                err = "'" + a + "' expects a whole number " + (a == "--spp" ? "≥ 1" : "≥ 0") + "; got '" + v + "'";
                 return false;
             }
         } else if (a == "-D" || a.rfind("-D", 0) == 0) {
@@ -121,7 +129,7 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
             if (!value(a, v)) return false;
             int n = -1;
             if (!ParseInt(v, n) || n < 0) {
-                err = "'" + a + "' expects a non-negative whole number; got '" + v + "'";
+                err = "'" + a + "' expects a whole number ≥ 0; got '" + v + "'";
                 return false;
             }
             int &row = o.command == Command::Compare ? o.compare.row : o.profile.row;
@@ -211,12 +219,16 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
                 err = "'--spp' (equal samples) and '--time' (equal time) exclude each other";
                 return false;
             }
+            if (c.reference == "none" && c.referenceSpp > 0) {
+                err = "'--reference none' renders no reference; '--reference-spp' has nothing to set";
+                return false;
+            }
             if (!c.reference.empty() && !c.referenceIntegrator.empty()) {
                 err = "'--reference' (an image) and '--reference-integrator' (a render) exclude each other";
                 return false;
             }
-            if (c.referenceSpp > 0 && c.referenceIntegrator.empty()) {
-                err = "'--reference-spp' goes with '--reference-integrator'";
+            if (c.referenceSpp > 0 && !c.reference.empty()) {
+                err = "'--reference-spp' sets the samples of a rendered reference, not of '--reference' (an image)";
                 return false;
             }
             break;

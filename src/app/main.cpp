@@ -127,6 +127,8 @@ int Render(const CliOptions &o) {
 
     Image img = film.Resolve();
     StampMetadata(img, *scene, o.scene, opt, st);
+    const double stops = DisplayStops(det, img);
+    StampDisplayExposure(img, det, stops);
     // The EXR and the PNG are written all or nothing (core/image/output_file.h): if either fails,
     // neither appears (and earlier files of those names are left as they were).
     std::string shown, dopWritten;
@@ -135,7 +137,7 @@ int Render(const CliOptions &o) {
         WriteExr(files, exr.string(), img);
         shown = StageDisplayPng(files, png.string(), img,
                                 det.Response().GetKind() == SensorResponse::Kind::Radiometric, integrator.name,
-                                std::filesystem::path(o.scene).filename().string() + ": intensity");
+                                std::filesystem::path(o.scene).filename().string() + ": intensity", 0, stops);
         if (stokes && img.ChannelIndex("DoP") >= 0) {
             const SheetResult r = StageDegreeOfPolarizationPng(files, dop.string(), img);
             if (!r.textDrawn) std::cerr << "warning: " << r.textProblem << "; '" << dop.string() << "' has no text\n";
@@ -330,8 +332,13 @@ int main(int argc, char **argv) {
     std::signal(SIGXFSZ, SIG_IGN);
     CliOptions o;
     std::string err;
+    if (argc < 2) {  // no command: the usage text is what was asked for
+        std::cerr << Usage();
+        return 1;
+    }
     if (!ParseCommandLine(argc, argv, o, err)) {
-        std::cerr << "error: " << err << "\n" << Usage();
+        // One line: the mistake and where to read more (never the whole usage text after it).
+        std::cerr << "error: " << err << " (see 'phasor --help')\n";
         return 1;
     }
     StdoutCapture out;
@@ -339,7 +346,7 @@ int main(int argc, char **argv) {
         return out.Flush(RunCommand(o));
     } catch (const Error &e) {
         out.Flush(1);
-        std::cerr << (e.Loc().Known() ? e.Loc().ToString() + ": " : "") << "error: " << e.Message() << "\n";
+        PrintError(e);
         return 1;
     } catch (const std::exception &e) {
         out.Flush(2);
