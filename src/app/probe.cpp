@@ -389,6 +389,13 @@ int RunProbe(const CliOptions &o) {
             throw ProbeError{"'--theta' " + p.theta + " is grazing (the light runs along the surface): no "
                              "kernel scatters it; use an angle below or above 90deg"};
         if (!(lambda > 0)) throw ProbeError{"'--lambda' must be positive; got '" + p.lambda + "'"};
+        // Far outside the optical range the kernels (thin surfaces, smooth interfaces) and their
+        // index data (named materials: 200 nm – a few µm) are written for: a warning, the answer anyway.
+        if (lambda < 100e-9 || lambda > 1e-3)
+            std::cerr << "warning: '--lambda' " << p.lambda
+                      << " is far outside the optical range phasor's kernels model (100 nm – 1 mm): their surface "
+                         "models assume wavelengths far above atomic scales and the named materials' indices are "
+                         "tabulated from 200 nm to a few um (docs/kernels.md)\n";
 
         // The scene: parsed and resolved whole, but only the material (and what it refers to) is built,
         // so a scene without lights or a detector (a material library) can be probed.
