@@ -15,7 +15,7 @@ check() {
     lines=$(printf '%s\n' "$stderr" | grep -c .)
     [[ $rc -eq 1 ]] || fail "phasor $*: exit status $rc, expected 1"
     [[ $lines -eq 1 ]] || fail "phasor $*: $lines lines on stderr, expected one: $stderr"
-    grep -q "usage:" <<<"$stderr" && fail "phasor $*: the usage text was printed: $stderr"
+    grep -qi "usage:" <<<"$stderr" && fail "phasor $*: the usage text was printed: $stderr"
     grep -Eq -- "^error: $regex" <<<"$stderr" || fail "phasor $*: stderr does not match /^error: $regex/: $stderr"
     grep -Eq -- "see 'phasor( [a-z]+)? --help'" <<<"$stderr" || fail "phasor $*: no 'see … --help' hint: $stderr"
     [[ -z "$stdout" ]] || fail "phasor $*: wrote to stdout: $stdout"
@@ -37,19 +37,23 @@ check "'-D' expects name=value; got 'x'" render "$scene" -D x
 
 # A file that cannot be written is named once: "error: cannot write 'FILE': reason" (not prefixed
 # with the file as a location).
-for cmd in "render $scene -o /proc/phasor-test/x.exr" "compare $scene --integrators ray --spp 1 -o /proc/phasor-test/cmp"; do
-    run $cmd
-    named=$(grep -o "/proc/phasor-test" <<<"$stderr" | wc -l)
-    [[ $rc -eq 1 && $named -eq 1 && "$stderr" == "error: cannot write '/proc/phasor-test/"* ]] ||
-        fail "phasor $cmd: exit status $rc, the path named $named times: $stderr"
+for target in /proc/phasor-test/x.exr /proc/phasor-test/cmp/index.html; do
+    if [[ $target == *.exr ]]; then run render "$scene" -o "$target"
+    else run compare "$scene" --integrators ray --spp 1 -o "$(dirname "$target")"; fi
+    named=$(grep -o "$target" <<<"$stderr" | wc -l)
+    [[ $rc -eq 1 && $named -eq 1 && "$stderr" == "error: cannot write '$target': "* ]] ||
+        fail "writing $target: exit status $rc, the file named $named times: $stderr"
 done
 
 # Without any argument: the usage text (that is what was asked for), exit status 1.
 run
-[[ $rc -eq 1 && "$stderr" == *"usage: phasor"* ]] || fail "phasor without arguments: exit status $rc, stderr $stderr"
+[[ $rc -eq 1 && "${stderr,,}" == *"usage: phasor"* ]] || fail "phasor without arguments: exit status $rc, stderr $stderr"
 # --help: the usage text on stdout, exit status 0.
 run --help
-[[ $rc -eq 0 && "$stdout" == *"usage: phasor"* && -z "$stderr" ]] || fail "phasor --help: exit status $rc"
+[[ $rc -eq 0 && "${stdout,,}" == *"usage: phasor"* && -z "$stderr" ]] || fail "phasor --help: exit status $rc"
+# A command's own help: its options, from the same declaration that parses them.
+run render --help
+[[ $rc -eq 0 && "$stdout" == *"--spp N"* && "$stdout" == *"--integrator NAME"* ]] || fail "phasor render --help: $stdout"
 
 [[ $failures -eq 0 ]] || { echo "$failures failures"; exit 1; }
 echo "all option errors are one line with a hint"

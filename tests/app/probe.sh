@@ -341,6 +341,13 @@ run --material glass --theta 0deg --lambda 550nm --csv "$out/err.csv" --plot /pr
 [[ $rc -eq 1 ]] && grep -q "^error: '--uv' needs two numbers" "$out/.e" || fail "--uv with one number: $rc $(cat "$out/.e")"
 rm -f "$out/.e"
 
+# A wavelength far outside the optical range: the answer, with a warning that gives the range.
+run --material glass --theta 0deg --lambda 1e-20m
+[[ $rc -eq 0 ]] && grep -q "^warning: '--lambda' 1e-20m is far outside the optical range phasor's kernels model (100 nm – 1 mm)" <<<"$stderr" ||
+    fail "--lambda 1e-20m: exit status $rc, no warning with the range: $stderr"
+run --material glass --theta 0deg --lambda 550nm
+grep -q "warning" <<<"$stderr" && fail "--lambda 550nm warns: $stderr"
+
 # A run of hours announces itself as `render` does: 1e11 samples of a continuous lobe give the work
 # estimate (a warning naming the fix) within 20 s; the run is then stopped.
 "$phasor" probe "$scene" --material paint --theta 30deg --lambda 550nm --samples 1e11 >/dev/null 2>"$out/long.log" &
