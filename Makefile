@@ -1,5 +1,5 @@
 # phasor — the two commands of the README, plus developer targets.
-#   make demo      install what is missing, build Release, render scenes/demo.wscene
+#   make demo      install what is missing, build Release, render scenes/demo.wscene with grt and ray
 #   make test      install what is missing, build, run the test suite (ctest)
 JOBS      ?= $(shell nproc)
 BUILD     ?= build
@@ -18,9 +18,10 @@ configure: deps
 build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
+# The wave-optical renderer beside the classical one on one scene: out/demo/grid.png, out/demo/index.html.
 demo: build
 	@mkdir -p out
-	$(BUILD)/bin/phasor render scenes/demo.wscene -o out/demo.exr
+	$(BUILD)/bin/phasor compare scenes/demo.wscene --integrators grt,ray --reference none -o out/demo
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) --timeout 900
