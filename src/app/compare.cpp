@@ -155,6 +155,24 @@ Image CombineReplicas(const std::vector<Image> &replicas) {
     return out;
 }
 
+// Renders `scene` into `film` for `run`; on the integrator's error marks the run failed, prints the
+// error (`label`: the run's progress label; `bar`: a progress bar was drawn) and returns nullopt.
+std::optional<RenderStats> RenderFilm(CompareRun &run, const Scene &scene, Film &film, const RenderOptions &opt,
+                                      const std::string &label, bool bar) {
+    try {
+        RenderStats st = scene.GetIntegrator().Render(scene, film, opt);
+        if (bar) std::cerr << "\n";
+        return st;
+    } catch (const Error &e) {
+        if (bar) std::cerr << "\n";
+        run.status = CompareRun::Status::Failed;
+        run.error = e.Message();
+        std::cerr << label << ": failed:\n";
+        PrintError(e);
+        return std::nullopt;
+    }
+}
+
 // The whole comparison: its steps are the methods, called in order by RunCompare.
 class Comparison {
   public:
@@ -321,7 +339,6 @@ std::unique_ptr<Scene> Comparison::Build(CompareRun &run) {
 // Renders one compared run (the scene already built for its integrator) and fills `run`; its
 // warnings are printed and kept for the page.
 void Comparison::RenderRun(CompareRun &run, const Scene &scene, int index, double budget) {
-    const Integrator &integrator = scene.GetIntegrator();
     const Detector &det = scene.GetDetector();
     RenderOptions opt = OptionsFor(scene, o_);
     const bool timed = budget > 0 && !run.deterministic;  // rs takes no samples: it runs to the end
@@ -376,18 +393,9 @@ void Comparison::RenderRun(CompareRun &run, const Scene &scene, int index, doubl
         if (timed) watchdog.Extend(cost);
     };
 
-    RenderStats st;
-    try {
-        st = integrator.Render(scene, film, opt);
-    } catch (const Error &e) {
-        if (bar) std::cerr << "\n";
-        run.status = CompareRun::Status::Failed;
-        run.error = e.Message();
-        std::cerr << label << ": failed:\n";
-        PrintError(e);
-        return;
-    }
-    if (bar) std::cerr << "\n";
+    const std::optional<RenderStats> rendered = RenderFilm(run, scene, film, opt, label, bar);
+    if (!rendered) return;
+    const RenderStats &st = *rendered;
     // Equal time: the time since the budget started (the watchdog's clock, which the deadline is
     // on), so that a run stopped by its budget reports at least the budget; otherwise the render's own.
     const double spent = timed ? std::chrono::duration<double>(Clock::now() - watchdog.Start()).count() : st.seconds;
@@ -569,7 +577,6 @@ void Comparison::RenderReference() {
     const int replicas = r.deterministic ? 1 : std::max(1, std::min(ReferenceReplicas, total));
     const int each = r.deterministic ? 0 : (total + replicas - 1) / replicas;
     const Detector &det = scene->GetDetector();
-    const Integrator &integrator = scene->GetIntegrator();
     const std::string label = fmt::format("[{}/{}] {} (reference)", runs_.size(), runs_.size(), name);
     const bool bar = !o_.quiet && isatty(2);
     std::vector<Image> images;
@@ -588,18 +595,12 @@ void Comparison::RenderReference() {
             std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n";
         };
         Film film(det.Width(), det.Height(), det.Response());
-        try {
-            last = integrator.Render(*scene, film, opt);
-        } catch (const Error &e) {
-            if (bar) std::cerr << "\n";
-            r.status = CompareRun::Status::Failed;
-            r.error = e.Message();
-            std::cerr << label << ": failed:\n";
-            PrintError(e);
+        const std::optional<RenderStats> rendered = RenderFilm(r, *scene, film, opt, label, bar);
+        if (!rendered) {
             ref_.description = "the reference run (" + name + ") failed: " + r.error;
             return;
         }
-        if (bar) std::cerr << "\n";
+        last = *rendered;
         if (!last.hasImage || (last.cancelled && StopFlag().load())) break;  // an incomplete replica is dropped
         Image img = film.Resolve();
         StampMetadata(img, *scene, o_.scene, opt, last);

@@ -96,6 +96,7 @@
 #include "core/numerics/bessel.h"
 #include "core/render/registry.h"
 #include "materials/smooth_surface.h"
+#include "materials/validity.h"
 
 namespace phasor {
 
@@ -188,15 +189,8 @@ std::unique_ptr<Material> GratingMaterial::Create(const ParamDict &d, BuildConte
                                          what + ": a sinusoidal relief deeper than its period is far outside "
                                                 "the thin-phase model (use height ≲ 0.2·λ)");
     }
-    // Far outside the thin-phase model (h/λ ≲ 0.2) for every visible wavelength: a warning.
-    if (height > 830e-9)
-        ctx.Diag().Warning(d.Loc("height"),
-                           "'height' = " + Value::Number(height, Dim::Length()).ToString() + " is " +
-                               FormatRatio(height / 830e-9) +
-                               " times the longest visible wavelength (830 nm): the thin-phase model holds for "
-                               "h/λ ≲ 0.2 (docs/kernels.md, grating), so this grating is outside it for any light "
-                               "shorter than " + Value::Number(5 * height, Dim::Length()).ToString() +
-                               "; a deep grating needs a rigorous method (RCWA, FDTD)");
+    WarnIfBeyondVisible(d, ctx, "height", height, "the thin-phase model holds for h/λ ≲ 0.2 (docs/kernels.md, grating)",
+                        5, "a deep grating needs a rigorous method (RCWA, FDTD)");
     if (d.Has("angle") && d.Has("angle_texture"))
         throw Error(d.Loc("angle_texture"), "give either 'angle' or 'angle_texture', not both");
     FloatTexture angle;

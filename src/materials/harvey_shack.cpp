@@ -74,6 +74,7 @@
 #include "materials/fresnel.h"
 #include "materials/k_correlation_psd.h"
 #include "materials/smooth_surface.h"
+#include "materials/validity.h"
 
 namespace phasor {
 
@@ -145,15 +146,9 @@ class HarveyShackMaterial final : public Material {
             t = TFromAlphaR(a);
         }
         const double sigma = dict.GetNumber("sigma_h");
-        // Far outside the smooth-surface regime (σ_h ≪ λ) for every visible wavelength: a warning.
-        if (sigma > 830e-9)
-            ctx.Diag().Warning(dict.Loc("sigma_h"),
-                               "'sigma_h' = " + Value::Number(sigma, Dim::Length()).ToString() + " is " +
-                                   FormatRatio(sigma / 830e-9) +
-                                   " times the longest visible wavelength (830 nm): Harvey–Shack's smooth-surface "
-                                   "model needs σ_h ≪ λ (docs/kernels.md, harvey_shack), so it holds only for light "
-                                   "far longer than " + Value::Number(10 * sigma, Dim::Length()).ToString() +
-                                   "; a surface this rough is a diffuse (Lambertian-like) scatterer");
+        WarnIfBeyondVisible(dict, ctx, "sigma_h", sigma,
+                            "Harvey–Shack's smooth-surface model needs σ_h ≪ λ (docs/kernels.md, harvey_shack)", 10,
+                            "a surface this rough is a diffuse (Lambertian-like) scatterer");
         return std::make_unique<HarveyShackMaterial>(substrate, sigma, t, dict.GetNumber("gamma"));
     }
 

@@ -7,6 +7,8 @@
 #include <cstdio>
 #include <thread>
 
+#include <time.h>
+
 #include <tbb/blocked_range2d.h>
 #include <tbb/combinable.h>
 #include <tbb/global_control.h>
@@ -35,12 +37,20 @@ double PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Ren
     };
     constexpr int WarmUp = 8;
     for (int n = 0; n < WarmUp; ++n) sample(n);
-    const auto t0 = std::chrono::steady_clock::now();
+    // Timed in this thread's CPU time: on a machine other processes share, wall time would count
+    // their time too, and the estimate would change with the load (it is the render's time on the
+    // threads' own cores).
+    const auto cpuNow = [] {
+        timespec ts{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+        return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+    };
+    const double c0 = cpuNow();
     int n = 0;
     double elapsed = 0;
     for (; n < 1024 && (n == 0 || elapsed < 0.5); ++n) {
         sample(WarmUp + n);
-        elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        elapsed = cpuNow() - c0;
     }
     const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
     const double perSample = elapsed / n, samples = double(w) * h * opt.spp, seconds = perSample * samples / threads;
