@@ -619,6 +619,7 @@ void Comparison::RenderReference() {
     Image combined = CombineReplicas(images);
     if (!r.deterministic) {
         combined.metadata["phasor:spp_reached"] = std::to_string(r.sppReached);
+        combined.metadata["phasor:spp_max"] = std::to_string(r.sppReached);
         combined.metadata["phasor:spp_requested"] = std::to_string(r.sppRequested);
         combined.metadata["phasor:seed"] = SeedText(r.seeds);
         combined.metadata["phasor:replicas"] = std::to_string(images.size());
