@@ -35,6 +35,11 @@ find_package(OpenColorIO 2.1 REQUIRED)
 find_package(OpenSubdiv 3.5 REQUIRED)
 find_package(TinyGLTF 2.7 REQUIRED)
 find_package(Threads REQUIRED)
+# The program's own libraries (src/app): the command line, string formatting and the JSON of
+# `compare`'s results.
+find_package(CLI11 2.1 REQUIRED)
+find_package(fmt 9 REQUIRED)
+find_package(nlohmann_json 3.11 REQUIRED)
 # libcerf (complex error / Faddeeva function; Debian ships no CMake config).
 find_library(CERF_LIBRARY cerf REQUIRED)
 find_path(CERF_INCLUDE_DIR cerf.h)

@@ -338,6 +338,7 @@ def figure_disc_map(args):
             ax.set_title(name)
     if args.points:
         where = dict(zip(grids, axes))
+        placed = []  # (disc, u, v) of the labels drawn so far
         for disc, pu, pv, label, marker, size in disc_points(args.points, grids):
             ax = where[disc]
             if marker == "o":  # a red ring with a white halo
@@ -349,7 +350,12 @@ def figure_disc_map(args):
                 ax.plot([pu], [pv], marker="x", markersize=size, color="black", markeredgewidth=3.5, zorder=5)
                 ax.plot([pu], [pv], marker="x", markersize=size, color="white", markeredgewidth=1.5, zorder=6)
             if label:
-                ax.annotate(label, (pu, pv), textcoords="offset points", xytext=(size / 2 + 3, size / 2 + 1),
+                # Labels of markers that (nearly) coincide — two lobes leaving in one direction — are
+                # stacked downwards instead of printed over each other.
+                stack = sum(1 for d, u, v in placed if d == disc and math.hypot(u - pu, v - pv) < 0.05)
+                placed.append((disc, pu, pv))
+                ax.annotate(label, (pu, pv), textcoords="offset points",
+                            xytext=(size / 2 + 3, size / 2 + 1 - 11 * stack),
                             color="#a00000" if marker == "o" else "black", fontsize=8, zorder=7,
                             path_effects=[patheffects.withStroke(linewidth=2, foreground="white")])
     fig.suptitle(args.title)

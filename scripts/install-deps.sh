@@ -8,10 +8,13 @@ PACKAGES=(
   cmake ninja-build pkgconf g++ make
   libembree-dev libtbb-dev libopenimageio-dev libimath-dev libopencolorio-dev libosd-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcerf-dev
+  libfmt-dev          # string formatting in the program (src/app)
+  libcli11-dev        # the command line and its usage text (src/app/cli.cpp)
   libgtest-dev libbenchmark-dev
   openimageio-tools   # iinfo: the Ctrl-C test reads the partial image's metadata with it
   fonts-dejavu-core   # DejaVu Sans: labels on images drawn by OpenImageIO (core/image/sheet.cpp)
   python3-matplotlib  # every plot (python/phasor_plot.py: profile, compare, probe); brings numpy
+  python3-jinja2      # compare's page: results.json through python/templates/compare.html.j2
   chromium            # headless: the test that opens `phasor compare`'s page (tests/app/compare.sh)
   libopenmpi-dev openmpi-bin  # MPI (docs/distributed.md): mpirun -n N phasor render …; the MPI tests
 )

@@ -13,6 +13,7 @@ enum class Command { Help, Version, Render, Check, Format, List, Describe, Profi
 struct CliOptions {
     Command command = Command::Help;
     std::string scene, output, integrator, sampler, family, name;
+    std::string helpFor;  // Command::Help: the command whose help was asked for ("" = the program's)
     int spp = -1, threads = 0;
     long long seed = -1;
     bool quiet = false, markdown = false;
@@ -66,7 +67,11 @@ struct CliOptions {
     } run;
 };
 
-/// Fills `o` from argv; on a usage error returns false with a message in `err`.
+/// Fills `o` from argv (through CLI11); on a usage error returns false with a one-line message in
+/// `err` that ends in where to read more (" (see 'phasor render --help')").
 bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err);
+/// The usage text CLI11 writes from the declaration of the commands: the program's, or one
+/// command's (`command`, e.g. "render").
+std::string UsageText(const std::string &command = "");
 
 }  // namespace phasor

@@ -1,16 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — the results of `phasor compare` (compare_report.h): error metrics, the reference, and
-// every output file. Images go through the image module (EXR, the display PNG of `render`, sheets
-// drawn by OpenImageIO), plots through matplotlib (app/plot.h), the page is plain HTML with
-// relative links (no script, no server).
+// phasor — the outputs of `phasor compare` (compare_report.h), staged in named steps: each run's
+// images, the grid, the differences, the profile and convergence plots, the tables (CSV,
+// Markdown) and results.json, from which python/phasor_report.py renders index.html through a
+// jinja2 template. Images go through the image module (EXR, the display PNG of `render`, sheets
+// drawn by OpenImageIO), plots through matplotlib (app/plot.h).
 
 #include "app/compare_report.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
-#include <sstream>
+#include <nlohmann/json.hpp>
 
 #include "app/plot.h"
 #include "app/profile.h"
@@ -24,35 +26,15 @@ namespace phasor {
 namespace {
 
 namespace fs = std::filesystem;
+using Json = nlohmann::ordered_json;
 constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
 
-// A number for the table; "" when there is none.
+// A number for the CSV (full precision); "" when there is none.
 std::string Num(double v, int digits) { return std::isfinite(v) ? FormatNumber(v, digits) : ""; }
 // A number for people: 3 significant digits, "—" when there is none.
-std::string Short(double v) { return std::isfinite(v) ? Num(v, 3) : "—"; }
-
-std::string Html(const std::string &s) {
-    std::string out;
-    for (char ch : s) {
-        switch (ch) {
-            case '&':
-                out += "&amp;";
-                break;
-            case '<':
-                out += "&lt;";
-                break;
-            case '>':
-                out += "&gt;";
-                break;
-            case '"':
-                out += "&quot;";
-                break;
-            default:
-                out += ch;
-        }
-    }
-    return out;
-}
+std::string Short(double v) { return std::isfinite(v) ? FormatNumber(v, 3) : "—"; }
+// A number for JSON: null when there is none.
+Json JsonNumber(double v) { return std::isfinite(v) ? Json(v) : Json(nullptr); }
 
 // The smallest 1, 2 or 5 × 10^k not below x > 0.
 double NiceCeil(double x) {
@@ -62,109 +44,73 @@ double NiceCeil(double x) {
     return 10 * e;
 }
 
-bool Sampling(const CompareRun &r) { return !r.deterministic; }
+std::string Dash(const std::string &s) { return s.empty() ? "—" : s; }
+// How tables and the page name a run: the reference render as "grt (reference)", so that it is
+// told apart from a compared run of the same integrator.
+std::string Label(const CompareRun &r) { return r.isReferenceRun ? r.name + " (reference)" : r.name; }
+
 long long Pixels(const CompareRun &r) { return r.image ? (long long)r.image->width * r.image->height : 0; }
+bool Rendered(const CompareRun &r) {
+    return r.status == CompareRun::Status::Done || r.status == CompareRun::Status::Interrupted;
+}
 
-// One row of the table, as text.
-struct TableRow {
-    std::string name, role, status, statusText, spp, seconds, rate, rmse, relMse, maxError, error;
-};
+const char *StatusName(CompareRun::Status s) {
+    switch (s) {
+        case CompareRun::Status::Done: return "ok";
+        case CompareRun::Status::Interrupted: return "interrupted";
+        case CompareRun::Status::Failed: return "failed";
+        case CompareRun::Status::NotRun: return "not_run";
+    }
+    return "";
+}
 
-TableRow RowOf(const CompareRun &r) {
-    TableRow t;
-    t.name = r.name;
-    t.role = r.isReference ? "reference" : "compared";
-    t.error = r.error;
+std::string StatusText(const CompareRun &r) {
     switch (r.status) {
-        case CompareRun::Status::Done:
-            t.status = "ok";
-            break;
-        case CompareRun::Status::Interrupted:
-            t.status = "interrupted";
-            break;
-        case CompareRun::Status::Failed:
-            t.status = "failed";
-            break;
-        case CompareRun::Status::NotRun:
-            t.status = "not_run";
-            break;
+        case CompareRun::Status::Failed: return "failed: " + r.error;
+        case CompareRun::Status::NotRun: return "not run (stopped)";
+        case CompareRun::Status::Interrupted: return "interrupted (stopped)";
+        case CompareRun::Status::Done: return r.isReference ? "reference" : "ok";
     }
-    t.statusText = r.status == CompareRun::Status::Failed        ? "failed: " + r.error
-                   : r.status == CompareRun::Status::NotRun      ? "not run (stopped)"
-                   : r.status == CompareRun::Status::Interrupted ? "interrupted (Ctrl-C)"
-                   : r.isReference                               ? "reference"
-                                                                 : "ok";
-    if (r.status == CompareRun::Status::Done || r.status == CompareRun::Status::Interrupted) {
-        t.seconds = Num(r.seconds, 4);
-        if (!r.deterministic && r.image) {
-            t.spp = std::to_string(r.sppReached);
-            if (r.seconds > 0) t.rate = Num(double(r.sppReached) * Pixels(r) / r.seconds, 4);
-        }
-    }
-    if (r.metrics) {
-        t.rmse = Num(r.metrics->rmse, 9);
-        t.relMse = Num(r.metrics->relMse, 9);
-        t.maxError = Num(r.metrics->maxError, 9);
-    }
-    return t;
+    return "";
 }
 
-std::string Dash(const std::string &s, const char *none = "—") { return s.empty() ? none : s; }
-std::string ShortField(const std::string &s, const char *none = "—") {
-    return s.empty() ? none : Short(std::stod(s));
+double SamplesPerSecond(const CompareRun &r) {
+    return !r.deterministic && r.image && r.seconds > 0 ? double(r.sppReached) * Pixels(r) / r.seconds : NaN;
 }
 
-const char *MetricsNote =
-    "Errors of the `intensity` channel against the reference, over the pixels: RMSE = √mean((I − R)²); "
-    "relative MSE = mean((I − R)² / (R² + 0.01·mean(R)²)); max error = max |I − R| / max(R).";
-
-std::string MarkdownTable(const std::vector<CompareRun> &runs, const CompareReference &ref, const CompareReport &rep) {
-    std::ostringstream md;
-    md << "# phasor compare: " << fs::path(rep.scene).filename().string() << "\n\n";
-    md << "`" << rep.command << "`\n\n";
-    md << "Mode: " << rep.mode << ". Reference: " << ref.description << ".";
-    if (rep.stopped) md << " The comparison was stopped (Ctrl-C) before every integrator had finished.";
-    md << "\n\n" << MetricsNote << "\n\n";
-    md << "| integrator | status | spp | time (s) | samples/s | RMSE | relative MSE | max error |\n";
-    md << "|---|---|---:|---:|---:|---:|---:|---:|\n";
-    for (const CompareRun &r : runs) {
-        const TableRow t = RowOf(r);
-        std::string status = t.statusText;
-        std::replace(status.begin(), status.end(), '|', '/');
-        md << "| " << t.name << " | " << status << " | " << Dash(t.spp) << " | " << ShortField(t.seconds) << " | "
-           << ShortField(t.rate) << " | " << ShortField(t.rmse) << " | " << ShortField(t.relMse) << " | "
-           << ShortField(t.maxError) << " |\n";
+// The last column: what the comparison with the reference says about the run, and its class on
+// the page (consistent, differs, other).
+std::pair<std::string, std::string> Verdict(const CompareRun &r, const CompareReference &ref) {
+    if (r.isReference) return {"reference", "other"};
+    if (!r.metrics) return {"", "other"};
+    if (!r.comparable) {
+        const bool refWave = ref.waveOptical.value_or(true);
+        return {fmt::format("not comparable: {} optics against a {}-optical reference (the difference includes "
+                            "what the other physics shows)",
+                            r.waveOptical ? "wave" : "ray", refWave ? "wave" : "ray"),
+                "other"};
     }
-    return md.str();
-}
-
-std::string CsvTable(const std::vector<CompareRun> &runs) {
-    std::ostringstream csv;
-    csv << "integrator,role,status,spp,seconds,samples_per_second,rmse,rel_mse,max_error,error\n";
-    for (const CompareRun &r : runs) {
-        const TableRow t = RowOf(r);
-        csv << CsvField(t.name) << ',' << t.role << ',' << t.status << ',' << t.spp << ',' << t.seconds << ',' << t.rate
-            << ',' << t.rmse << ',' << t.relMse << ',' << t.maxError << ',' << CsvField(t.error) << '\n';
+    if (!r.test || !r.test->tested) {
+        const char *why = ref.variance.empty() ? "the reference has no noise estimate"
+                          : r.deterministic    ? "no noise on either side"
+                                               : "the run has no variance estimate (one sample)";
+        return {fmt::format("not tested: {}", why), "other"};
     }
-    return csv.str();
+    if (r.test->consistent) return {fmt::format("consistent (z = {:.2f})", r.test->z), "consistent"};
+    return {std::isfinite(r.test->z) ? fmt::format("differs (z = {:.3g})", r.test->z)
+                                     : std::string("differs (noiseless and unequal)"),
+            "differs"};
 }
 
 // The label of a run's tile: "grt — 4096 spp, 0.52 s".
 std::string TileLabel(const CompareRun &r, const char *separator = "\n") {
-    std::string s = r.name + (r.isReference ? " (reference)" : "") + separator;
-    if (r.deterministic)
-        s += "deterministic, ";
-    else
-        s += std::to_string(r.sppReached) + " spp, ";
+    std::string s = Label(r) + (r.isReference && !r.isReferenceRun ? " (reference)" : "") + separator;
+    s += r.deterministic ? std::string("deterministic, ") : std::to_string(r.sppReached) + " spp, ";
     return s + FormatSeconds(r.seconds) + (r.status == CompareRun::Status::Interrupted ? ", interrupted" : "");
 }
 
-Rgb8Image Tone(const Image &img, bool radiometric, double zeroDb) {
-    return radiometric ? ToFalseColourDb(img, "intensity", 40, zeroDb) : ToDisplay(img);
-}
-
-void Warn(const SheetResult &r, const std::string &path) {
-    if (!r.textDrawn) std::fprintf(stderr, "warning: %s; '%s' has no text\n", r.textProblem.c_str(), path.c_str());
+void WarnNoText(const SheetResult &r, const std::string &path) {
+    if (!r.textDrawn) fmt::print(stderr, "warning: {}; '{}' has no text\n", r.textProblem, path);
 }
 
 // What the page shows for one file: an image, or a link to the data drawn instead.
@@ -173,421 +119,440 @@ struct Shown {
     bool image = true;
 };
 
-}  // namespace
-
-CompareMetrics ErrorMetrics(const std::vector<double> &image, const std::vector<double> &reference) {
-    CompareMetrics m;
-    if (image.size() != reference.size() || image.empty()) return m;
-    double sumSq = 0, sumRef = 0, peak = -Infinity, maxAbs = 0;
-    long long n = 0;
-    for (std::size_t i = 0; i < image.size(); ++i) {
-        if (!std::isfinite(image[i]) || !std::isfinite(reference[i])) {
-            ++m.skipped;
-            continue;
-        }
-        const double d = image[i] - reference[i];
-        sumSq += d * d;
-        sumRef += reference[i];
-        peak = std::max(peak, reference[i]);
-        maxAbs = std::max(maxAbs, std::abs(d));
-        ++n;
-    }
-    if (n == 0) return m;
-    m.rmse = std::sqrt(sumSq / n);
-    const double mean = sumRef / n, eps = 0.01 * mean * mean;
-    if (eps > 0) {
-        double rel = 0;
-        for (std::size_t i = 0; i < image.size(); ++i)
-            if (std::isfinite(image[i]) && std::isfinite(reference[i])) {
-                const double d = image[i] - reference[i];
-                rel += d * d / (reference[i] * reference[i] + eps);
-            }
-        m.relMse = rel / n;
-    }
-    if (peak > 0) m.maxError = maxAbs / peak;
-    return m;
-}
-
-void ChooseReference(std::vector<CompareRun> &runs, CompareReference &ref) {
-    // Complete runs first: an interrupted one may have pixels without samples (and no variance).
-    const bool anyDone = std::any_of(
-        runs.begin(), runs.end(), [](const CompareRun &r) { return r.image && r.status == CompareRun::Status::Done; });
-    CompareRun *best = nullptr;
-    double bestNoise = Infinity;
-    for (CompareRun &r : runs) {
-        if (!r.image || (anyDone && r.status != CompareRun::Status::Done)) continue;
-        double noise = Infinity;
-        if (r.deterministic) {
-            noise = r.status == CompareRun::Status::Done ? -1 : Infinity;  // a complete exact solution first
-        } else if (!r.variance.empty() && r.sppReached >= 2) {             // (one sample has no variance estimate)
-            double var = 0, sq = 0;
-            for (std::size_t i = 0; i < r.variance.size(); ++i)
-                if (std::isfinite(r.variance[i]) && std::isfinite(r.intensity[i])) {
-                    var += r.variance[i];
-                    sq += r.intensity[i] * r.intensity[i];
-                }
-            noise = sq > 0 ? var / sq : Infinity;
-        }
-        if (!best || noise < bestNoise) {
-            best = &r;
-            bestNoise = noise;
-        }
-    }
-    if (!best) return;
-    best->isReference = true;
-    ref.image = &*best->image;
-    ref.name = best->name;
-    ref.description = best->name + ", the best-converged run (no reference was given): ";
-    if (best->deterministic)
-        ref.description += "deterministic, no sampling noise";
-    else if (std::isfinite(bestNoise))
-        ref.description +=
-            "the least estimated noise, relative variance " + Short(bestNoise) + " from its variance channel";
-    else
-        ref.description += "no run has a noise estimate";
-}
-
-void ComputeErrors(std::vector<CompareRun> &runs, CompareReference &ref) {
-    for (CompareRun &r : runs)
-        if (r.isReferenceRun && r.image && !ref.image) {
-            r.isReference = true;
-            ref.image = &*r.image;
-            ref.name = r.name;
-            ref.description =
-                r.name + " at " +
-                (r.deterministic ? std::string("its own accuracy") : std::to_string(r.sppReached) + " spp") +
-                " (--reference-integrator)";
-        }
-    if (!ref.image) {  // no reference given, or the reference run failed: the best-converged run
-        ChooseReference(runs, ref);
-        if (!ref.image) return;
-        if (std::any_of(runs.begin(), runs.end(), [](const CompareRun &r) { return r.isReferenceRun; }))
-            ref.description += " (the reference integrator did not finish)";
-    }
-    ref.values = ChannelValues(*ref.image, "intensity");
-    ref.peak = FiniteMax(ref.values);
-    for (CompareRun &r : runs) {
-        if (!r.image || r.isReference) continue;
-        r.metrics = ErrorMetrics(r.intensity, ref.values);
-        for (CompareSnapshot &s : r.snapshots)
-            if (!s.metrics) {
-                s.metrics = ErrorMetrics(std::vector<double>(s.intensity.begin(), s.intensity.end()), ref.values);
-                s.intensity = {};
-            }
-    }
-}
-
-std::string FormatSeconds(double s) {
-    char buf[32];
-    if (s < 60)
-        std::snprintf(buf, sizeof buf, "%.3g s", s);
-    else
-        return FormatDuration(s);
-    return buf;
-}
-
-void PrintSummary(std::ostream &os, const std::vector<CompareRun> &runs) {
-    char line[256];
-    std::snprintf(line, sizeof line, "  %-14s %-12s %8s %9s %10s %10s %10s\n", "integrator", "status", "spp", "time(s)",
-                  "RMSE", "rel.MSE", "max err");
-    os << line;
-    for (const CompareRun &r : runs) {
-        const TableRow t = RowOf(r);
-        std::snprintf(line, sizeof line, "  %-14s %-12s %8s %9s %10s %10s %10s\n", t.name.c_str(),
-                      (r.isReference && t.status == "ok" ? std::string("reference") : t.status).c_str(),
-                      Dash(t.spp, "-").c_str(), ShortField(t.seconds, "-").c_str(), ShortField(t.rmse, "-").c_str(),
-                      ShortField(t.relMse, "-").c_str(), ShortField(t.maxError, "-").c_str());
-        os << line;
-    }
-}
-
-std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<CompareRun> &runs,
-                                             const CompareReference &ref, const Image *refImage,
-                                             const CompareReport &rep) {
+// The output directory and the names staged so far.
+struct Staging {
+    OutputFiles &files;
+    std::string dir;
     std::vector<std::string> written;
-    const fs::path dir(rep.dir);
-    auto path = [&](const std::string &name) { return (dir / name).string(); };
-    auto add = [&](const std::string &name) { written.push_back(name); };
-    const std::string sceneName = fs::path(rep.scene).filename().string();
-    const double zeroDb = ref.peak;  // one dB scale for every sensor image: 0 dB = the reference's peak
+    std::string Path(const std::string &name) const { return (fs::path(dir) / name).string(); }
+    void Add(const std::string &name) { written.push_back(name); }
+};
 
-    // Each run: its EXR and the PNG `render` would write (with the shared dB scale).
-    std::vector<Shown> shown(runs.size());
-    for (std::size_t k = 0; k < runs.size(); ++k) {
-        const CompareRun &r = runs[k];
+// What every step shares: the runs, the reference, the report and how images are shown.
+struct Context {
+    std::vector<CompareRun> &runs;
+    const CompareReference &ref;
+    const Image *refImage;
+    const CompareReport &rep;
+    std::string sceneName;
+    double zeroDb;  // one dB scale for every sensor image: 0 dB = the reference's peak
+};
+
+Rgb8Image Tone(const Context &c, const Image &img) {
+    if (c.rep.radiometric) return ToFalseColourDb(img, "intensity", 40, c.zeroDb);
+    DisplayOptions display;
+    display.exposure = c.rep.exposureStops;
+    return ToDisplay(img, display);
+}
+
+// ---- 1. Each run's EXR and the PNG `render` would write (one dB scale, one exposure) -------------
+struct RunImages {
+    std::vector<Shown> runs;
+    Shown reference;  // a given reference image
+};
+RunImages StageRunImages(Staging &st, const Context &c) {
+    RunImages out;
+    out.runs.resize(c.runs.size());
+    auto stage = [&](const Image &img, const std::string &png, const std::string &label) {
+        const std::string staged = StageDisplayPng(st.files, st.Path(png), img, c.rep.radiometric, label,
+                                                   c.sceneName + ": " + label, c.zeroDb, c.rep.exposureStops);
+        const Shown s{fs::path(staged).filename().string(), fs::path(staged).extension() == ".png"};
+        st.Add(s.file);
+        return s;
+    };
+    for (std::size_t k = 0; k < c.runs.size(); ++k) {
+        const CompareRun &r = c.runs[k];
         if (!r.image) continue;
-        WriteExr(files, path(r.file + ".exr"), *r.image);
-        add(r.file + ".exr");
-        const std::string staged = StageDisplayPng(files, path(r.file + ".png"), *r.image, rep.radiometric, r.name,
-                                                   sceneName + ": " + r.name, zeroDb);
-        shown[k] = {fs::path(staged).filename().string(), fs::path(staged).extension() == ".png"};
-        add(shown[k].file);
+        WriteExr(st.files, st.Path(r.file + ".exr"), *r.image);
+        st.Add(r.file + ".exr");
+        out.runs[k] = stage(*r.image, r.file + ".png", Label(r));
     }
-    Shown refShown;
-    if (refImage) {
-        const std::string staged = StageDisplayPng(files, path("reference.png"), *refImage, rep.radiometric,
-                                                   "reference", sceneName + ": reference", zeroDb);
-        refShown = {fs::path(staged).filename().string(), fs::path(staged).extension() == ".png"};
-        add(refShown.file);
-    }
+    if (c.refImage) out.reference = stage(*c.refImage, "reference.png", "reference");
+    return out;
+}
 
-    // The grid: the reference image (if given), then every run, labelled; one colour bar for
-    // sensor images.
+// ---- 2. The grid: the reference image (if given), then every run, labelled ---------------------
+void StageGrid(Staging &st, const Context &c) {
     std::vector<SheetTile> tiles;
-    if (refImage) tiles.push_back({Tone(*refImage, rep.radiometric, zeroDb), "reference\n" + ref.description});
-    for (const CompareRun &r : runs)
-        if (r.image) tiles.push_back({Tone(*r.image, rep.radiometric, zeroDb), TileLabel(r)});
-    ColourBar dbBar = DecibelBar(40, "intensity, 0 dB = " + Short(zeroDb));
-    Warn(StageSheetPng(files, path("grid.png"), tiles, rep.radiometric ? &dbBar : nullptr,
-                       "phasor compare: " + sceneName),
-         path("grid.png"));
-    add("grid.png");
+    if (c.refImage) tiles.push_back({Tone(c, *c.refImage), "reference\n" + c.ref.description});
+    for (const CompareRun &r : c.runs)
+        if (r.image) tiles.push_back({Tone(c, *r.image), TileLabel(r)});
+    ColourBar dbBar = DecibelBar(40, "intensity, 0 dB = " + Short(c.zeroDb));
+    WarnNoText(StageSheetPng(st.files, st.Path("grid.png"), tiles, c.rep.radiometric ? &dbBar : nullptr,
+                             "phasor compare: " + c.sceneName),
+               st.Path("grid.png"));
+    st.Add("grid.png");
+}
 
-    // Signed differences (I − R) / max(R), one symmetric scale for all: the largest 99.5th
-    // percentile of |I − R| / max(R) over the runs, rounded up to 1, 2 or 5 × 10^k.
-    const double norm = ref.peak > 0 ? ref.peak : 1;
+// ---- 3. Signed differences (I − R) / max(R), one symmetric scale for all -------------------------
+// The scale: the largest 99.5th percentile of |I − R| / max(R) over the runs, rounded up to 1, 2 or
+// 5 × 10^k.
+struct Differences {
+    std::vector<Shown> runs;
     double limit = 0;
-    std::vector<std::vector<double>> diffs(runs.size());
-    for (std::size_t k = 0; k < runs.size(); ++k) {
-        const CompareRun &r = runs[k];
-        if (!r.image || r.isReference || ref.values.empty()) continue;
+};
+Differences StageDifferences(Staging &st, const Context &c) {
+    Differences out;
+    out.runs.resize(c.runs.size());
+    const double norm = c.ref.peak > 0 ? c.ref.peak : 1;
+    std::vector<std::vector<double>> diffs(c.runs.size());
+    for (std::size_t k = 0; k < c.runs.size(); ++k) {
+        const CompareRun &r = c.runs[k];
+        if (!r.image || r.isReference || c.ref.values.empty()) continue;
         std::vector<double> abs;
         for (std::size_t i = 0; i < r.intensity.size(); ++i) {
-            const double d = (r.intensity[i] - ref.values[i]) / norm;
+            const double d = (r.intensity[i] - c.ref.values[i]) / norm;
             diffs[k].push_back(std::isfinite(d) ? d : NaN);
             if (std::isfinite(d)) abs.push_back(std::abs(d));
         }
         if (abs.empty()) continue;
-        const std::size_t at = std::min(abs.size() - 1, std::size_t(std::ceil(0.995 * (abs.size() - 1))));
+        const std::size_t at = std::min(abs.size() - 1, std::size_t(std::ceil(0.995 * double(abs.size() - 1))));
         std::nth_element(abs.begin(), abs.begin() + std::ptrdiff_t(at), abs.end());
-        limit = std::max(limit, abs[at]);
+        out.limit = std::max(out.limit, abs[at]);
     }
-    limit = limit > 0 ? NiceCeil(limit) : 1e-6;
-    ColourBar diffBar;
-    diffBar.map = ColourMap::Diverging;
-    diffBar.title = ref.peak > 0 ? "(I - R) / max(R)" : "I - R";
-    for (double f : {-1.0, -0.5, 0.0, 0.5, 1.0}) {
-        char label[32];
-        std::snprintf(label, sizeof label, f == 0 ? "0" : "%+.3g", f * limit);
-        diffBar.ticks.push_back({(f + 1) / 2, label});
-    }
-    std::vector<Shown> diffShown(runs.size());
-    for (std::size_t k = 0; k < runs.size(); ++k) {
+    out.limit = out.limit > 0 ? NiceCeil(out.limit) : 1e-6;
+    ColourBar bar;
+    bar.map = ColourMap::Diverging;
+    bar.title = c.ref.peak > 0 ? "(I - R) / max(R)" : "I - R";
+    for (double f : {-1.0, -0.5, 0.0, 0.5, 1.0})
+        bar.ticks.push_back({(f + 1) / 2, f == 0 ? std::string("0") : fmt::format("{:+.3g}", f * out.limit)});
+    for (std::size_t k = 0; k < c.runs.size(); ++k) {
         if (diffs[k].empty()) continue;
-        const CompareRun &r = runs[k];
+        const CompareRun &r = c.runs[k];
         const std::string name = "diff_" + r.file + ".png";
         const Rgb8Image img =
-            MapColours(diffs[k], r.image->width, r.image->height, ColourMap::Diverging, -limit, limit);
-        Warn(StageSheetPng(files, path(name), {SheetTile{img, r.name + " - reference"}}, &diffBar,
-                           "(" + r.name + " - reference) / max(reference), clipped at +-" + Num(limit, 3)),
-             path(name));
-        diffShown[k] = {name, true};
-        add(name);
+            MapColours(diffs[k], r.image->width, r.image->height, ColourMap::Diverging, -out.limit, out.limit);
+        WarnNoText(StageSheetPng(st.files, st.Path(name), {SheetTile{img, r.name + " - reference"}}, &bar,
+                                 "(" + r.name + " - reference) / max(reference), clipped at +-" + Num(out.limit, 3)),
+                   st.Path(name));
+        out.runs[k] = {name, true};
+        st.Add(name);
     }
+    return out;
+}
 
-    // Results.
-    files.Stage(path("results.csv"), CsvTable(runs));
-    files.Stage(path("results.md"), MarkdownTable(runs, ref, rep));
-    add("results.csv");
-    add("results.md");
-
-    // A profile along a row or a column (a one-row image: its row), every run with the reference
-    // last (so that two images give |run − reference| and the pixel bar sits on the reference).
-    Shown profileShown;
-    const int row = rep.column < 0 && rep.row < 0 && rep.height == 1 ? 0 : rep.row;
-    if (row >= 0 || rep.column >= 0) {
-        if (row >= rep.height || rep.column >= rep.width)
-            throw Error(row >= 0 ? "--row " + std::to_string(row) + " is out of range (the image has " +
-                                       std::to_string(rep.height) + " rows)"
-                                 : "--column " + std::to_string(rep.column) + " is out of range (the image has " +
-                                       std::to_string(rep.width) + " columns)");
-        CliOptions po;
-        po.quiet = true;
-        auto &p = po.profile;
-        std::vector<const Image *> images;
-        for (const CompareRun &r : runs)
-            if (r.image && !r.isReference) {
-                p.inputs.push_back(path(r.file + ".exr"));
-                p.labels.push_back(r.name);
+// ---- 4. A profile along a row or a column (a one-row image: its row) ---------------------------
+// Every run with the reference last, so that two images give |run − reference| and the pixel bar
+// sits on the reference.
+Shown StageProfile(Staging &st, const Context &c, int row) {
+    const CompareReport &rep = c.rep;
+    if (row < 0 && rep.column < 0) return {};
+    if (row >= rep.height || rep.column >= rep.width)
+        throw Error(row >= 0 ? fmt::format("--row {} is out of range (the image has {} rows)", row, rep.height)
+                             : fmt::format("--column {} is out of range (the image has {} columns)", rep.column,
+                                           rep.width));
+    CliOptions po;
+    po.quiet = true;
+    auto &p = po.profile;
+    std::vector<const Image *> images;
+    for (int referenceLast = 0; referenceLast < 2; ++referenceLast)
+        for (const CompareRun &r : c.runs)
+            if (r.image && r.isReference == bool(referenceLast)) {
+                p.inputs.push_back(st.Path(r.file + ".exr"));
+                p.labels.push_back(Label(r));
                 images.push_back(&*r.image);
             }
-        for (const CompareRun &r : runs)
-            if (r.image && r.isReference) {
-                p.inputs.push_back(path(r.file + ".exr"));
-                p.labels.push_back(r.name);
-                images.push_back(&*r.image);
-            }
-        if (refImage) {
-            p.inputs.push_back(path("reference.exr"));
-            p.labels.push_back("reference");
-            images.push_back(refImage);
-        }
-        p.row = row;
-        p.column = rep.column;
-        p.csv = path("profile.csv");
-        p.plot = path("profile.png");
-        p.title = sceneName + ": intensity, " +
-                  (row >= 0 ? "row " + std::to_string(row) : "column " + std::to_string(rep.column));
-        std::string data;
-        if (RunProfile(po, images, &files, &data) != 0) throw Error("cannot draw the profile");
-        add("profile.csv");
-        if (data.empty()) {
-            add("profile.png");
-            profileShown = {"profile.png", true};
-        } else {
-            profileShown = {"profile.csv", false};
-        }
+    if (c.refImage) {
+        p.inputs.push_back(st.Path("reference.exr"));
+        p.labels.push_back("reference");
+        images.push_back(c.refImage);
     }
+    p.row = row;
+    p.column = rep.column;
+    p.csv = st.Path("profile.csv");
+    p.plot = st.Path("profile.png");
+    p.title = c.sceneName + ": intensity, " +
+              (row >= 0 ? "row " + std::to_string(row) : "column " + std::to_string(rep.column));
+    std::string data;
+    if (RunProfile(po, images, &st.files, &data) != 0) throw Error("cannot draw the profile");
+    st.Add("profile.csv");
+    if (!data.empty()) return {"profile.csv", false};
+    st.Add("profile.png");
+    return {"profile.png", true};
+}
 
-    // Convergence: the error of each sampling run against the reference after 1, 2, 4, … spp.
-    Shown convergenceShown;
-    std::ostringstream conv;
-    conv << "run,spp,seconds,rmse,rel_mse,max_error\n";
+// ---- 5. Convergence: each sampling run's error against the reference after 1, 3, 7, … spp -------
+Shown StageConvergence(Staging &st, const Context &c) {
+    if (c.ref.values.empty()) return {};  // no reference, no errors
+    std::string csv = "run,spp,seconds,rmse,rel_mse,max_error\n";
     int curves = 0;
-    for (const CompareRun &r : runs) {
-        if (!Sampling(r) || r.isReference || r.snapshots.size() < 2) continue;
+    for (const CompareRun &r : c.runs) {
+        if (r.deterministic || r.isReference || r.snapshots.size() < 2) continue;
         ++curves;
         for (const CompareSnapshot &s : r.snapshots) {
             const CompareMetrics m = s.metrics.value_or(CompareMetrics{});
-            conv << CsvField(r.name) << ',' << s.spp << ',' << Num(s.seconds, 6) << ',' << Num(m.rmse, 6) << ','
-                 << Num(m.relMse, 6) << ',' << Num(m.maxError, 6) << '\n';
+            csv += fmt::format("{},{},{},{},{},{}\n", CsvField(r.name), s.spp, Num(s.seconds, 6), Num(m.rmse, 6),
+                               Num(m.relMse, 6), Num(m.maxError, 6));
         }
     }
-    if (curves > 0) {
-        files.Stage(path("convergence.csv"), conv.str());
-        add("convergence.csv");
-        PlotRequest plot;
-        plot.command = "convergence";
-        plot.data = conv.str();
-        plot.args = {"--title", sceneName + ": error of intensity against the reference (" + ref.name + ")"};
-        if (StagePlot(files, path("convergence.png"), plot)) {
-            add("convergence.png");
-            convergenceShown = {"convergence.png", true};
+    if (curves == 0) return {};
+    st.files.Stage(st.Path("convergence.csv"), csv);
+    st.Add("convergence.csv");
+    PlotRequest plot;
+    plot.command = "convergence";
+    plot.data = csv;
+    plot.args = {"--title", c.sceneName + ": error of intensity against the reference (" + c.ref.name + ")"};
+    if (!StagePlot(st.files, st.Path("convergence.png"), plot)) return {"convergence.csv", false};
+    st.Add("convergence.png");
+    return {"convergence.png", true};
+}
+
+// ---- 6. The tables: CSV (full precision) and Markdown ------------------------------------------
+const char *MetricsNote =
+    "Errors of the `intensity` channel against the reference, over the pixels: RMSE = √mean((I − R)²); "
+    "relative MSE = mean((I − R)² / (R² + 0.01·mean(R)²)); max error = max |I − R| / max(R); RGB RMSE = "
+    "√mean((I − R)²) over the R, G, B channels (the colour error of cameras). The last column tests whether the "
+    "run and the reference can have the same expectation, given both images' noise (block χ², z > 3.09: "
+    "differs; docs/compare.md).";
+
+std::string CsvTable(const Context &c) {
+    std::string csv =
+        "integrator,role,status,spp,seconds,samples_per_second,rmse,rel_mse,max_error,rgb_rmse,noise_floor,"
+        "comparable,chi2,dof,z,verdict,error\n";
+    for (const CompareRun &r : c.runs) {
+        const bool rendered = Rendered(r);
+        const CompareMetrics m = r.metrics.value_or(CompareMetrics{});
+        const bool tested = r.test && r.test->tested;
+        csv += fmt::format(
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}\n", CsvField(Label(r)),
+            r.isReference ? "reference" : "compared", StatusName(r.status),
+            rendered && !r.deterministic && r.image ? std::to_string(r.sppReached) : "",
+            rendered ? Num(r.seconds, 4) : "", Num(SamplesPerSecond(r), 4), Num(m.rmse, 9), Num(m.relMse, 9),
+            Num(m.maxError, 9), Num(m.rgbRmse, 9), r.isReference ? Num(c.ref.noiseFloor, 9) : "",
+            r.metrics ? (r.comparable ? "true" : "false") : "", tested ? Num(r.test->chi2, 9) : "",
+            tested ? std::to_string(r.test->dof) : "", tested ? Num(r.test->z, 6) : "",
+            CsvField(Verdict(r, c.ref).first), CsvField(r.error));
+    }
+    return csv;
+}
+
+std::string MarkdownTable(const Context &c) {
+    const CompareReport &rep = c.rep;
+    std::string md = fmt::format("# phasor compare: {}\n\n`{}`\n\n", c.sceneName, rep.command);
+    md += fmt::format("- phasor {}\n- mode: {}\n- seed: {} (every compared run), sampler {}\n", rep.version,
+                      rep.modeText, rep.seed, rep.sampler);
+    std::string defines;
+    for (const auto &[k, v] : rep.defines) defines += (defines.empty() ? "" : ", ") + fmt::format("`-D {}={}`", k, v);
+    md += "- defines: " + (defines.empty() ? std::string("none (the scene's values)") : defines) + "\n";
+    if (c.ref.kind == CompareReference::Kind::None) {
+        md += "- reference: none — " + c.ref.description + "\n";
+    } else {
+        md += fmt::format("- reference: {}\n- independence: {}\n- reference noise floor: {} ({})\n", c.ref.description,
+                          c.ref.independence, Short(c.ref.noiseFloor), c.ref.noiseSource);
+        for (const std::string &w : c.ref.warnings) md += "- warning (reference): " + w + "\n";
+    }
+    if (!rep.stopped.empty())
+        md += "\nThe comparison was stopped (" + rep.stopped + ") before every integrator had finished.\n";
+    md += std::string("\n") + MetricsNote + "\n\n";
+    md += "| integrator | status | spp | time (s) | samples/s | RMSE | relative MSE | max error | RGB RMSE | against the "
+          "reference |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---|\n";
+    auto cell = [](std::string s) {
+        std::replace(s.begin(), s.end(), '|', '/');
+        return s;
+    };
+    for (const CompareRun &r : c.runs) {
+        const CompareMetrics m = r.metrics.value_or(CompareMetrics{});
+        const std::string rmse = r.isReference ? Short(c.ref.noiseFloor) + " (noise floor)" : Short(m.rmse);
+        md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", cell(Label(r)), cell(StatusText(r)),
+                          Rendered(r) && !r.deterministic && r.image ? std::to_string(r.sppReached) : "—",
+                          Rendered(r) ? Short(r.seconds) : "—", Short(SamplesPerSecond(r)), rmse, Short(m.relMse),
+                          Short(m.maxError), Short(m.rgbRmse), cell(Dash(Verdict(r, c.ref).first)));
+    }
+    std::string warnings;
+    for (const std::string &w : rep.sceneWarnings) warnings += "- scene: " + w + "\n";
+    for (const CompareRun &r : c.runs)
+        for (const std::string &w : r.warnings) warnings += "- " + Label(r) + ": " + w + "\n";
+    md += "\n## Warnings\n\n" + (warnings.empty() ? std::string("None.\n") : warnings);
+    return md;
+}
+
+// ---- 7. results.json and the page rendered from it ---------------------------------------------
+struct Figures {
+    RunImages images;
+    Differences diffs;
+    Shown profile, convergence;
+    int profileRow = -1;
+};
+
+Json ResultsJson(const Context &c, const Figures &f) {
+    const CompareReport &rep = c.rep;
+    const CompareReference &ref = c.ref;
+    Json j;
+    j["format"] = "phasor-compare-results";
+    j["format_version"] = 1;
+    j["phasor_version"] = rep.version;
+    j["command"] = rep.command;
+    j["scene"] = rep.scene;
+    j["scene_name"] = c.sceneName;
+    j["mode"] = {{"kind", rep.modeKind},
+                 {"text", rep.modeText},
+                 {"spp", rep.modeKind == "spp" ? Json(rep.spp) : Json(nullptr)},
+                 {"seconds", rep.modeKind == "time" ? Json(rep.seconds) : Json(nullptr)}};
+    j["seed"] = rep.seed;
+    j["sampler"] = rep.sampler;
+    j["defines"] = Json::array();
+    for (const auto &[k, v] : rep.defines) j["defines"].push_back({{"name", k}, {"value", v}});
+    j["detector"] = {{"name", rep.detector},      {"width", rep.width},
+                     {"height", rep.height},      {"radiometric", rep.radiometric},
+                     {"exposure_stops", rep.exposureStops}, {"auto_exposure", rep.autoExposure}};
+    j["reference"] = {{"kind", ref.kind == CompareReference::Kind::Image ? "image"
+                               : ref.kind == CompareReference::Kind::Run ? "run"
+                                                                         : "none"},
+                      {"name", ref.name},
+                      {"description", ref.description},
+                      {"independence", ref.independence},
+                      {"noise_floor", JsonNumber(ref.noiseFloor)},
+                      {"noise_source", ref.noiseSource},
+                      {"optics", ref.waveOptical ? Json(*ref.waveOptical ? "wave" : "ray") : Json(nullptr)},
+                      {"warnings", ref.warnings}};
+    j["metrics_note"] = [] {
+        std::string note = MetricsNote;
+        note.erase(std::remove(note.begin(), note.end(), '`'), note.end());
+        return note;
+    }();
+    j["runs"] = Json::array();
+    for (std::size_t k = 0; k < c.runs.size(); ++k) {
+        const CompareRun &r = c.runs[k];
+        const auto [verdict, verdictClass] = Verdict(r, ref);
+        Json run = {{"name", Label(r)},
+                    {"integrator", r.name},
+                    {"role", r.isReference ? "reference" : "compared"},
+                    {"status", StatusName(r.status)},
+                    {"status_text", StatusText(r)},
+                    {"error", r.error},
+                    {"optics", r.waveOptical ? "wave" : "ray"},
+                    {"deterministic", r.deterministic},
+                    {"work", r.work},
+                    {"spp", Rendered(r) && !r.deterministic && r.image ? Json(r.sppReached) : Json(nullptr)},
+                    {"seeds", r.deterministic ? std::vector<unsigned long long>{} : r.seeds},
+                    {"seconds", Rendered(r) ? JsonNumber(r.seconds) : Json(nullptr)},
+                    {"samples_per_second", JsonNumber(SamplesPerSecond(r))},
+                    {"tile_label", TileLabel(r, ": ")}};
+        if (r.metrics)
+            run["metrics"] = {{"rmse", JsonNumber(r.metrics->rmse)},
+                              {"rel_mse", JsonNumber(r.metrics->relMse)},
+                              {"max_error", JsonNumber(r.metrics->maxError)},
+                              {"rgb_rmse", JsonNumber(r.metrics->rgbRmse)}};
+        else
+            run["metrics"] = nullptr;
+        if (!verdict.empty()) {
+            run["verdict"] = {{"text", verdict}, {"class", verdictClass}, {"comparable", r.comparable}};
+            if (r.test && r.test->tested)
+                run["verdict"].update({{"chi2", JsonNumber(r.test->chi2)},
+                                       {"dof", r.test->dof},
+                                       {"z", JsonNumber(r.test->z)},
+                                       {"consistent", r.test->consistent}});
         } else {
-            convergenceShown = {"convergence.csv", false};
+            run["verdict"] = nullptr;
         }
+        run["warnings"] = r.warnings;
+        run["messages"] = r.messages;
+        const Shown &png = f.images.runs[k];
+        run["files"] = {{"exr", r.image ? Json(r.file + ".exr") : Json(nullptr)},
+                        {"png", png.file.empty() ? Json(nullptr) : Json(png.file)},
+                        {"png_is_image", png.image},
+                        {"diff", f.diffs.runs[k].file.empty() ? Json(nullptr) : Json(f.diffs.runs[k].file)}};
+        j["runs"].push_back(std::move(run));
     }
-
-    // Without matplotlib: one warning for every plot not drawn.
-    std::vector<std::string> notDrawn;
-    for (const Shown &x : shown)
-        if (!x.file.empty() && !x.image) notDrawn.push_back(x.file);
-    for (const Shown *x : {&refShown, &profileShown, &convergenceShown})
-        if (!x->file.empty() && !x->image) notDrawn.push_back(x->file);
-    if (!notDrawn.empty()) {
-        std::string list;
-        for (const std::string &f : notDrawn) list += (list.empty() ? "" : ", ") + f;
-        std::fprintf(stderr, "warning: %s; the plots are not drawn, their data is in %s\n",
-                     MatplotlibMissing().c_str(), list.c_str());
-    }
-
-    // The page.
-    std::ostringstream h;
-    // A figure; matplotlib's plots (`plot`) are shown at a fixed width, images at their size.
-    // Small renders are shown enlarged by the grid's whole factor.
+    j["scene_warnings"] = rep.sceneWarnings;
+    // Small renders are shown enlarged by the grid's whole factor (a radiometric render's PNG
+    // carries its colour bar, a one-row image is a line plot: both at their own size).
     Rgb8Image probe;
     probe.width = rep.width;
     probe.height = rep.height;
-    const int enlarged = rep.width * SheetScale({SheetTile{probe, ""}});
-    auto figure = [&](const Shown &s, const std::string &caption, const std::string &extraLink, bool plot = false,
-                      int width = 0) {
-        if (s.file.empty()) return;
-        h << (plot ? "<figure class=\"plot\">" : "<figure>");
-        if (s.image)
-            h << "<a href=\"" << Html(s.file) << "\"><img src=\"" << Html(s.file) << "\" alt=\"" << Html(caption)
-              << "\"" << (width > 0 ? " width=\"" + std::to_string(width) + "\"" : "") << "></a>";
-        else
-            h << "<p class=\"missing\">not drawn: " << Html(MatplotlibMissing()) << "; data: <a href=\"" << Html(s.file)
-              << "\">" << Html(s.file) << "</a></p>";
-        h << "<figcaption>" << Html(caption) << extraLink << "</figcaption></figure>\n";
+    const bool oneRow = rep.height == 1;
+    auto shownJson = [](const Shown &s) {
+        return s.file.empty() ? Json(nullptr) : Json{{"file", s.file}, {"image", s.image}};
     };
-    h << "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
-      << "<title>phasor compare: " << Html(sceneName) << "</title>\n"
-      << "<style>\n"
-         "body { font-family: sans-serif; margin: 1.5em; color: #222; }\n"
-         "table { border-collapse: collapse; margin: 0.5em 0; }\n"
-         "th, td { border: 1px solid #bbb; padding: 3px 9px; text-align: right; }\n"
-         "th { background: #eee; } td.name, td.status { text-align: left; }\n"
-         "tr.reference td { background: #f4f8ff; } tr.failed td { color: #a00; }\n"
-         "figure { display: inline-block; vertical-align: top; margin: 0 1.2em 1.2em 0; }\n"
-         "figure img { max-width: 100%; border: 1px solid #ddd; }\n"
-         "figure:not(.plot) img { image-rendering: pixelated; }\n"
-         "figure.plot img { width: 640px; }\n"
-         "figcaption { font-size: 90%; color: #444; }\n"
-         "code { background: #f3f3f3; padding: 1px 4px; } .missing { color: #a00; } .note { color: #555; }\n"
-         "</style>\n</head>\n<body>\n";
-    h << "<h1>phasor compare: " << Html(sceneName) << "</h1>\n";
-    h << "<p><code>" << Html(rep.command) << "</code></p>\n";
-    h << "<p>" << Html(rep.mode) << "; detector <code>" << Html(rep.detector) << "</code>, " << rep.width << "×"
-      << rep.height << " pixels, " << (rep.radiometric ? "radiometric (false colour in dB)" : "camera (OCIO display)")
-      << ".<br>Reference: " << Html(ref.description) << ".</p>\n";
-    if (rep.stopped)
-        h << "<p class=\"missing\">The comparison was stopped (Ctrl-C) before every integrator had finished; "
-             "what finished is shown.</p>\n";
-    h << "<h2>Results</h2>\n<table>\n<tr><th>integrator</th><th>status</th><th>spp</th><th>time (s)</th>"
-         "<th>samples/s</th><th>RMSE</th><th>relative MSE</th><th>max error</th></tr>\n";
-    for (std::size_t k = 0; k < runs.size(); ++k) {
-        const CompareRun &r = runs[k];
-        const TableRow t = RowOf(r);
-        const char *cls = r.status == CompareRun::Status::Failed ? " class=\"failed\""
-                          : r.isReference                        ? " class=\"reference\""
-                                                                 : "";
-        h << "<tr" << cls << "><td class=\"name\">";
-        if (r.image)
-            h << "<a href=\"" << Html(r.file) << ".exr\">" << Html(r.name) << "</a>";
-        else
-            h << Html(r.name);
-        h << "</td><td class=\"status\">" << Html(t.statusText) << "</td><td>" << Dash(t.spp) << "</td><td>"
-          << ShortField(t.seconds) << "</td><td>" << ShortField(t.rate) << "</td><td>" << ShortField(t.rmse)
-          << "</td><td>" << ShortField(t.relMse) << "</td><td>" << ShortField(t.maxError) << "</td></tr>\n";
+    j["figures"] = {
+        {"grid", "grid.png"},
+        {"grid_caption", rep.radiometric ? "intensity in dB, one scale for all (0 dB = the reference's peak, " +
+                                               Short(c.zeroDb) + ")"
+                                         : fmt::format("through the OpenColorIO display transform, one exposure for "
+                                                       "all ({:.3g} stops)",
+                                                       rep.exposureStops)},
+        {"one_row", oneRow},
+        {"display_width", oneRow || rep.radiometric ? 0 : rep.width * SheetScale({SheetTile{probe, ""}})},
+        {"reference_png", shownJson(f.images.reference)},
+        {"diff_limit", f.diffs.limit},
+        {"profile", f.profile.file.empty()
+                        ? Json(nullptr)
+                        : Json{{"file", f.profile.file},
+                               {"image", f.profile.image},
+                               {"caption", f.profileRow >= 0 ? "row " + std::to_string(f.profileRow)
+                                                             : "column " + std::to_string(rep.column)}}},
+        {"convergence", shownJson(f.convergence)}};
+    j["missing_plots"] = MatplotlibMissing();
+    j["stopped"] = rep.stopped.empty() ? Json(nullptr) : Json(rep.stopped);
+    return j;
+}
+
+// Plots not drawn (matplotlib missing): one warning naming their data files.
+void WarnPlotsNotDrawn(const Figures &f) {
+    std::vector<std::string> notDrawn;
+    for (const Shown &x : f.images.runs)
+        if (!x.file.empty() && !x.image) notDrawn.push_back(x.file);
+    for (const Shown *x : {&f.images.reference, &f.profile, &f.convergence})
+        if (!x->file.empty() && !x->image) notDrawn.push_back(x->file);
+    if (!notDrawn.empty())
+        fmt::print(stderr, "warning: {}; the plots are not drawn, their data is in {}\n", MatplotlibMissing(),
+                   fmt::join(notDrawn, ", "));
+}
+
+}  // namespace
+
+std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<CompareRun> &runs,
+                                             const CompareReference &ref, const Image *refImage,
+                                             const CompareReport &report) {
+    Staging st{files, report.dir, {}};
+    const Context c{runs, ref, refImage, report, fs::path(report.scene).filename().string(), ref.peak};
+    Figures f;
+    f.images = StageRunImages(st, c);
+    StageGrid(st, c);
+    f.diffs = StageDifferences(st, c);
+    f.profileRow = report.column < 0 && report.row < 0 && report.height == 1 ? 0 : report.row;
+    f.profile = StageProfile(st, c, f.profileRow);
+    f.convergence = StageConvergence(st, c);
+    WarnPlotsNotDrawn(f);
+
+    files.Stage(st.Path("results.csv"), CsvTable(c));
+    files.Stage(st.Path("results.md"), MarkdownTable(c));
+    const std::string json = ResultsJson(c, f).dump(2) + "\n";
+    files.Stage(st.Path("results.json"), json);
+    for (const char *name : {"results.csv", "results.md", "results.json"}) st.Add(name);
+
+    PlotRequest page;
+    page.module = "phasor_report.py";
+    page.command = "compare";
+    page.data = json;
+    if (StagePlot(files, st.Path("index.html"), page))
+        st.Add("index.html");
+    else
+        fmt::print(stderr, "warning: {}; index.html is not written (results.md and results.json are)\n",
+                   ModuleMissing("phasor_report.py"));
+    return st.written;
+}
+
+void PrintSummary(std::ostream &os, const std::vector<CompareRun> &runs, const CompareReference &ref) {
+    os << fmt::format("{:<16} {:<12} {:>8} {:>9} {:>11} {:>11} {:>11}  {}\n", "integrator", "status", "spp",
+                      "time", "RMSE", "max error", "RGB RMSE", "against the reference");
+    for (const CompareRun &r : runs) {
+        const CompareMetrics m = r.metrics.value_or(CompareMetrics{});
+        std::string status = StatusName(r.status);
+        if (r.isReference) status = "reference";
+        os << fmt::format("{:<16} {:<12} {:>8} {:>9} {:>11} {:>11} {:>11}  {}\n", Label(r), status,
+                          Rendered(r) && !r.deterministic && r.image ? std::to_string(r.sppReached) : "—",
+                          Rendered(r) ? FormatSeconds(r.seconds) : "—",
+                          r.isReference ? Short(ref.noiseFloor) + "*" : Short(m.rmse), Short(m.maxError),
+                          Short(m.rgbRmse), Verdict(r, ref).first);
     }
-    std::string note = MetricsNote;
-    note.erase(std::remove(note.begin(), note.end(), '`'), note.end());
-    h << "</table>\n<p class=\"note\">" << Html(note)
-      << " Full precision: <a href=\"results.csv\">results.csv</a>, <a href=\"results.md\">results.md</a>.</p>\n";
-    h << "<h2>Side by side</h2>\n";
-    figure({"grid.png", true},
-           rep.radiometric ? "intensity in dB, one scale for all (0 dB = the reference's peak, " + Short(zeroDb) + ")"
-                           : "through the OpenColorIO display transform",
-           "");
-    h << "<h2>Each integrator</h2>\n";
-    const bool plots = rep.height == 1;  // a one-row image is shown as a line plot
-    // (a radiometric render's PNG carries its colour bar: shown at its own size)
-    const int width = plots || rep.radiometric ? 0 : enlarged;
-    if (refImage) figure(refShown, "reference: " + ref.description, "", plots, width);
-    for (std::size_t k = 0; k < runs.size(); ++k)
-        if (runs[k].image)
-            figure(shown[k], TileLabel(runs[k], ": "),
-                   " (<a href=\"" + Html(runs[k].file) + ".exr\">" + Html(runs[k].file) + ".exr</a>)", plots, width);
-    if (std::any_of(diffShown.begin(), diffShown.end(), [](const Shown &s) { return !s.file.empty(); })) {
-        h << "<h2>Difference from the reference</h2>\n<p class=\"note\">(I − R) / max(R), blue below and red above "
-             "the reference; one scale for all, clipped at ±"
-          << Html(Num(limit, 3)) << ".</p>\n";
-        for (std::size_t k = 0; k < runs.size(); ++k) figure(diffShown[k], runs[k].name + " − reference", "");
-    }
-    if (!profileShown.file.empty()) {
-        h << "<h2>Profile</h2>\n";
-        figure(profileShown, row >= 0 ? "row " + std::to_string(row) : "column " + std::to_string(rep.column),
-               " (<a href=\"profile.csv\">profile.csv</a>)", true);
-    }
-    if (!convergenceShown.file.empty()) {
-        h << "<h2>Convergence</h2>\n";
-        figure(convergenceShown, "error against the reference as the samples accumulate (the render loop's passes)",
-               " (<a href=\"convergence.csv\">convergence.csv</a>)");
-    }
-    bool anyFailed = false;
-    for (const CompareRun &r : runs) anyFailed |= r.status == CompareRun::Status::Failed;
-    if (anyFailed) {
-        h << "<h2>Failures</h2>\n<ul>\n";
-        for (const CompareRun &r : runs)
-            if (r.status == CompareRun::Status::Failed)
-                h << "<li><code>" << Html(r.name) << "</code>: " << Html(r.error) << "</li>\n";
-        h << "</ul>\n";
-    }
-    h << "</body>\n</html>\n";
-    files.Stage(path("index.html"), h.str());
-    add("index.html");
-    return written;
+    if (std::isfinite(ref.noiseFloor)) os << "* the reference's noise floor (" << ref.noiseSource << ")\n";
+}
+
+std::string FormatSeconds(double s) {
+    if (!std::isfinite(s)) return "—";
+    if (s < 60) return FormatNumber(s, 3) + " s";
+    return fmt::format("{}m{:02d}s", int(s) / 60, int(s) % 60);
 }
 
 }  // namespace phasor

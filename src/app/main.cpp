@@ -31,52 +31,6 @@ using namespace phasor;
 
 namespace {
 
-// The usage text, in two parts around the list of families (from the registry).
-const char *kUsageHead =
-    "usage: phasor <command> [options]\n"
-    "\n"
-    "commands:\n"
-    "  render SCENE [-o FILE] [--spp N] [--threads N] [--seed S] [--integrator NAME]\n"
-    "               [--sampler sobol|independent] [-D name=value ...] [--strict | --permissive]\n"
-    "               [--quiet] [--sweep NAME=v1,v2,... ...] [--checkpoint SECONDS]\n"
-    "                      render SCENE to FILE (.exr; a .png is written beside it); --sweep: one\n"
-    "                      render per value (FILE-NAME=v.exr); --checkpoint: FILE.ckpt every SECONDS\n"
-    "  render --resume FILE.ckpt [--spp N] [...]\n"
-    "                      continue a checkpointed render (bit for bit); under mpirun/srun the\n"
-    "                      ranks share the work (docs/distributed.md)\n"
-    "  check SCENE [-D name=value ...] [--strict | --permissive]\n"
-    "                      load and validate only; exit status 0 if the scene is valid\n"
-    "                      (unknown parameters and -D names that match no Define are errors;\n"
-    "                      --permissive makes them warnings, --strict makes every warning an error)\n"
-    "  format SCENE        print SCENE in canonical form\n"
-    "  list [FAMILY]       list the plug-ins of every family or of FAMILY, one of\n";
-const char *kUsageTail =
-    "  describe [FAMILY] NAME print a plug-in's parameters (FAMILY only if NAME is in several)\n"
-    "  describe --markdown    print every plug-in's parameters as Markdown (docs/plugins.md)\n"
-    "  profile IMAGE.exr [IMAGE.exr ...] [--row N | --column N] [--channel NAME] [--csv FILE|-]\n"
-    "          [--plot FILE.png] [--label NAME ...] [--x0 M --pitch M] [--diff-scale N] [--title TEXT]\n"
-    "                      one row (default: the middle one) or column of a channel (default:\n"
-    "                      intensity) of each image as CSV (stdout unless --csv/--plot) and/or a line\n"
-    "                      plot (matplotlib); with two images also |a - b| and max |a - b| / max(b)\n"
-    "  probe SCENE --material NAME --theta ANGLE [--phi ANGLE] --lambda LENGTH [--uv U V]\n"
-    "        [--samples N] [--seed S] [--ray] [--csv FILE|-] [--plot FILE.png] [-D name=value ...]\n"
-    "                      one kernel of SCENE lit from (theta, phi) at wavelength lambda (e.g. 30deg,\n"
-    "                      550nm): reflectance R and transmittance T (power; continuous lobes by Monte\n"
-    "                      Carlo with a standard error), each near-delta lobe's direction and efficiency;\n"
-    "                      --ray: the ray-optics limit; --plot: the angular distribution\n"
-    "  compare SCENE --integrators A,B[,...]|all [--spp N | --time SECONDS]\n"
-    "          [--reference FILE.exr | --reference-integrator NAME [--reference-spp N]]\n"
-    "          [--row N | --column N] [-o DIR] [-D name=value ...] [--seed S] [--threads N] [--quiet]\n"
-    "                      render SCENE with each integrator (equal spp or equal time) and compare\n"
-    "                      them: EXR/PNG each, grid, differences, table, plots, DIR/index.html\n"
-    "  --version, --help\n";
-
-std::string Usage() {
-    std::string families;
-    for (const FamilyInfo &f : AllFamilies()) families += " " + f.family;
-    return kUsageHead + std::string("                     ") + families + "\n" + kUsageTail;
-}
-
 int Check(const CliOptions &o) {
     Diagnostics diag(o.strict);
     auto scene = Load(o, diag);
@@ -220,7 +174,7 @@ class StdoutCapture {
 
 int RunCommand(const CliOptions &o) {
     switch (o.command) {
-        case Command::Help: std::cout << Usage(); return 0;
+        case Command::Help: std::cout << UsageText(o.helpFor); return 0;
         case Command::Version: std::cout << "phasor " << PHASOR_VERSION << "\n"; return 0;
         case Command::Render: return RunRender(o);
         case Command::Check: return Check(o);
@@ -244,7 +198,7 @@ int RunOnRank(const CliOptions &o, StdoutCapture &out) {
         return together ? status : dist::Agree(status);
     } catch (const Error &e) {
         out.Flush(1);
-        std::cerr << (e.Loc().Known() ? e.Loc().ToString() + ": " : "") << "error: " << e.Message() << "\n";
+        PrintError(e);
         return together ? 1 : dist::Agree(1);
     } catch (const std::exception &e) {
         out.Flush(2);
@@ -266,8 +220,13 @@ int main(int argc, char **argv) {
     } finish;
     CliOptions o;
     std::string err;
+    if (argc < 2) {  // no command: the usage text is what was asked for
+        if (dist::Root()) std::cerr << UsageText();
+        return 1;
+    }
     if (!ParseCommandLine(argc, argv, o, err)) {  // every rank sees the same arguments
-        std::cerr << "error: " << err << "\n" << Usage();
+        // One line: the mistake and where to read more (never the whole usage text after it).
+        if (dist::Root()) std::cerr << "error: " << err << "\n";
         return 1;
     }
     StdoutCapture out;

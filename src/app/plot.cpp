@@ -16,6 +16,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -136,9 +137,13 @@ std::string LastLine(const std::string &text) {
 }
 
 std::mutex gMutex;
-std::string gKey;                         // $PHASOR_PYTHON when the interpreter was looked for
-std::optional<std::string> gInterpreter;  // the one that works; "" when none does
-std::string gMissing;                     // why none works
+// Per module: the interpreter that runs it, looked for once per value of $PHASOR_PYTHON.
+struct ModuleState {
+    std::string key;                         // $PHASOR_PYTHON when the interpreter was looked for
+    std::optional<std::string> interpreter;  // the one that works; "" when none does
+    std::string missing;                     // why none works
+};
+std::map<std::string, ModuleState> gModules;
 
 std::string PythonVariable() {
     const char *p = std::getenv("PHASOR_PYTHON");
@@ -150,44 +155,61 @@ std::vector<std::string> Candidates() {
     return {"python3", "/usr/bin/python3"};
 }
 
-}  // namespace
+// The library a module needs and the Debian package that has it.
+std::pair<std::string, std::string> Needs(const std::string &module) {
+    if (module == "phasor_report.py") return {"jinja2", "python3-jinja2"};
+    return {"matplotlib", "python3-matplotlib"};
+}
 
-std::string PlotModulePath() {
+// The module's file: share/phasor/<module> beside the directory of the phasor executable
+// ($PHASOR_PLOT_MODULE overrides the plot module).
+std::string ModulePath(const std::string &module) {
     std::error_code ec;
-    fs::path module;
-    if (const char *p = std::getenv("PHASOR_PLOT_MODULE"); p && *p) {
-        module = p;
+    fs::path path;
+    if (const char *p = std::getenv("PHASOR_PLOT_MODULE"); p && *p && module == "phasor_plot.py") {
+        path = p;
     } else {
         const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
         if (ec) return "";
-        module = exe.parent_path().parent_path() / "share" / "phasor" / "phasor_plot.py";
+        path = exe.parent_path().parent_path() / "share" / "phasor" / module;
     }
-    return fs::is_regular_file(module, ec) ? module.string() : "";
+    return fs::is_regular_file(path, ec) ? path.string() : "";
 }
 
-std::string MatplotlibMissing() {
+}  // namespace
+
+std::string PlotModulePath() { return ModulePath("phasor_plot.py"); }
+
+std::string ModuleMissing(const std::string &module) {
     std::lock_guard<std::mutex> lock(gMutex);
-    return (gMissing.empty() ? std::string("matplotlib is not available") : gMissing) +
-           " (install it with: apt-get install python3-matplotlib)";
+    const auto [library, package] = Needs(module);
+    const auto it = gModules.find(module);
+    const std::string why = it == gModules.end() || it->second.missing.empty() ? library + " is not available"
+                                                                                : it->second.missing;
+    return why + " (install it with: apt-get install " + package + ")";
 }
+
+std::string MatplotlibMissing() { return ModuleMissing("phasor_plot.py"); }
 
 bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &request) {
     std::lock_guard<std::mutex> lock(gMutex);
-    if (PythonVariable() != gKey) {  // look again for another $PHASOR_PYTHON
-        gKey = PythonVariable();
-        gInterpreter.reset();
-        gMissing.clear();
+    ModuleState &state = gModules[request.module];
+    if (PythonVariable() != state.key) {  // look again for another $PHASOR_PYTHON
+        state.key = PythonVariable();
+        state.interpreter.reset();
+        state.missing.clear();
     }
-    if (gInterpreter && gInterpreter->empty()) return false;  // known to be missing
-    const std::string module = PlotModulePath();
+    if (state.interpreter && state.interpreter->empty()) return false;  // known to be missing
+    const std::string module = ModulePath(request.module);
     if (module.empty()) {
         // Not a missing optional library: the installation is broken.
-        throw Error(FileLoc{path}, "cannot write '" + path +
-                                       "': the plot module phasor_plot.py is missing (expected in share/phasor/ "
-                                       "beside the directory of the phasor program; $PHASOR_PLOT_MODULE overrides)");
+        throw Error(FileLoc{path}, "cannot write '" + path + "': the module " + request.module +
+                                       " is missing (expected in share/phasor/ beside the directory of the phasor "
+                                       "program" +
+                                       (request.module == "phasor_plot.py" ? "; $PHASOR_PLOT_MODULE overrides)" : ")"));
     }
     const std::string ext = fs::path(path).extension().string();
-    const std::string format = ext == ".svg" ? "svg" : ext == ".pdf" ? "pdf" : "png";
+    const std::string format = ext == ".svg" ? "svg" : ext == ".pdf" ? "pdf" : ext == ".html" ? "html" : "png";
 
     auto fail = [&](const std::string &reason) -> Error {
         return Error(FileLoc{path}, "cannot write '" + path + "': " + reason);
@@ -202,7 +224,8 @@ bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &r
     }
 
     return files.StageWritten(path, [&](const std::string &temp) {
-        std::vector<std::string> candidates = gInterpreter ? std::vector<std::string>{*gInterpreter} : Candidates();
+        std::vector<std::string> candidates =
+            state.interpreter ? std::vector<std::string>{*state.interpreter} : Candidates();
         std::string missing;
         for (const std::string &python : candidates) {
             std::vector<std::string> args = {python,       "-B",    module, request.command, "--data",
@@ -217,17 +240,18 @@ bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &r
                 missing += (missing.empty() ? "" : ", ") + python;
                 continue;
             }
-            gInterpreter = python;
-            if (r.signal) throw fail("the plot module was killed by signal " + std::to_string(r.signal));
+            state.interpreter = python;
+            if (r.signal) throw fail("the module " + request.module + " was killed by signal " + std::to_string(r.signal));
             if (r.status != 0) {
                 const std::string reason = LastLine(r.output);
-                throw fail(reason.empty() ? "the plot module failed (exit status " + std::to_string(r.status) + ")"
+                throw fail(reason.empty() ? "the module " + request.module + " failed (exit status " +
+                                                std::to_string(r.status) + ")"
                                           : reason);
             }
             return true;
         }
-        gInterpreter = "";
-        gMissing = "no Python with matplotlib found (tried " + missing + ")";
+        state.interpreter = "";
+        state.missing = "no Python with " + Needs(request.module).first + " found (tried " + missing + ")";
         return false;
     });
 }

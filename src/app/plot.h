@@ -13,9 +13,11 @@ namespace phasor {
 
 class OutputFiles;
 
-/// One plot: a command of phasor_plot.py with its data and options.
+/// One plot: a command of phasor_plot.py with its data and options — or a page: a command of
+/// phasor_report.py (jinja2 templates), which the same machinery runs.
 struct PlotRequest {
-    std::string command;  // "profile", "convergence", "disc-map"
+    std::string module = "phasor_plot.py";  // beside it: phasor_report.py
+    std::string command;                     // "profile", "convergence", "disc-map"; "compare"
     std::string data;     // CSV text, passed as --data
     /// Further CSV inputs: option → CSV text (e.g. {"--points", "u,v,label\n…"}).
     std::vector<std::pair<std::string, std::string>> extraData;
@@ -33,6 +35,9 @@ struct PlotRequest {
 /// matplotlib is used from then on (while $PHASOR_PYTHON stays the same). It runs in its own process group (a Ctrl-C at
 /// the terminal stops phasor's render, not a plot being drawn), without writing bytecode.
 bool StagePlot(OutputFiles &files, const std::string &path, const PlotRequest &request);
+/// Why `module` could not run (no Python with its library: matplotlib for phasor_plot.py,
+/// jinja2 for phasor_report.py), with the Debian package that provides it.
+std::string ModuleMissing(const std::string &module);
 
 /// A value over projected hemispheres, e.g. a kernel's angular distribution (`phasor probe`): one
 /// or more discs, each an n × n grid over [−1, 1]² in (u, v) = (sinθ cosφ, sinθ sinφ), `values[j·n +

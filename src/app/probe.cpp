@@ -37,6 +37,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -47,6 +48,8 @@
 #include <vector>
 
 #include "app/plot.h"
+#include "app/render_common.h"
+#include "app/text.h"
 #include "core/diagnostics.h"
 #include "core/image/image_io.h"
 #include "core/render/material.h"
@@ -92,6 +95,7 @@ double ParseQuantity(const std::string &flag, const std::string &text, Dim dim, 
 // What probe measured.
 struct ProbeLobe {
     int id = 0;
+    std::string name;  // the kernel's name of the lobe (Material::LobeName): a grating's order
     bool transmission = false;
     Vec3 wo;
     double efficiency = 0;  // power fraction
@@ -115,11 +119,60 @@ Vec3 RotateZ(const Vec3 &w, double psi) {
 // θ from the +z normal [0, π] and φ from +x in (−π, π] (0 on the normal, where it is undefined).
 double ThetaOf(const Vec3 &w) { return std::acos(Clamp(w.z, -1.0, 1.0)); }
 double PhiOf(const Vec3 &w) {
-    if (std::hypot(w.x, w.y) < 1e-15) return 0.0;
-    return std::atan2(w.y + 0.0, w.x);  // + 0.0: −0 → +0, so the −x axis is π, not −π
+    const double r = std::hypot(w.x, w.y);
+    if (r < 1e-15) return 0.0;
+    // A component below 1e-12 of the transverse length is round-off (a direction turned back from
+    // the kernel's frame by −ψ), not an angle: φ = 0 or π exactly, never 3.5e-15 or −π. (+0.0 for
+    // y on the −x axis: atan2(+0, x < 0) = π.)
+    const double x = std::abs(w.x) <= 1e-12 * r ? 0.0 : w.x, y = std::abs(w.y) <= 1e-12 * r ? 0.0 : w.y;
+    return std::atan2(y + 0.0, x);
 }
 
-ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64_t seed) {
+// Progress of the Monte-Carlo loop, as `render` shows it: a bar with the ETA on a terminal
+// (`bar`), and once, after a quarter of a second of sampling, the whole run's time extrapolated
+// from it — a warning (WorkWarning) when it is far beyond the usual.
+class SampleProgress {
+  public:
+    SampleProgress(long long total, bool bar) : total_(total), bar_(bar), start_(Clock::now()), last_(start_) {}
+    ~SampleProgress() {
+        if (drawn_) std::fputc('\n', stderr);
+    }
+    /// After `done` samples (called every Stride samples).
+    void operator()(long long done) {
+        const auto now = Clock::now();
+        const double t = std::chrono::duration<double>(now - start_).count();
+        if (!estimated_ && t > 0.25) {
+            estimated_ = true;
+            char what[128];
+            std::snprintf(what, sizeof what, "%.3g samples at %.3g us per sample, one thread", double(total_),
+                          t / double(done) * 1e6);
+            const std::string w = WorkWarning(t / double(done) * double(total_), what,
+                                              "lower --samples (its standard error falls only as 1/sqrt(samples); "
+                                              "the report states it)",
+                                              "probe");
+            if (!w.empty()) std::fprintf(stderr, "%swarning: %s\n", drawn_ ? "\r" : "", w.c_str());
+        }
+        if (!bar_ || std::chrono::duration<double>(now - last_).count() < 0.1) return;
+        last_ = now;
+        drawn_ = true;
+        const double frac = double(done) / double(total_);
+        const int width = 30, filled = int(frac * width);
+        std::fprintf(stderr, "\rprobe [%s%s] %3d%% %.3g/%.3g samples  %s elapsed  ETA %s   ",
+                     std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(), int(frac * 100),
+                     double(done), double(total_), FormatDuration(t).c_str(),
+                     FormatDuration(frac > 0 ? t / frac - t : 0).c_str());
+        std::fflush(stderr);
+    }
+    static constexpr long long Stride = 4096;
+
+  private:
+    using Clock = std::chrono::steady_clock;
+    long long total_;
+    bool bar_, estimated_ = false, drawn_ = false;
+    Clock::time_point start_, last_;
+};
+
+ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64_t seed, bool bar) {
     ProbeResult r;
     NearDeltaLobes lobes;
     m.ListNearDelta(q, lobes);
@@ -130,6 +183,7 @@ ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64
     for (const NearDeltaLobe &l : lobes) {
         ProbeLobe p;
         p.id = l.id;
+        p.name = m.LobeName(l.id);
         p.transmission = (l.flags & ScatterTransmission) != 0;
         p.wo = l.wo[0];
         const NearDeltaLobe *carrier = &l;
@@ -156,7 +210,9 @@ ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64
     ScatterQuery qw = q;                            // a query at w (fromSource)
     double etaFar = 0;  // η_t/η_i into the far side, from the kernel's transmitted samples (fromSource)
     bool farUnknown = false;
+    SampleProgress progress(samples, bar);
     for (long long n = 1; n <= samples; ++n) {
+        if (n % SampleProgress::Stride == 0) progress(n);
         const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
         double xr = 0, xt = 0;
         const std::optional<ScatterSample> s = m.Sample(q, u0, Vec2(u1, u2));
@@ -213,7 +269,7 @@ std::string CsvText(const ProbeResult &r) {
     os << "R,,,," << Num(r.R(), 12) << ',' << Num(r.seR, 12) << '\n';
     os << "T,,,," << Num(r.T(), 12) << ',' << Num(r.seT, 12) << '\n';
     for (const ProbeLobe &l : r.lobes)
-        os << "lobe," << l.id << ',' << Num(ThetaOf(l.wo), 15) << ',' << Num(PhiOf(l.wo), 15) << ','
+        os << "lobe," << CsvField(l.name) << ',' << Num(ThetaOf(l.wo), 15) << ',' << Num(PhiOf(l.wo), 15) << ','
            << Num(l.efficiency, 12) << ",0\n";
     return os.str();
 }
@@ -253,8 +309,8 @@ std::string ReportText(const std::string &material, const std::string &type, con
     os << "  kind          order  theta_o [deg]  phi_o [deg]  efficiency\n";
     for (const ProbeLobe &l : r.lobes) {
         char line[160];
-        std::snprintf(line, sizeof line, "  %-12s  %5d  %13s  %11s  %s\n",
-                      l.transmission ? "transmission" : "reflection", l.id, DegText(ThetaOf(l.wo)).c_str(),
+        std::snprintf(line, sizeof line, "  %-12s  %5s  %13s  %11s  %s\n",
+                      l.transmission ? "transmission" : "reflection", l.name.c_str(), DegText(ThetaOf(l.wo)).c_str(),
                       DegText(PhiOf(l.wo)).c_str(), Num(l.efficiency, 9).c_str());
         os << line;
     }
@@ -333,6 +389,13 @@ int RunProbe(const CliOptions &o) {
             throw ProbeError{"'--theta' " + p.theta + " is grazing (the light runs along the surface): no "
                              "kernel scatters it; use an angle below or above 90deg"};
         if (!(lambda > 0)) throw ProbeError{"'--lambda' must be positive; got '" + p.lambda + "'"};
+        // Far outside the optical range the kernels (thin surfaces, smooth interfaces) and their
+        // index data (named materials: 200 nm – a few µm) are written for: a warning, the answer anyway.
+        if (lambda < 100e-9 || lambda > 1e-3)
+            std::cerr << "warning: '--lambda' " << p.lambda
+                      << " is far outside the optical range phasor's kernels model (100 nm – 1 mm): their surface "
+                         "models assume wavelengths far above atomic scales and the named materials' indices are "
+                         "tabulated from 200 nm to a few um (docs/kernels.md)\n";
 
         // The scene: parsed and resolved whole, but only the material (and what it refers to) is built,
         // so a scene without lights or a detector (a material library) can be probed.
@@ -402,7 +465,7 @@ int RunProbe(const CliOptions &o) {
         const double psi = reference.value_or(0.0);
         q.wi = RotateZ(q.wi, psi);
         const uint64_t seed = o.seed >= 0 ? uint64_t(o.seed) : 0;
-        ProbeResult result = Measure(*material, q, p.samples, seed);
+        ProbeResult result = Measure(*material, q, p.samples, seed, !o.quiet && isatty(2));
         for (ProbeLobe &l : result.lobes) l.wo = RotateZ(l.wo, -psi);
 
         const std::string report = ReportText(name, type, o, theta, phi, lambda, uv, seed, result,

@@ -102,6 +102,8 @@ int WriteRender(const CliOptions &o, const Scene &scene, const Film &film, const
     Image img = film.Resolve();
     StampMetadata(img, scene, o.scene, opt, st);
     if (!o.run.resume.empty()) img.metadata["phasor:resumed_from"] = o.run.resume;
+    const double stops = DisplayStops(det, img);
+    StampDisplayExposure(img, det, stops);
     // The EXR and the PNG are written all or nothing (core/image/output_file.h): if either fails,
     // neither appears (and earlier files of those names are left as they were).
     std::string shown, dopWritten;
@@ -110,7 +112,7 @@ int WriteRender(const CliOptions &o, const Scene &scene, const Film &film, const
         WriteExr(files, p.exr.string(), img);
         shown = StageDisplayPng(files, p.png.string(), img,
                                 det.Response().GetKind() == SensorResponse::Kind::Radiometric, integrator.name,
-                                fs::path(o.scene).filename().string() + ": intensity");
+                                fs::path(o.scene).filename().string() + ": intensity", 0, stops);
         if (p.stokes && img.ChannelIndex("DoP") >= 0) {
             const SheetResult r = StageDegreeOfPolarizationPng(files, p.dop.string(), img);
             if (!r.textDrawn) std::cerr << "warning: " << r.textProblem << "; '" << p.dop.string() << "' has no text\n";

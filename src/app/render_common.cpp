@@ -108,7 +108,9 @@ std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag, SceneDesc *d
 }
 
 void PrintError(const Error &e) {
-    if (e.Loc().Known()) {  // an error about a scene object: file:line:col with its source line
+    // A place in a scene (a line): file:line:col with its source line. An error about a whole file
+    // (an output that cannot be written) names the file in its message: printed once.
+    if (e.Loc().Known() && e.Loc().line > 0) {
         Diagnostics located;
         located.Report(e);
         located.Print(std::cerr);
@@ -200,6 +202,7 @@ void StampMetadata(Image &img, const Scene &scene, const std::string &scenePath,
     const Integrator &integrator = scene.GetIntegrator();
     img.metadata["phasor:scene"] = scenePath;
     img.metadata["phasor:integrator"] = integrator.ToString();
+    img.metadata["phasor:optics"] = integrator.WaveOptical() ? "wave" : "ray";  // (`compare` reads it)
     if (integrator.Deterministic()) {
         img.metadata.erase("phasor:samples_per_pixel");  // rs takes no samples
     } else {
@@ -221,8 +224,21 @@ void StampMetadata(Image &img, const Scene &scene, const std::string &scenePath,
     }
 }
 
+double DisplayStops(const Detector &det, const Image &basis) {
+    if (det.Response().GetKind() == SensorResponse::Kind::Radiometric) return 0;
+    return det.Exposure().ev + (det.Exposure().automatic ? AutoExposureStops(basis) : 0);
+}
+
+void StampDisplayExposure(Image &img, const Detector &det, double stops) {
+    if (det.Response().GetKind() == SensorResponse::Kind::Radiometric) return;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.6g", stops);
+    img.metadata["phasor:display_exposure"] = buf;
+    img.metadata["phasor:auto_exposure"] = det.Exposure().automatic ? "true" : "false";
+}
+
 std::string StageDisplayPng(OutputFiles &files, const std::string &png, const Image &img, bool radiometric,
-                            const std::string &label, const std::string &title, double zeroDb) {
+                            const std::string &label, const std::string &title, double zeroDb, double stops) {
     if (img.height == 1) {
         // A one-row image as a PNG would be N×1 pixels: `phasor profile`'s line plot of its
         // intensity instead (x in metres from the metadata for sensor planes).
@@ -240,19 +256,36 @@ std::string StageDisplayPng(OutputFiles &files, const std::string &png, const Im
         const SheetResult r = WriteFalseColorPng(files, png, img, "intensity", 40, zeroDb);
         if (!r.textDrawn) std::cerr << "warning: " << r.textProblem << "; '" << png << "' has no text\n";
     } else {
-        WritePng(files, png, img);
+        DisplayOptions display;
+        display.exposure = stops;
+        WritePng(files, png, img, display);
     }
     return png;
 }
 
-void PrintRenderWarnings(const Scene &scene, const RenderStats &st, const Image &img) {
-    for (const std::string &w : st.counters.Warnings()) std::cerr << "warning: " << w << "\n";
+std::vector<std::string> RenderWarnings(const Scene &scene, const RenderStats &st, const Image &img) {
+    std::vector<std::string> out = st.counters.Warnings();
     if (!st.cancelled && std::all_of(img.data.begin(), img.data.end(), [](float v) { return v == 0; }))
-        std::cerr << "warning: the image is black: " << scene.DarkImageCause() << "\n";
+        out.push_back("the image is black: " + scene.DarkImageCause());
     if (st.invalidSamples > 0)
-        std::cerr << "warning: " << st.invalidSamples
-                  << " samples were NaN, negative or beyond the float range of the image (|v| > 3.4e38) "
-                     "and were discarded (counted in phasor:invalid_samples)\n";
+        out.push_back(std::to_string(st.invalidSamples) +
+                      " samples were NaN, negative or beyond the float range of the image (|v| > 3.4e38) and were "
+                      "discarded (counted in phasor:invalid_samples)");
+    return out;
+}
+
+std::vector<std::string> PrintRenderWarnings(const Scene &scene, const RenderStats &st, const Image &img) {
+    std::vector<std::string> warnings = RenderWarnings(scene, st, img);
+    for (const std::string &w : warnings) std::cerr << "warning: " << w << "\n";
+    return warnings;
+}
+
+std::vector<std::string> WarningsOf(const Diagnostics &diag) {
+    std::vector<std::string> out;
+    for (const Diagnostic &d : diag.All())
+        if (d.severity == Severity::Warning)
+            out.push_back((d.loc.Known() ? d.loc.ToString() + ": " : std::string()) + d.message);
+    return out;
 }
 
 }  // namespace phasor

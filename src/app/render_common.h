@@ -46,7 +46,8 @@ std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Di
 /// ParseScene + BuildScene with o.integrator: nullptr after errors (all of them printed). The
 /// description read goes to `desc` when given.
 std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag, SceneDesc *desc = nullptr);
-/// Prints an error: `file:line:col: error: …` with the source line when it has a location.
+/// Prints an error: `file:line:col: error: …` with the source line when it has a location in a
+/// file, else `error: …` (a file-level error names its file in its message, once).
 void PrintError(const Error &e);
 
 // ---- rendering ----------------------------------------------------------------------------------
@@ -74,16 +75,28 @@ std::function<void(int, int)> ProgressBar(const std::string &label, bool determi
 void StampMetadata(Image &img, const Scene &scene, const std::string &scenePath, const RenderOptions &opt,
                    const RenderStats &st);
 
+/// The exposure [stops] a camera's image is shown with (Detector::Exposure): `exposure` plus, with
+/// `auto_exposure`, AutoExposureStops of `basis` (the image itself; in `compare`, the reference, so
+/// that every run is shown alike). 0 for radiometric detectors (shown in dB).
+double DisplayStops(const Detector &det, const Image &basis);
+/// Records the display's exposure in the image's metadata (phasor:display_exposure, stops).
+void StampDisplayExposure(Image &img, const Detector &det, double stops);
+
 /// The PNG shown for a rendered image, staged in `files`: a one-row image as `phasor profile`'s
 /// line plot of its intensity (matplotlib), a radiometric detector's (`radiometric`) as the dB false colour with its
 /// colour bar (0 dB = `zeroDb`, ≤ 0: the image's maximum), a camera's through the OCIO display
-/// transform. Returns the file staged: `png`, or the plot's data (a .csv beside it) when matplotlib
+/// transform of 2^`stops` × the image (DisplayStops). Returns the file staged: `png`, or the plot's data (a .csv beside it) when matplotlib
 /// is missing, which the caller tells the user (MatplotlibMissing()). Throws phasor::Error.
 std::string StageDisplayPng(OutputFiles &files, const std::string &png, const Image &img, bool radiometric,
-                            const std::string &label, const std::string &title, double zeroDb = 0);
+                            const std::string &label, const std::string &title, double zeroDb = 0,
+                            double stops = 0);
 
 /// The warnings after a render: render-time events, a black image (with its likely cause),
-/// discarded samples.
-void PrintRenderWarnings(const Scene &scene, const RenderStats &st, const Image &img);
+/// discarded samples (without "warning: ").
+std::vector<std::string> RenderWarnings(const Scene &scene, const RenderStats &st, const Image &img);
+/// Prints RenderWarnings, each as "warning: …"; returns them.
+std::vector<std::string> PrintRenderWarnings(const Scene &scene, const RenderStats &st, const Image &img);
+/// The warnings of `diag`, each as "file:line:col: message".
+std::vector<std::string> WarningsOf(const Diagnostics &diag);
 
 }  // namespace phasor

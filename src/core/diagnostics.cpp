@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <sstream>
 
 namespace phasor {
@@ -118,6 +119,12 @@ std::size_t EditDistance(const std::string &a, const std::string &b) {
         std::swap(prev, cur);
     }
     return prev[b.size()];
+}
+
+std::string FormatRatio(double v) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", v);
+    return buf;
 }
 
 std::string Suggest(const std::string &name, const std::vector<std::string> &candidates) {

@@ -112,5 +112,7 @@ class Diagnostics {
 std::size_t EditDistance(const std::string &a, const std::string &b);
 /// The candidate closest to `name` if it is close enough to be a plausible typo, else "".
 std::string Suggest(const std::string &name, const std::vector<std::string> &candidates);
+/// A ratio or count for a message, to 3 significant digits ("1.2e+06", "3.5").
+std::string FormatRatio(double v);
 
 }  // namespace phasor

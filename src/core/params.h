@@ -166,6 +166,11 @@ struct Param {
 /// plug-in's schema, then read by the plug-in's Create(). Every accessor marks the parameter used
 /// and falls back to the schema default; reading a parameter that is absent, not required and has
 /// no default is an internal error (use Has() first).
+/// The `.wscene` format version this phasor writes (docs/wscene.md §2): 2 since light strengths are
+/// totals over their spectrum; version 1 files are still read (a light whose strength meant a
+/// scale is a located error with the equivalent total).
+inline constexpr int CurrentFormatVersion = 2;
+
 class ParamDict {
   public:
     ParamDict() = default;
@@ -207,6 +212,11 @@ class ParamDict {
     FileLoc Loc(const std::string &name) const;
     const FileLoc &EntityLoc() const { return entityLoc_; }
     const Schema *GetSchema() const { return schema_; }
+    /// The format version (`wscene N` header) of the file the entity was written in; C++-built
+    /// scenes have the current one. Plug-ins whose parameters changed meaning between versions
+    /// read it to turn an old file into a located error (never a silent reinterpretation).
+    int FormatVersion() const { return formatVersion_; }
+    void SetFormatVersion(int version) { formatVersion_ = version; }
 
     /// The dictionary of one record: `call`'s arguments bound to the fields of `record`
     /// (positional ones in field order). Binding errors (too many arguments, a field given twice)
@@ -217,6 +227,7 @@ class ParamDict {
     std::vector<Param> params_;
     FileLoc entityLoc_;
     mutable const Schema *schema_ = nullptr;
+    int formatVersion_ = CurrentFormatVersion;
 };
 
 }  // namespace phasor

@@ -40,6 +40,7 @@ class PerspectiveCamera final : public Detector {
         auto cam = std::make_unique<PerspectiveCamera>(w, h, CameraResponse(d, ctx), ctx.GetTransform(d, "to_world"),
                                                        d.GetNumber("fov"), d.GetString("pixel") == "gaussian");
         cam->SetPolarization(PolarizationFromParams(d));
+        cam->SetExposure(CameraExposure(d));
         return cam;
     }
 

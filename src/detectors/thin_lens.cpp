@@ -49,6 +49,7 @@ class ThinLensCamera final : public Detector {
                                                     d.GetNumber("fov"), d.GetNumber("aperture_radius"),
                                                     d.GetNumber("focus_distance"), d.GetString("pixel") == "gaussian");
         cam->SetPolarization(PolarizationFromParams(d));
+        cam->SetExposure(CameraExposure(d));
         return cam;
     }
 

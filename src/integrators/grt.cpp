@@ -73,6 +73,7 @@ class GrtIntegrator final : public PixelIntegrator {
         return paths_.Estimate(scene, x, y, wl, sampler, stats, sink);
     }
 
+    bool WaveOptical() const override { return true; }
     std::string ToString() const override {
         return "grt { max_depth = " + std::to_string(paths_.MaxDepth()) +
                ", rr_depth = " + std::to_string(paths_.RrDepth()) +

@@ -82,6 +82,7 @@ class RayIntegrator final : public PixelIntegrator {
         return L;
     }
 
+    bool WaveOptical() const override { return false; }  // classical ray optics
     std::string ToString() const override {
         return "ray { max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) + " }";
     }

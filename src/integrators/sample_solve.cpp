@@ -117,6 +117,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
     }
 
     bool SupportsPolarization() const override { return true; }
+    bool WaveOptical() const override { return true; }
 
     RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override {
         grpath::GrPathSampler::CheckDetector(scene, "sample_solve");

@@ -1,41 +1,47 @@
 // SPDX-License-Identifier: Apache-2.0
-// `area`: a diffuse (Lambertian, spatially incoherent thermal) emitter on a shape. Emitted
-// spectral radiance L(λ) = radiance · spectrum(λ), from the side the shape's normal points to
-// (both sides if two_sided). Sampled uniformly by area for next-event estimation.
+// `area`: a diffuse (Lambertian, spatially incoherent thermal) emitter on a shape. `radiance` is the
+// total radiance over the spectrum, whose shape is normalised (lights/strength.h): L(λ) =
+// radiance · spectrum(λ) / ∫spectrum dλ, from the side the shape's normal points to (both sides if
+// two_sided). Sampled uniformly by area for next-event estimation.
 #include "core/render/light.h"
 #include "core/render/registry.h"
+#include "lights/strength.h"
 
 namespace phasor {
 
 class AreaLight final : public Light {
   public:
-    AreaLight(std::shared_ptr<Shape> shape, double radiance, std::shared_ptr<const Spectrum> s, bool twoSided)
-        : shape_(std::move(shape)), radiance_(radiance), spectrum_(std::move(s)), twoSided_(twoSided) {}
+    AreaLight(std::shared_ptr<Shape> shape, LightEmission emission, bool twoSided)
+        : shape_(std::move(shape)),
+          scale_(emission.scale),
+          spectrum_(std::move(emission.spectrum)),
+          twoSided_(twoSided) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
             "light", "area", "Diffuse emitter on a shape (spatially incoherent, Lambertian).",
             {P::Ref("shape", "shape", "the emitting shape").Required(),
-             P::Number("radiance", "emitted radiance scale", Dim::Radiance())
+             P::Number("radiance", "emitted radiance, the total over the spectrum", Dim::Radiance())
                  .Default(Value::Number(1, Dim::Radiance()))
                  .Min(0)
                  .Max(MaxLightStrength),
-             P::Spectrum("spectrum", "spectral shape").Default(Value::Number(1)),
+             P::Spectrum("spectrum", "spectral shape (normalised to unit integral unless normalize_spectrum = false)").Default(Value::Number(1)),
+             NormalizeSpectrumParam(),
              P::Bool("two_sided", "emit from both sides").Default(Value::Bool(false))}};
         return s;
     }
     static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
         auto shape = ctx.GetRef<Shape>(d, "shape");
         if (shape->areaLight) throw Error(d.Loc("shape"), "shape '" + shape->name + "' already has an area light");
-        auto light = std::make_unique<AreaLight>(shape, d.GetNumber("radiance"), ctx.GetSpectrum(d, "spectrum"),
-                                                 d.GetBool("two_sided"));
+        auto light =
+            std::make_unique<AreaLight>(shape, ReadLightEmission(d, ctx, "area", "radiance", true), d.GetBool("two_sided"));
         shape->areaLight = light.get();
         return light;
     }
 
     SampledSpectrum L(const Vec3 &, const Vec3 &n, const Vec3 &w, const SampledWavelengths &wl) const override {
         if (!twoSided_ && Dot(n, w) <= 0) return SampledSpectrum(0.0);
-        return EvalEmission(*spectrum_, wl) * radiance_;
+        return EvalEmission(*spectrum_, wl) * scale_;
     }
     std::optional<LightSample> SampleLi(const LightSampleContext &ctx, const Vec2 &u,
                                         const SampledWavelengths &wl) const override {
@@ -68,12 +74,12 @@ class AreaLight final : public Light {
         return LightCoherence{c / std::sqrt(r2), std::min(0.25, shape_->Area() / r2 * Inv4Pi)};
     }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
-    double PowerScale() const override { return radiance_ * Pi * shape_->Area() * (twoSided_ ? 2 : 1); }
+    double PowerScale() const override { return scale_ * Pi * shape_->Area() * (twoSided_ ? 2 : 1); }
     std::string ToString() const override { return "area { shape = " + shape_->ToString() + " }"; }
 
   private:
     std::shared_ptr<Shape> shape_;
-    double radiance_;
+    double scale_;  // L(λ) = scale_ · spectrum(λ) [W/m²/sr per m]
     std::shared_ptr<const Spectrum> spectrum_;
     bool twoSided_;
 };

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — helpers shared by the light plug-ins that generalized rays measure in closed form
-// (theory §2.4, §0 D4a, D14): per-wavelength evaluation of the Eq. 24 overlaps and the spectral
-// normalisation of lights whose strength is given as a total ("spectrum gives the shape").
+// (theory §2.4, §0 D4a, D14): per-wavelength evaluation of the Eq. 24 overlaps (what a light's
+// strength means: lights/strength.h).
 #pragma once
 
 #include <cmath>
@@ -12,37 +12,6 @@
 #include "core/spectrum/spectrum.h"
 
 namespace phasor {
-
-/// ∫ S(λ) dλ [m·(unit of S)]: a line's strength, else Simpson's rule over the support (an
-/// unbounded side is replaced by the 360–830 nm band, as the wavelength sampler does).
-inline double SpectrumIntegral(const Spectrum &s) {
-    if (auto line = s.LineWavelength()) return s.Eval(*line);
-    auto [a, b] = s.Support();
-    if (!(a > 0) || !std::isfinite(a)) a = 360e-9;
-    if (!std::isfinite(b)) b = 830e-9;
-    if (!(b > a)) return 0;
-    const int n = 20000;  // even; ≤ 0.05 nm steps over the visible band
-    const double h = (b - a) / n;
-    double sum = s.Eval(a) + s.Eval(b);
-    for (int i = 1; i < n; ++i) sum += s.Eval(a + i * h) * (i % 2 ? 4 : 2);
-    return sum * h / 3;
-}
-
-/// Factor turning a spectral shape into a spectrum of the given total: total / ∫S dλ.
-inline double TotalScale(const Spectrum &s, double total) {
-    const double integral = SpectrumIntegral(s);
-    return integral > 0 ? total / integral : 0;
-}
-
-/// A `spectrum` parameter that only gives the shape of a total (irradiance, power): its integral
-/// must be positive. `light` names the plug-in in the error.
-inline std::shared_ptr<const Spectrum> ShapeSpectrumParam(const ParamDict &d, BuildContext &ctx,
-                                                          const char *light) {
-    auto spectrum = ctx.GetSpectrum(d, "spectrum");
-    if (!(SpectrumIntegral(*spectrum) > 0))
-        throw Error(d.Loc("spectrum"), std::string("the spectrum of a ") + light + " must have a positive integral");
-    return spectrum;
-}
 
 /// A direction parameter: must not be zero; returned as given (callers normalise).
 inline Vec3 DirectionParam(const ParamDict &d, const char *name) {

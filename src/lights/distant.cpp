@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // `distant`: a partially coherent source at infinity of small angular extent, e.g. the sun
 // (theory §2.2: 𝒲_s = E·N(k⊥; k_s⊥, k²Ω); §0 D5, D14). `irradiance` is the total irradiance
-// [W/m²] on a plane normal to `direction` (the direction of travel of the central ray); `spectrum`
-// gives the spectral shape (normalised to unit integral).
+// [W/m²] on a plane normal to `direction` (the direction of travel of the central ray) over the
+// spectrum, whose shape is normalised (lights/strength.h).
 //
 // Angular profile (`profile`):
 //   * "disc": uniform radiance L = E/(π sin²α) over a cone of half-angle α = `angular_radius`
@@ -18,21 +18,22 @@
 // against a 1e-4 rad mirror lobe would otherwise need light sampling with enormous variance.
 #include "core/render/light.h"
 #include "lights/closed_form.h"
+#include "lights/strength.h"
 #include "core/render/registry.h"
 
 namespace phasor {
 
 class DistantLight final : public Light {
   public:
-    DistantLight(Vec3 dir, double e, std::shared_ptr<const Spectrum> s, bool disc, double alpha, double omega)
+    DistantLight(Vec3 dir, double e, LightEmission emission, bool disc, double alpha, double omega)
         : dir_(Normalize(dir)),
           frame_(Frame::FromNormal(-Normalize(dir))),
           irradiance_(e),
-          spectrum_(std::move(s)),
+          scale_(emission.scale),
+          spectrum_(std::move(emission.spectrum)),
           disc_(disc),
           alpha_(alpha),
           omega_(omega) {
-        scale_ = TotalScale(*spectrum_, irradiance_);
         cosAlpha_ = std::cos(alpha_);
         sin2Alpha_ = Sqr(std::sin(alpha_));
     }
@@ -60,14 +61,13 @@ class DistantLight final : public Light {
                        Dim::Angle().Pow(2))
                  .Min(0)
                  .Max(0.1),
-             P::Spectrum("spectrum", "spectral shape (normalised to unit integral)")
-                 .Default(Value::Number(1))}};
+             P::Spectrum("spectrum", "spectral shape (normalised to unit integral unless normalize_spectrum = false)").Default(Value::Number(1)),
+             NormalizeSpectrumParam()}};
         return s;
     }
     static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
         Vec3 dir = DirectionParam(d, "direction");
         const bool disc = d.GetString("profile") == "disc";
-        auto spectrum = ShapeSpectrumParam(d, ctx, "distant light");
         double alpha = d.GetNumber("angular_radius"), omega = alpha * alpha / 4;
         if (d.Has("omega")) {
             if (disc)
@@ -78,7 +78,9 @@ class DistantLight final : public Light {
             omega = d.GetNumber("omega");
             alpha = 2 * std::sqrt(omega);
         }
-        return std::make_unique<DistantLight>(dir, d.GetNumber("irradiance"), spectrum, disc, alpha, omega);
+        return std::make_unique<DistantLight>(dir, d.GetNumber("irradiance"),
+                                              ReadLightEmission(d, ctx, "distant", "irradiance", false), disc, alpha,
+                                              omega);
     }
 
     SampledSpectrum Emission(const SampledWavelengths &wl) const {

@@ -3,8 +3,8 @@
 // coherence). `waist_radius` w₀ is the 1/e² intensity radius at the waist, so in the GR convention
 // β_s = w₀/√2 and the intensity is P/(πβ²)·exp(−r²/β²) with β²(z) = β_s²(1 + (z/z_R)²),
 // z_R = kβ_s² = πw₀²/λ (theory §1.6: a GR with ρ = 0 at the waist). `position` is the centre of
-// the waist, `direction` the direction of travel, `power` the total power [W]; `spectrum` gives the
-// spectral shape (normalised to unit integral). The beam fills its whole axis (upstream of the
+// the waist, `direction` the direction of travel, `power` the total power [W] over the spectrum,
+// whose shape is normalised (lights/strength.h). The beam fills its whole axis (upstream of the
 // waist it converges); shadow rays run to infinity against the local direction of travel.
 //
 // Classical rays see it as a delta-direction source whose irradiance follows the Gaussian profile
@@ -15,16 +15,20 @@
 // irradiance (LightSample::beam, IncidentWave). `rs` gets the exact paraxial field (CoherentField).
 #include "core/render/light.h"
 #include "lights/closed_form.h"
+#include "lights/strength.h"
 #include "core/render/registry.h"
 
 namespace phasor {
 
 class GaussianBeamLight final : public Light {
   public:
-    GaussianBeamLight(Vec3 pos, Vec3 dir, double w0, double power, std::shared_ptr<const Spectrum> s)
-        : pos_(pos), dir_(Normalize(dir)), beta2_(0.5 * w0 * w0), power_(power), spectrum_(std::move(s)) {
-        scale_ = TotalScale(*spectrum_, power_);
-    }
+    GaussianBeamLight(Vec3 pos, Vec3 dir, double w0, double power, LightEmission emission)
+        : pos_(pos),
+          dir_(Normalize(dir)),
+          beta2_(0.5 * w0 * w0),
+          power_(power),
+          scale_(emission.scale),
+          spectrum_(std::move(emission.spectrum)) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -41,15 +45,18 @@ class GaussianBeamLight final : public Light {
                  .Default(Value::Number(1e-3, Dim::Power()))
                  .Min(0)
                  .Max(MaxLightStrength),
-             P::Spectrum("spectrum", "spectral shape (normalised to unit integral), e.g. line(632.8 nm)")
-                 .Default(Value::Call("line", {Value::Number(632.8e-9, Dim::Length())}, {""}))}};
+             P::Spectrum("spectrum",
+                         "spectral shape (normalised to unit integral unless normalize_spectrum = false), e.g. "
+                         "line(632.8 nm)")
+                 .Default(Value::Call("line", {Value::Number(632.8e-9, Dim::Length())}, {""})),
+             NormalizeSpectrumParam()}};
         return s;
     }
     static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
         Vec3 dir = DirectionParam(d, "direction");
-        auto spectrum = ShapeSpectrumParam(d, ctx, "gaussian_beam");
         return std::make_unique<GaussianBeamLight>(d.GetVector("position"), dir, d.GetNumber("waist_radius"),
-                                                   d.GetNumber("power"), spectrum);
+                                                   d.GetNumber("power"),
+                                                   ReadLightEmission(d, ctx, "gaussian_beam", "power", false));
     }
 
     GaussianBeamGeometry Geometry() const { return GaussianBeamGeometry{pos_, dir_, beta2_}; }
@@ -130,7 +137,7 @@ class GaussianBeamLight final : public Light {
         w.kind = CoherentWave::Kind::GaussianBeam;
         w.dir = dir_;
         w.pos = pos_;
-        w.strength = scale_ * spectrum_->Eval(*line);  // = power
+        w.strength = scale_ * spectrum_->Eval(*line);  // the line's power
         w.lambda = *line;
         w.beta2 = beta2_;
         return w;

@@ -1,22 +1,21 @@
 // SPDX-License-Identifier: Apache-2.0
 // `plane_wave`: a fully coherent plane wave (theory §2.2: 𝒲_s = E·δ(k⊥ − k_s⊥)), e.g. a collimated
 // laser much wider than the scene. `irradiance` is the total irradiance [W/m²] measured on a plane
-// normal to `direction` (the direction of travel); `spectrum` only gives the spectral shape (it is
-// normalised to unit integral; a line carries all of it). Delta direction: classical rays never
+// normal to `direction` (the direction of travel) over the spectrum, whose shape is normalised
+// (lights/strength.h; a line carries all of it). Delta direction: classical rays never
 // hit it (the `ray` integrator sees it only through next-event estimation); generalized rays
 // measure it in closed form (theory §2.4 item 2, §0 D4a/D14). Coherence: Ω = 0.
 #include "core/render/light.h"
 #include "lights/closed_form.h"
+#include "lights/strength.h"
 #include "core/render/registry.h"
 
 namespace phasor {
 
 class PlaneWaveLight final : public Light {
   public:
-    PlaneWaveLight(Vec3 dir, double e, std::shared_ptr<const Spectrum> s)
-        : dir_(Normalize(dir)), irradiance_(e), spectrum_(std::move(s)) {
-        scale_ = TotalScale(*spectrum_, irradiance_);
-    }
+    PlaneWaveLight(Vec3 dir, double e, LightEmission emission)
+        : dir_(Normalize(dir)), irradiance_(e), scale_(emission.scale), spectrum_(std::move(emission.spectrum)) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -28,14 +27,14 @@ class PlaneWaveLight final : public Light {
                  .Default(Value::Number(1, Dim::Irradiance()))
                  .Min(0)
                  .Max(MaxLightStrength),
-             P::Spectrum("spectrum", "spectral shape (normalised to unit integral)")
-                 .Default(Value::Number(1))}};
+             P::Spectrum("spectrum", "spectral shape (normalised to unit integral unless normalize_spectrum = false)").Default(Value::Number(1)),
+             NormalizeSpectrumParam()}};
         return s;
     }
     static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
         Vec3 dir = DirectionParam(d, "direction");
-        auto spectrum = ShapeSpectrumParam(d, ctx, "plane_wave");
-        return std::make_unique<PlaneWaveLight>(dir, d.GetNumber("irradiance"), spectrum);
+        return std::make_unique<PlaneWaveLight>(dir, d.GetNumber("irradiance"),
+                                                ReadLightEmission(d, ctx, "plane_wave", "irradiance", false));
     }
 
     SampledSpectrum Emission(const SampledWavelengths &wl) const {
@@ -67,7 +66,7 @@ class PlaneWaveLight final : public Light {
         CoherentWave w;
         w.kind = CoherentWave::Kind::Plane;
         w.dir = dir_;
-        w.strength = scale_ * spectrum_->Eval(*line);  // = irradiance
+        w.strength = scale_ * spectrum_->Eval(*line);  // the line's irradiance
         w.lambda = *line;
         return w;
     }

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // Shared implementation of the point-like lights (`point`, `spot`): a delta-position source of
-// spectral intensity I(λ)·Falloff(direction). Next-event estimation is the inverse-square law;
+// spectral intensity I(λ)·Falloff(direction), I(λ) = scale · spectrum(λ) (lights/strength.h). Next-event estimation is the inverse-square law;
 // generalized rays measure it in closed form as a coherent spherical wave (theory §2.4 item 5,
 // §0 D4a/D14): the overlap depends on how well the GR's curvature matches the wave's.
 #pragma once
@@ -9,13 +9,14 @@
 
 #include "core/render/light.h"
 #include "lights/closed_form.h"
+#include "lights/strength.h"
 
 namespace phasor {
 
 class PointLikeLight : public Light {
   public:
-    PointLikeLight(Vec3 p, double intensity, std::shared_ptr<const Spectrum> s)
-        : p_(p), intensity_(intensity), spectrum_(std::move(s)) {}
+    PointLikeLight(Vec3 p, LightEmission emission)
+        : p_(p), scale_(emission.scale), spectrum_(std::move(emission.spectrum)) {}
 
     /// Relative intensity towards unit direction `w` (pointing away from the light), in [0, 1].
     virtual double Falloff(const Vec3 &w) const = 0;
@@ -29,7 +30,7 @@ class PointLikeLight : public Light {
         Vec3 wi = d / r;
         double f = Falloff(-wi);
         if (f == 0) return std::nullopt;
-        return LightSample{EvalEmission(*spectrum_, wl) * (intensity_ * f / r2), wi, r, 1.0, true};
+        return LightSample{EvalEmission(*spectrum_, wl) * (scale_ * f / r2), wi, r, 1.0, true};
     }
     double PdfLi(const LightSampleContext &, const Vec3 &, const Vec3 &, const Vec3 &) const override { return 0; }
     bool IsDelta() const override { return true; }
@@ -42,7 +43,7 @@ class PointLikeLight : public Light {
         const double f = Falloff(-toLight / r);
         if (f == 0) return std::nullopt;
         GrMeasurement m;
-        m.value = MeasurePerWavelength(g, EvalEmission(*spectrum_, wl) * (intensity_ * f),
+        m.value = MeasurePerWavelength(g, EvalEmission(*spectrum_, wl) * (scale_ * f),
                                        [&](const GenRay &gi) { return MeasurePointSource(gi, p_, 1.0); });
         m.wi = toLight / r;
         m.dist = r;
@@ -58,7 +59,7 @@ class PointLikeLight : public Light {
         const double f = Falloff(-toLight / r);
         if (f == 0) return std::nullopt;
         GrIncidence inc;
-        inc.irradiance = EvalEmission(*spectrum_, wl) * (intensity_ * f / r2);
+        inc.irradiance = EvalEmission(*spectrum_, wl) * (scale_ * f / r2);
         inc.wi = toLight / r;
         inc.dist = r;
         const GenRay g0 = g.At(0);
@@ -69,14 +70,14 @@ class PointLikeLight : public Light {
     LightCoherence Coherence(const Vec3 &p) const override { return LightCoherence{Normalize(p_ - p), 0}; }
     /// True if Falloff is 1 in every direction (`point`; a spherical wave for `rs`).
     virtual bool IsIsotropic() const { return false; }
-    /// The `rs` field: isotropic lights with a line spectrum only; I = intensity × line strength.
+    /// The `rs` field: isotropic lights with a line spectrum only; I = scale × line strength.
     std::optional<CoherentWave> CoherentField() const override {
         const auto line = spectrum_->LineWavelength();
         if (!line || !IsIsotropic()) return std::nullopt;
         CoherentWave w;
         w.kind = CoherentWave::Kind::Spherical;
         w.pos = p_;
-        w.strength = intensity_ * spectrum_->Eval(*line);
+        w.strength = scale_ * spectrum_->Eval(*line);
         w.lambda = *line;
         return w;
     }
@@ -84,7 +85,7 @@ class PointLikeLight : public Light {
 
   protected:
     Vec3 p_;
-    double intensity_;
+    double scale_;  // I(λ) = scale_ · spectrum(λ) [W/sr per m]
     std::shared_ptr<const Spectrum> spectrum_;
 };
 

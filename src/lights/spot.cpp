@@ -9,8 +9,8 @@ namespace phasor {
 
 class SpotLight final : public PointLikeLight {
   public:
-    SpotLight(Vec3 from, Vec3 to, double cone, double delta, double intensity, std::shared_ptr<const Spectrum> s)
-        : PointLikeLight(from, intensity, std::move(s)), dir_(Normalize(to - from)), cosMax_(std::cos(cone)),
+    SpotLight(Vec3 from, Vec3 to, double cone, double delta, LightEmission emission)
+        : PointLikeLight(from, std::move(emission)), dir_(Normalize(to - from)), cosMax_(std::cos(cone)),
           cosStart_(std::cos(std::max(0.0, cone - delta))) {}
 
     static const Schema &GetSchema() {
@@ -21,18 +21,19 @@ class SpotLight final : public PointLikeLight {
                  .Default(Value::Vector({0, 0, 1}, Dim::Length())),
              P::Angle("cone_angle", "half-angle of the cone").Default(Value::Number(Radians(30), Dim::Angle())).Min(0, true).Max(Pi),
              P::Angle("cone_delta", "width of the smooth edge").Default(Value::Number(Radians(5), Dim::Angle())).Min(0),
-             P::Number("intensity", "radiant intensity on the axis", Dim::Intensity())
+             P::Number("intensity", "radiant intensity on the axis, the total over the spectrum", Dim::Intensity())
                  .Default(Value::Number(1, Dim::Intensity()))
                  .Min(0)
                  .Max(MaxLightStrength),
-             P::Spectrum("spectrum", "spectral shape").Default(Value::Number(1))}};
+             P::Spectrum("spectrum", "spectral shape (normalised to unit integral unless normalize_spectrum = false)").Default(Value::Number(1)),
+             NormalizeSpectrumParam()}};
         return s;
     }
     static std::unique_ptr<Light> Create(const ParamDict &d, BuildContext &ctx) {
         Vec3 from = d.GetVector("from"), to = d.GetVector("to");
         if (!(Length(to - from) > 0)) throw Error(d.Loc("to"), "'to' must differ from 'from'");
         return std::make_unique<SpotLight>(from, to, d.GetNumber("cone_angle"), d.GetNumber("cone_delta"),
-                                           d.GetNumber("intensity"), ctx.GetSpectrum(d, "spectrum"));
+                                           ReadLightEmission(d, ctx, "spot", "intensity", true));
     }
 
     double Falloff(const Vec3 &w) const override {
@@ -42,7 +43,7 @@ class SpotLight final : public PointLikeLight {
         double t = (cosTheta - cosMax_) / (cosStart_ - cosMax_);
         return t * t * (3 - 2 * t);
     }
-    double PowerScale() const override { return intensity_ * 2 * Pi * (1 - 0.5 * (cosStart_ + cosMax_)); }
+    double PowerScale() const override { return scale_ * 2 * Pi * (1 - 0.5 * (cosStart_ + cosMax_)); }
     std::string ToString() const override { return "spot { position = " + phasor::ToString(p_) + " }"; }
 
   private:

@@ -96,6 +96,7 @@
 #include "core/numerics/bessel.h"
 #include "core/render/registry.h"
 #include "materials/smooth_surface.h"
+#include "materials/validity.h"
 
 namespace phasor {
 
@@ -188,6 +189,8 @@ std::unique_ptr<Material> GratingMaterial::Create(const ParamDict &d, BuildConte
                                          what + ": a sinusoidal relief deeper than its period is far outside "
                                                 "the thin-phase model (use height ≲ 0.2·λ)");
     }
+    WarnIfBeyondVisible(d, ctx, "height", height, "the thin-phase model holds for h/λ ≲ 0.2 (docs/kernels.md, grating)",
+                        5, "a deep grating needs a rigorous method (RCWA, FDTD)");
     if (d.Has("angle") && d.Has("angle_texture"))
         throw Error(d.Loc("angle_texture"), "give either 'angle' or 'angle_texture', not both");
     FloatTexture angle;
@@ -450,6 +453,11 @@ bool GratingMaterial::HasCoherenceTerms() const { return surface_->LayerCount() 
 
 std::optional<double> GratingMaterial::ReferenceAngle(const TextureEvalContext &tex) const {
     return angle_.Eval(tex) + Pi / 2;  // as GratingVector
+}
+
+std::string GratingMaterial::LobeName(int id) const {
+    // (reflected orders stay far below TransmittedId / 2 in magnitude: Capacity lobes in all)
+    return std::to_string(id >= TransmittedId / 2 ? id - TransmittedId : id);
 }
 
 std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const {

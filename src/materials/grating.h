@@ -113,6 +113,8 @@ class GratingMaterial final : public Material {
     bool HasCoherenceTerms() const override;
     /// The grating vector ĝ: the groove direction (`angle`) + 90°.
     std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override;
+    /// The diffraction order j of a reflected (id j) or transmitted (id TransmittedId + j) lobe.
+    std::string LobeName(int id) const override;
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override;
     /// Not reciprocal: m = k·h·cosθ_i depends on the light's incident direction only (D6), and the
     /// renormalisation on that direction's set of propagating orders.

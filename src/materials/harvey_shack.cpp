@@ -74,6 +74,7 @@
 #include "materials/fresnel.h"
 #include "materials/k_correlation_psd.h"
 #include "materials/smooth_surface.h"
+#include "materials/validity.h"
 
 namespace phasor {
 
@@ -144,7 +145,11 @@ class HarveyShackMaterial final : public Material {
             if (!(a < 1)) throw Error(dict.Loc("alpha_r"), "'alpha_r' must lie in (0, 1); it is " + std::to_string(a));
             t = TFromAlphaR(a);
         }
-        return std::make_unique<HarveyShackMaterial>(substrate, dict.GetNumber("sigma_h"), t, dict.GetNumber("gamma"));
+        const double sigma = dict.GetNumber("sigma_h");
+        WarnIfBeyondVisible(dict, ctx, "sigma_h", sigma,
+                            "Harvey–Shack's smooth-surface model needs σ_h ≪ λ (docs/kernels.md, harvey_shack)", 10,
+                            "a surface this rough is a diffuse (Lambertian-like) scatterer");
+        return std::make_unique<HarveyShackMaterial>(substrate, sigma, t, dict.GetNumber("gamma"));
     }
 
     /// theory §4.3: T = (1 − α_r²)/(4 k̄² α_r²), k̄ = 2π/0.55 µm [m²].

@@ -171,6 +171,11 @@ class MixMaterial final : public Material {
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
     bool HasCoherenceTerms() const override { return a_->HasCoherenceTerms() || b_->HasCoherenceTerms(); }
     /// a's reference direction, else b's.
+    /// Lobe 2j is a's lobe j, 2j + 1 is b's (MixId).
+    std::string LobeName(int id) const override {
+        const int child = id >= 0 ? id / 2 : -((-id + 1) / 2);  // floor(id / 2)
+        return (id - 2 * child == 0 ? "a: " + a_->LobeName(child) : "b: " + b_->LobeName(child));
+    }
     std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override {
         const std::optional<double> a = a_->ReferenceAngle(tex);
         return a ? a : b_->ReferenceAngle(tex);

@@ -88,6 +88,7 @@ class MultilayerMaterial final : public CoatingKernel {
                 coating->layers.push_back(
                     {ctx.GetComplexSpectrum(l, "ior"), FloatTexture(l.GetNumber("thickness"), Dim::Length())});
         }
+        WarnIfBeyondCoherence(*coating, d, firstPair ? "d_a" : "layers", ctx);
         return std::make_unique<MultilayerMaterial>(ctx.GetComplexSpectrum(d, "substrate_ior"), std::move(coating));
     }
 

@@ -210,6 +210,24 @@ std::shared_ptr<const Coating> ReadCoating(const ParamDict &dict, BuildContext &
     return c;
 }
 
+void WarnIfBeyondCoherence(const Coating &coating, const ParamDict &dict, const std::string &param,
+                           BuildContext &ctx) {
+    double total = 0;  // the largest total thickness (each layer at its thickest) [m]
+    for (const CoatingLayer &l : coating.layers) total += l.thickness.MaxValue();
+    if (!(total > MaxCoherentStack)) return;
+    // The interference fringes' spacing in wavelength at 550 nm for an index of 1.5: λ²/(2nd).
+    const double fringe = 550e-9 * 550e-9 / (2 * 1.5 * total);
+    ctx.Diag().Warning(dict.Loc(param),
+                       "the layers are " + Value::Number(total, Dim::Length()).ToString() +
+                           " thick, far outside the thin-film model's range: its coherent response assumes a stack "
+                           "thinner than the light's coherence length (about a micrometre for sunlight, at most "
+                           "metres for a stabilised laser; docs/kernels.md, layer stacks); at this thickness the "
+                           "fringes are " + Value::Number(fringe, Dim::Length()).ToString() +
+                           " apart in wavelength, finer than any real source's line. Keep a layer below " +
+                           Value::Number(MaxCoherentStack, Dim::Length()).ToString() +
+                           ", or model a thick slab as a plain dielectric");
+}
+
 ParamSpec CoatingKernel::SubstrateSpec() {
     return P::ComplexSpectrum("substrate_ior",
                               "index n + iκ(λ) of the substrate under the layers: a number, n+ik, a named glass or "

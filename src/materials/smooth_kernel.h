@@ -107,6 +107,14 @@ ParamSpec CoatingSpec();
 /// own `substrate_ior` (the host's index is the substrate).
 std::shared_ptr<const Coating> ReadCoating(const ParamDict &dict, BuildContext &ctx);
 
+/// The thickest a layer stack is taken to be coherent: above it the model is far outside its range
+/// (docs/kernels.md "Layer stacks": thinner than the light's coherence length) and a definition
+/// gets a warning (WarnIfBeyondCoherence).
+inline constexpr double MaxCoherentStack = 1e-3;  // [m]
+/// Warns at `param` of `dict` when the stack's largest total thickness exceeds MaxCoherentStack.
+void WarnIfBeyondCoherence(const Coating &coating, const ParamDict &dict, const std::string &param,
+                           BuildContext &ctx);
+
 /// A smooth kernel that is a coating definition over its own substrate (`thin_film`,
 /// `multilayer`): usable as a surface on its own and, through AsCoating, as another kernel's
 /// `coating`. Transmits when `substrate_ior` is transparent.

@@ -70,6 +70,7 @@ class ThinFilmMaterial final : public CoatingKernel {
                                                 : ctx.GetFloatTexture(d, "thickness_texture");
         auto coating = std::make_shared<Coating>();
         coating->layers.push_back({ctx.GetComplexSpectrum(d, "ior"), thickness});
+        WarnIfBeyondCoherence(*coating, d, constant ? "thickness" : "thickness_texture", ctx);
         return std::make_unique<ThinFilmMaterial>(ctx.GetComplexSpectrum(d, "substrate_ior"), std::move(coating));
     }
 

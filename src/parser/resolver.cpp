@@ -202,9 +202,11 @@ class Resolver {
 
     void CheckHeader(const Stmt &st, const std::string &file) {
         if (st.text.empty()) return;  // reported by the syntax pass
-        if (st.text != "1")
-            Err(Loc(file, st.textPos),
-                "unsupported format version 'wscene " + st.text + "' (this phasor reads version 1)");
+        if (st.text == "1" || st.text == "2")
+            fileVersion_[file] = st.text[0] - '0';
+        else
+            Err(Loc(file, st.textPos), "unsupported format version 'wscene " + st.text +
+                                           "' (this phasor reads versions 1 and 2; it writes 2)");
     }
 
     void DoInclude(const Stmt &st, const std::string &file) {
@@ -431,6 +433,7 @@ class Resolver {
         ent.loc = kwLoc;
         ent.nameLoc = nameLoc;
         ent.params = ParamDict(kwLoc);
+        if (const auto v = fileVersion_.find(file); v != fileVersion_.end()) ent.params.SetFormatVersion(v->second);
         bool enabled = true;
         // Blocks have a handful of parameters: a linear scan beats a map (no allocation).
         std::vector<const wscene::ParamNode *> seen;
@@ -549,6 +552,7 @@ class Resolver {
     SceneDesc desc_;
     std::vector<std::string> stack_;                         // files being read (include cycle detection)
     std::map<std::string, std::vector<Diagnostic>> chains_;  // file → "included from" notes
+    std::map<std::string, int> fileVersion_;                  // file → its `wscene N` header
     std::unordered_map<std::string, DefineInfo> defines_;
     std::vector<Override> overrides_;
     std::vector<std::pair<std::string, FileLoc>> pendingVars_;

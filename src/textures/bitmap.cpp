@@ -11,11 +11,15 @@
 // Point-sampled: no mip-mapping (a generalized ray's footprint is not used yet).
 //
 // Colour: on load the pixels' colour (R, G, B, or a grey image's Y as R = G = B) is converted to
-// phasor's linear Rec.709 through OpenColorIO (ConvertToSceneLinear) from `colorspace`: "auto"
-// takes the file's own colour space if it names one (OIIO's oiio:ColorSpace: PNG and JPEG say
-// sRGB, EXR linear), else sRGB for integer pixels and linear for half/float ones — the decoding
-// pbrt-v4 and Mitsuba 3 apply to 8-bit images; "raw" leaves data (heights, thicknesses) as stored.
-// Integer pixels are normalised to [0, 1] first (8-bit 255 → 1).
+// phasor's linear Rec.709 through OpenColorIO (ConvertToSceneLinear) from `colorspace`; "raw"
+// leaves data (heights, thicknesses) as stored. "auto" (the default) decides by what reads the
+// texture: a colour — a spectral texture, or a scalar one read where a spectrum is expected (a
+// reflectance; Texture::AsColour) — is decoded from the file's own colour space if it names one
+// (OIIO's oiio:ColorSpace: PNG and JPEG say sRGB, EXR linear), else sRGB for integer pixels and
+// linear for half/float ones, the decoding pbrt-v4 and Mitsuba 3 apply to 8-bit images; data — a
+// scalar texture read as a thickness, an angle or a weight — keeps the stored values (raw), so that
+// a grey PNG's 128 is 0.502 of its scale, not 0.216. Integer pixels are normalised to [0, 1] first
+// (8-bit 255 → 1).
 //
 // Two kinds, chosen by the parameters:
 //   * spectral (an RGB image, no `channel`, `scale` or `offset`): a reflectance or albedo. The
@@ -146,8 +150,16 @@ std::string Describe(const Source &src, const TexelGrid &g) {
 
 class BitmapScalarTexture final : public ScalarTexture {
   public:
-    BitmapScalarTexture(Dim dim, TexelGrid grid, double scale, double offset, Source src)
-        : ScalarTexture(dim), grid_(std::move(grid)), scale_(scale), offset_(offset), src_(std::move(src)) {
+    /// `colour`: the same texture decoded as a colour, when colorspace = "auto" makes data and
+    /// colour readings differ (AsColour); else nullptr.
+    BitmapScalarTexture(Dim dim, TexelGrid grid, double scale, double offset, Source src,
+                        std::shared_ptr<const BitmapScalarTexture> colour = nullptr)
+        : ScalarTexture(dim),
+          grid_(std::move(grid)),
+          scale_(scale),
+          offset_(offset),
+          src_(std::move(src)),
+          colour_(std::move(colour)) {
         const auto [lo, hi] = std::minmax_element(grid_.Texels().begin(), grid_.Texels().end());
         double cmin = *lo, cmax = *hi;
         if (grid_.Map().wrap == Wrap::Black) cmin = std::min(cmin, 0.0), cmax = std::max(cmax, 0.0);
@@ -161,6 +173,7 @@ class BitmapScalarTexture final : public ScalarTexture {
     }
     double MinValue() const override { return min_; }
     double MaxValue() const override { return max_; }
+    std::shared_ptr<const Texture> AsColour() const override { return colour_; }
     std::string ToString() const override {
         return "BitmapTexture[ " + Describe(src_, grid_) + ", scale = " + Value::Number(scale_, GetDim()).ToString() +
                ", offset = " + Value::Number(offset_, GetDim()).ToString() + " ]";
@@ -171,6 +184,7 @@ class BitmapScalarTexture final : public ScalarTexture {
     double scale_, offset_;
     double min_ = 0, max_ = 0;
     Source src_;
+    std::shared_ptr<const BitmapScalarTexture> colour_;
 };
 
 class BitmapSpectralTexture final : public Texture {
@@ -211,9 +225,10 @@ class BitmapTexture {
             {
                 P::File("filename", "the image: any format OpenImageIO reads (PNG, JPEG, TIFF, EXR, HDR …)").Required(),
                 P::String("colorspace",
-                          "OpenColorIO colour space of the pixels, converted to linear Rec.709: \"auto\" (the "
-                          "file's own, else sRGB for integer and linear for half/float pixels), \"sRGB\", "
-                          "\"linear\", \"raw\" (data, unchanged) or any colour space of the $OCIO config")
+                          "OpenColorIO colour space of the pixels, converted to linear Rec.709: \"auto\" (data — "
+                          "a thickness, angle or weight map — as stored; a colour — a reflectance — from the "
+                          "file's own colour space, else sRGB for integer and linear for half/float pixels), "
+                          "\"sRGB\", \"linear\", \"raw\" (data, unchanged) or any colour space of the $OCIO config")
                     .Default(Value::String("auto")),
                 P::String("channel",
                           "makes a scalar texture of one channel: R, G, B (linear colour), Y (its luminance), A "
@@ -321,7 +336,7 @@ class BitmapTexture {
                                                  "stored; 'colorspace' does not apply");
         }
 
-        const Source src{d.GetValue("filename").text, colorspace == "auto" ? "raw" : colorspace, channel};
+        const Source src{d.GetValue("filename").text, colorspace, channel};
         if (!scalar) {
             for (std::size_t i = 0; i < colour.size(); ++i) {
                 // OCIO's float arithmetic may land a hair outside [0, 1] (sRGB 1.0 → 1.0000001).
@@ -339,18 +354,32 @@ class BitmapTexture {
             return std::make_unique<BitmapSpectralTexture>(TexelGrid(img.width, img.height, 3, std::move(colour), map), src);
         }
 
-        std::vector<float> values(n);
+        // The channel's values from colour triples `rgb` (R, G, B or their luminance Y), or as stored.
         const int stored = img.ChannelIndex(channel);
-        for (std::size_t i = 0; i < n; ++i) {
-            if (channel == "Y" && hasColour)
-                values[i] = float(0.2126 * colour[3 * i] + 0.7152 * colour[3 * i + 1] + 0.0722 * colour[3 * i + 2]);
-            else if (colourChannel && hasColour)
-                values[i] = colour[3 * i + (channel == "R" ? 0 : channel == "G" ? 1 : 2)];
-            else
-                values[i] = img.data[i * nc + stored];
-        }
-        return std::make_unique<BitmapScalarTexture>(dim, TexelGrid(img.width, img.height, 1, std::move(values), map),
-                                                     d.GetNumber("scale"), d.GetNumber("offset"), src);
+        auto channelOf = [&](const std::vector<float> &rgb) {
+            std::vector<float> values(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                if (channel == "Y" && hasColour)
+                    values[i] = float(0.2126 * rgb[3 * i] + 0.7152 * rgb[3 * i + 1] + 0.0722 * rgb[3 * i + 2]);
+                else if (colourChannel && hasColour)
+                    values[i] = rgb[3 * i + (channel == "R" ? 0 : channel == "G" ? 1 : 2)];
+                else
+                    values[i] = img.data[i * nc + stored];
+            }
+            return values;
+        };
+        auto make = [&](std::vector<float> values, const Source &s, std::shared_ptr<const BitmapScalarTexture> c) {
+            return std::make_unique<BitmapScalarTexture>(dim, TexelGrid(img.width, img.height, 1, std::move(values), map),
+                                                         d.GetNumber("scale"), d.GetNumber("offset"), s, std::move(c));
+        };
+        if (d.GetString("colorspace") != "auto" || !colourChannel || !hasColour) return make(channelOf(colour), src, nullptr);
+        // "auto": data as stored (the primary reading), the colour decoded for a colour parameter.
+        std::vector<float> stored3(3 * n);
+        for (std::size_t i = 0; i < n; ++i)
+            for (int c = 0; c < 3; ++c) stored3[3 * i + c] = img.data[i * nc + (rgb ? (c == 0 ? r : c == 1 ? g : b) : grey)];
+        std::shared_ptr<const BitmapScalarTexture> asColour =
+            make(channelOf(colour), Source{src.filename, "auto (as a colour: " + colorspace + ")", channel}, nullptr);
+        return make(channelOf(stored3), Source{src.filename, "auto (as data: raw)", channel}, std::move(asColour));
     }
 
   private:

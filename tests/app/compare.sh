@@ -10,12 +10,19 @@
 #                and the table says which failed): clear errors, exit status 1
 #   modes        equal time (--time), --reference-integrator/--reference-spp, --column, all
 #   sigint       Ctrl-C during the second integrator: exit 130, the finished run and the page
-#   no_plots     without matplotlib: the CSV instead of each plot, one line saying how to install it
+#   no_plots     without matplotlib: the CSV instead of each plot, one line saying how to install it;
+#                without jinja2 (and matplotlib): no page, results.md and results.json say it all
+#   reference    the reference is independent of every graded run: `grt` cut after three scattering events (a
+#                deliberately biased integrator) passes against a reference rendered with the graded
+#                runs' seed and is caught by compare's own reference (other seeds, 4× the samples);
+#                `ray` against it is "not comparable"; the page (Chromium) shows the seed, version,
+#                -D values, warnings, the reference's noise floor and the colour error
 set -u
 part=$1 phasor=$2 mkexr=$3 src=$4 out=$5/compare_$1
 rm -rf "$out"; mkdir -p "$out"
 ds=$src/scenes/validation/double_slit.wscene
 small=$src/tests/app/scenes/small.wscene
+bias=$src/tests/app/scenes/compare_bias.wscene
 slow=$src/tests/app/scenes/slow.wscene
 source "$(dirname "$0")/common.sh"  # fail, run
 # field CSV ROW_NAME COLUMN_NAME: a field of results.csv (rows by integrator, columns by header).
@@ -78,7 +85,7 @@ double_slit)
     # No reference given: rs (deterministic) is the best-converged run, and the table says so.
     [[ $(field "$dir/results.csv" rs role) == reference && $(field "$dir/results.csv" grt role) == compared ]] ||
         fail "rs is not the reference: $(cat "$dir/results.csv")"
-    grep -q "Reference: rs, the best-converged run (no reference was given)" "$dir/results.md" ||
+    grep -q "reference: rs, deterministic (no sampling noise; no reference was given)" "$dir/results.md" ||
         fail "results.md does not say which run is the reference"
     [[ $(field "$dir/results.csv" grt spp) == 4096 ]] || fail "grt spp: $(cat "$dir/results.csv")"
     # The max-error column is the double-slit validation's figure max |grt − rs| / max(rs)
@@ -102,7 +109,9 @@ double_slit)
     [[ $(field "$out/ref/results.csv" grt max_error) == "$max" ]] ||
         fail "--reference rs.exr: max error $(field "$out/ref/results.csv" grt max_error), expected $max"
     [[ -s "$out/ref/reference.png" ]] || fail "--reference: no reference.png"
-    grep -q "Reference: the image '.*rs.exr'" "$out/ref/results.md" || fail "--reference: not named in results.md"
+    grep -q "reference: the image '.*rs.exr'" "$out/ref/results.md" || fail "--reference: not named in results.md"
+    grep -q "reference noise floor: 0 (deterministic: no sampling noise)" "$out/ref/results.md" ||
+        fail "--reference rs.exr: its noise floor is not 0: $(cat "$out/ref/results.md")"
 
     check_page "$dir"
     ;;
@@ -159,10 +168,12 @@ modes)
     [[ $rc -eq 0 ]] || fail "--reference-integrator: exit status $rc: $stderr"
     [[ -s "$dir/reference_grt.exr" && -s "$dir/ray.exr" && -s "$dir/profile.png" ]] ||
         fail "--reference-integrator: outputs $(ls "$dir")"
-    [[ $(field "$dir/results.csv" grt role) == reference && $(field "$dir/results.csv" grt spp) == 16 &&
-        $(field "$dir/results.csv" ray spp) == 4 ]] || fail "--reference-integrator: $(cat "$dir/results.csv")"
-    [[ "$(head -1 "$dir/profile.csv")" == "y_px,ray,grt,abs_diff" ]] || fail "--column: $(head -1 "$dir/profile.csv")"
-    grep -q "Reference: grt at 16 spp (--reference-integrator)" "$dir/results.md" || fail "--reference-integrator: results.md"
+    [[ $(field "$dir/results.csv" "grt (reference)" role) == reference &&
+        $(field "$dir/results.csv" "grt (reference)" spp) == 16 && $(field "$dir/results.csv" ray spp) == 4 ]] ||
+        fail "--reference-integrator: $(cat "$dir/results.csv")"
+    [[ "$(head -1 "$dir/profile.csv")" == "y_px,ray,grt (reference),abs_diff" ]] || fail "--column: $(head -1 "$dir/profile.csv")"
+    grep -q "reference: grt at 16 spp: 4 independent renders of 4 spp (--reference-integrator)" "$dir/results.md" ||
+        fail "--reference-integrator: results.md $(cat "$dir/results.md")"
     # `all`: every registered integrator, in the registry's order (a new one joins by registering).
     dir=$out/all
     run compare "$ds" --integrators all --spp 16 -o "$dir" --quiet
@@ -192,21 +203,82 @@ sigint)
     no_temporaries "$dir"
     ;;
 no_plots)
-    # A Python without matplotlib (-S: no site packages): every plot becomes its CSV, with a
-    # one-line warning naming the package; the rest is written and the exit status is 0.
-    printf '#!/bin/sh\nexec python3 -S "$@"\n' >"$out/python-without-matplotlib"
+    # A Python without matplotlib (a stand-in package that fails to import shadows it): every plot
+    # becomes its CSV, with a one-line warning naming the package; the page (jinja2) links the data,
+    # the rest is written and the exit status is 0.
+    mkdir -p "$out/blocked/matplotlib"
+    echo 'raise ImportError("matplotlib blocked by the test")' >"$out/blocked/matplotlib/__init__.py"
+    printf '#!/bin/sh\nPYTHONPATH="%s" exec python3 "$@"\n' "$out/blocked" >"$out/python-without-matplotlib"
     chmod +x "$out/python-without-matplotlib"
     dir=$out/ds
     PHASOR_PYTHON=$out/python-without-matplotlib run compare "$ds" --integrators grt,rs --spp 64 -o "$dir"
     [[ $rc -eq 0 ]] || fail "no matplotlib: exit status $rc: $stderr"
     grep -q "warning: no Python with matplotlib.*(install it with: apt-get install python3-matplotlib)" <<<"$stderr" ||
         fail "no matplotlib: no install hint: $stderr"
-    for f in grt.exr grt.csv rs.csv grid.png profile.csv convergence.csv results.csv index.html; do
+    for f in grt.exr grt.csv rs.csv grid.png profile.csv convergence.csv results.csv results.json index.html; do
         [[ -s "$dir/$f" ]] || fail "no matplotlib: $f not written"
     done
     for f in grt.png profile.png convergence.png; do [[ ! -e "$dir/$f" ]] || fail "no matplotlib: $f written"; done
     grep -q 'not drawn: .*apt-get install python3-matplotlib' "$dir/index.html" || fail "no matplotlib: the page does not say"
     no_temporaries "$dir"
+    # A Python without site packages (-S): no jinja2 either. No page — one warning saying how to
+    # install it — and results.md and results.json carry everything; exit status 0.
+    printf '#!/bin/sh\nexec python3 -S "$@"\n' >"$out/python-bare"
+    chmod +x "$out/python-bare"
+    dir=$out/bare
+    PHASOR_PYTHON=$out/python-bare run compare "$ds" --integrators grt,rs --spp 64 -o "$dir"
+    [[ $rc -eq 0 ]] || fail "no jinja2: exit status $rc: $stderr"
+    grep -q "warning: no Python with jinja2 found .*(install it with: apt-get install python3-jinja2); index.html is not written (results.md and results.json are)" <<<"$stderr" ||
+        fail "no jinja2: no install hint: $stderr"
+    [[ ! -e "$dir/index.html" && -s "$dir/results.md" && -s "$dir/results.json" ]] || fail "no jinja2: outputs $(ls "$dir")"
+    grep -q "wrote $dir/results.md and" <<<"$stderr" || fail "no jinja2: the summary names the page: $stderr"
+    no_temporaries "$dir"
+    ;;
+reference)
+    # 1. The failure this guards against: a reference that shares the graded run's random numbers.
+    #    `grt` and `biased` (grt cut after three scattering events) draw the same numbers for the same seed, so
+    #    their noise cancels in biased − reference and the bias passes the test.
+    common=(--spp 64 --seed 7 --sampler independent)
+    run render "$bias" --integrator full "${common[@]}" -o "$out/same_seed.exr" --quiet
+    [[ $rc -eq 0 ]] || fail "same-seed reference render: exit status $rc: $stderr"
+    dir=$out/same_seed
+    run compare "$bias" --integrators biased --reference "$out/same_seed.exr" "${common[@]}" -o "$dir" --quiet
+    [[ $rc -eq 0 ]] || fail "same-seed reference: exit status $rc: $stderr"
+    verdict=$(field "$dir/results.csv" biased verdict)
+    [[ $verdict == consistent* ]] || fail "the same-seed reference did not pass the biased integrator (the failure this test demonstrates): '$verdict'"
+    grep -q "rendered with seed 7, the seed of the compared runs" <<<"$stderr$(cat "$dir/results.md")" ||
+        fail "no warning about the reference's seed: $(cat "$dir/results.md")"
+    # 2. compare's own reference: grt (the first wave-optical integrator compared) at 4× the samples,
+    #    4 renders with seeds 8–11. It catches the bias and passes grt itself; ray (other physics)
+    #    is not comparable. A -D value and a --permissive warning must appear on the page.
+    dir=$out/auto
+    run compare "$bias" --integrators grt,biased,ray "${common[@]}" -D gain=1 -D nosuch=2 --permissive -o "$dir"
+    [[ $rc -eq 0 ]] || fail "automatic reference: exit status $rc: $stderr"
+    [[ $(field "$dir/results.csv" "grt (reference)" role) == reference &&
+        $(field "$dir/results.csv" "grt (reference)" spp) == 256 ]] ||
+        fail "the reference is not grt at 256 spp: $(cat "$dir/results.csv")"
+    [[ $(field "$dir/results.csv" biased verdict) == differs* ]] ||
+        fail "compare's reference did not catch the biased integrator: $(cat "$dir/results.csv")"
+    [[ $(field "$dir/results.csv" grt verdict) == consistent* ]] ||
+        fail "grt is not consistent with its own independent reference: $(cat "$dir/results.csv")"
+    [[ $(field "$dir/results.csv" ray comparable) == false && $(field "$dir/results.csv" ray verdict) == "not comparable"* ]] ||
+        fail "ray against a wave-optical reference is not marked not comparable: $(cat "$dir/results.csv")"
+    floor=$(field "$dir/results.csv" "grt (reference)" noise_floor)
+    awk -v f="$floor" 'BEGIN { exit !(f > 0) }' || fail "no noise floor: '$floor'"
+    awk -v c="$(field "$dir/results.csv" biased rgb_rmse)" 'BEGIN { exit !(c > 0) }' || fail "no RGB RMSE"
+    grep -q "seeds (8–11) differ from the compared runs' (7)" "$dir/results.md" ||
+        fail "results.md does not say how the reference is independent: $(cat "$dir/results.md")"
+    for want in "phasor $("$phasor" --version | cut -d' ' -f2)" "seed: 7" "-D gain=1" "noise floor" "does not override any Define"; do
+        grep -qF -- "$want" "$dir/results.md" || fail "results.md lacks '$want'"
+    done
+    python3 -c "import json, sys; r = json.load(open(sys.argv[1])); assert r['format'] == 'phasor-compare-results' and r['seed'] == 7 and r['reference']['noise_floor'] > 0" \
+        "$dir/results.json" || fail "results.json: $(head -c 400 "$dir/results.json")"
+    check_page "$dir"
+    # What the page shows, as Chromium rendered it.
+    for want in "$("$phasor" --version | cut -d' ' -f2)" ">7 (every compared run" "-D gain=1" "noise floor" \
+        "RGB RMSE" "does not override any Define" "differs (z =" "not comparable"; do
+        grep -qF -- "$want" "$out/dom.html" || fail "the page (as Chromium shows it) lacks '$want'"
+    done
     ;;
 *) echo "unknown part '$part'"; exit 2 ;;
 esac

@@ -201,6 +201,25 @@ class PlotModuleTest(unittest.TestCase):
         self.assertEqual(status, 1)
         self.assertIn("no disc 'somewhere'", err)
 
+    def test_labels_of_coincident_markers_do_not_overlap(self):
+        # Three lobes leaving in one direction (a mix of kernels) and one elsewhere: every label is
+        # drawn, and no two labels' boxes intersect on the canvas.
+        rows = ["u,v,value"] + [f"{-1 + 2 * i / 10},{-1 + 2 * j / 10},1" for j in range(11) for i in range(11)]
+        points = self.write("c.csv", "u,v,label\n0.2,0.1,a: 0.5\n0.2,0.1,b: 0.25\n0.2001,0.1,b: 0.125\n"
+                                     "-0.6,-0.5,0.04\n")
+        args = MODULE.parse_args(["disc-map", "--data", self.write("c_data.csv", "\n".join(rows) + "\n"),
+                                  "--points", points, "--out", self.path("c.png")])
+        fig = MODULE.figure_disc_map(args)
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        texts = [t for t in fig.axes[0].texts if t.get_text() in ("a: 0.5", "b: 0.25", "b: 0.125", "0.04")]
+        self.assertEqual(len(texts), 4)
+        boxes = [t.get_window_extent(renderer) for t in texts]
+        for i in range(len(boxes)):
+            for j in range(i + 1, len(boxes)):
+                self.assertFalse(boxes[i].overlaps(boxes[j]),
+                                 f"labels '{texts[i].get_text()}' and '{texts[j].get_text()}' overlap")
+
     def test_a_map_that_is_zero_everywhere_is_neutral_grey(self):
         rows = ["u,v,value"] + [f"{-1 + 2 * i / 10},{-1 + 2 * j / 10},0" for j in range(11) for i in range(11)]
         args = MODULE.parse_args(["disc-map", "--data", self.write("z.csv", "\n".join(rows) + "\n"), "--out",

@@ -190,6 +190,16 @@ for case in "20 550 0.1" "0 633 0.15" "45 450 0.08"; do
             d = $4 - $8; while (d > 3.14159265358979) d -= 6.28318530717959; while (d < -3.14159265358979) d += 6.28318530717959
             if ($2 != $6 || ($3 - $7) ^ 2 > 1e-24 || d ^ 2 > 1e-18) bad = 1 } END { exit bad }' ||
         fail "grating $case: the directions depend on the groove angle: $stdout"
+    # In the classical mount every order leaves at φ = 0 or π exactly (φ within (−π, π]): turning
+    # the answer back from the kernel's frame leaves no round-off (no −π, no 3.5e-15 for 0).
+    for g in -90deg 37deg 180deg; do
+        run --material lines --theta "${th}deg" --lambda "${lam}nm" --csv - -D "height=${h}um" -D "groove_angle=$g"
+        bad=$(awk -F, 'NR > 3 && $4 != "0" && $4 != "3.14159265358979"' <<<"$stdout")
+        [[ -z "$bad" ]] || fail "grating $case, grooves at $g: phi_o not exactly 0 or pi: $bad"
+        run --material lines --theta "${th}deg" --lambda "${lam}nm" -D "height=${h}um" -D "groove_angle=$g"
+        bad=$(awk '$1 == "reflection" || $1 == "transmission" { if ($4 == "-180" || $4 ~ /e-/) print }' <<<"$stdout")
+        [[ -z "$bad" ]] || fail "grating $case, grooves at $g: the table shows -180 deg or round-off for phi_o: $bad"
+    done
 done
 
 # 5c. Layer stacks, against the Airy formula written above (complex arithmetic, both polarisations)
@@ -259,7 +269,9 @@ for case in "0.3 30" "0.8 70"; do
     Fg=$(calc "fresnel(cos($th * deg), 1.5)") Fm=$(calc "conductor(cos($th * deg), 0.2, 3.4)")
     near "blend $case R" "$(field 2 5)" "$(calc "(1 - $w) * $Fg + $w * $Fm")" 1e-10
     near "blend $case T" "$(field 3 5)" "$(calc "(1 - $w) * (1 - $Fg)")" 1e-10
-    [[ "$(field 4 2),$(field 5 2),$(field 6 2)" == "0,1,2" ]] || fail "blend $case: lobe ids '$stdout'"
+    # The order column names each child's own lobe (glass: 0 reflected, 1 refracted; metal: 0),
+    # never the mix's renumbered ids (0, 1, 2).
+    [[ "$(field 4 2),$(field 5 2),$(field 6 2)" == "a: 0,b: 0,a: 1" ]] || fail "blend $case: lobe names '$stdout'"
     near "blend $case lobe 0" "$(field 4 5)" "$(calc "(1 - $w) * $Fg")" 1e-10
     near "blend $case lobe 1" "$(field 5 5)" "$(calc "$w * $Fm")" 1e-10
     near "blend $case lobe 2" "$(field 6 5)" "$(calc "(1 - $w) * (1 - $Fg)")" 1e-10
@@ -328,6 +340,29 @@ run --material glass --theta 0deg --lambda 550nm --csv "$out/err.csv" --plot /pr
 "$phasor" probe "$scene" --material glass --theta 0deg --lambda 550nm --uv 0.5 >/dev/null 2>"$out/.e"; rc=$?
 [[ $rc -eq 1 ]] && grep -q "^error: '--uv' needs two numbers" "$out/.e" || fail "--uv with one number: $rc $(cat "$out/.e")"
 rm -f "$out/.e"
+
+# A wavelength far outside the optical range: the answer, with a warning that gives the range.
+run --material glass --theta 0deg --lambda 1e-20m
+[[ $rc -eq 0 ]] && grep -q "^warning: '--lambda' 1e-20m is far outside the optical range phasor's kernels model (100 nm – 1 mm)" <<<"$stderr" ||
+    fail "--lambda 1e-20m: exit status $rc, no warning with the range: $stderr"
+run --material glass --theta 0deg --lambda 550nm
+grep -q "warning" <<<"$stderr" && fail "--lambda 550nm warns: $stderr"
+
+# A run of hours announces itself as `render` does: 1e11 samples of a continuous lobe give the work
+# estimate (a warning naming the fix) within 20 s; the run is then stopped.
+"$phasor" probe "$scene" --material paint --theta 30deg --lambda 550nm --samples 1e11 >/dev/null 2>"$out/long.log" &
+pid=$!
+announced=0
+for _ in $(seq 200); do
+    if grep -q "^warning: this probe would take about .*1e+11 samples.*lower --samples" "$out/long.log"; then
+        announced=1
+        break
+    fi
+    kill -0 "$pid" 2>/dev/null || break
+    sleep 0.1
+done
+kill "$pid" 2>/dev/null; wait "$pid" 2>/dev/null
+(( announced )) || fail "--samples 1e11: no work estimate within 20 s: $(cat "$out/long.log")"
 
 [[ $failures -eq 0 ]] || { echo "$failures failure(s)"; exit 1; }
 echo "probe: all checks passed"

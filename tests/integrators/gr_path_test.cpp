@@ -94,7 +94,7 @@ TEST(GrPath, EventsSumToTheEstimateSunGlint) {
 }
 TEST(GrPath, EventsSumToTheEstimateWideSunDiffuse) {
     // A diffuse floor under a wide distant disc (0.3 rad): NEE and escapes that find it.
-    CheckScene("wide_sun.wscene", 4, 4, 16, {K::DirectLight, K::Escape}, R"(wscene 1
+    CheckScene("wide_sun.wscene", 4, 4, 16, {K::DirectLight, K::Escape}, R"(wscene 2
 Material "diffuse" "floor_mat" { reflectance = 0.5 }
 Shape "rectangle" "floor" { material = @floor_mat  to_world = scale(10) }
 Light "distant" "sun" { direction = [0.5 0 -1]  angular_radius = 0.3 rad  spectrum = line(550 nm) }

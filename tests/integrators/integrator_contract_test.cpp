@@ -94,9 +94,14 @@ std::unique_ptr<Scene> BuildCaseScene(const SceneSource &src, const std::string 
     return scene;
 }
 
-// Camera inside a sphere whose inner surface is diffuse (albedo a) and emits Le = 1: every path sees
-// Le·Σ aᵏ = Le/(1 − a) (the furnace test).
-const SceneSource FurnaceScene{R"(wscene 1
+// A light's strength is its total over its spectrum (lights/strength.h): a constant spectrum spreads
+// it over 360–830 nm, which a camera, reporting spectral radiance per metre of wavelength, reads
+// divided by this band.
+constexpr double FlatBand = 470e-9;  // [m]
+
+// Camera inside a sphere whose inner surface is diffuse (albedo a) and emits Le = 1 W/m²/sr over a
+// flat spectrum: every path sees Le·Σ aᵏ = Le/(1 − a), per metre of wavelength divided by FlatBand
+const SceneSource FurnaceScene{R"(wscene 2
 Define gain = 1
 Define albedo = 0.5
 Material "diffuse" "wall" { reflectance = $albedo }
@@ -107,9 +112,10 @@ Detector "perspective" "cam" { resolution = [8 8]  fov = 90 deg }
                                "", "", "", 1, {{"max_depth", "-1"}, {"rr_depth", "1"}}};
 
 // A downward-facing disk emitter (radiance L = 5, radius R = 0.2 m) at h = 1 m over a diffuse plane
-// of albedo a = 0.6: on the axis E = π L R²/(h² + R²), so the plane's radiance is a·L·R²/(h² + R²).
-// The camera sees a ~4 mm patch around the axis point obliquely (E varies by < 1e-5 there).
-const SceneSource DirectLightScene{R"(wscene 1
+// of albedo a = 0.6: on the axis E = π L R²/(h² + R²), so the plane's radiance is a·L·R²/(h² + R²)
+// (per metre of wavelength: divided by FlatBand). The camera sees a ~4 mm patch around the axis
+// point obliquely (E varies by < 1e-5 there).
+const SceneSource DirectLightScene{R"(wscene 2
 Define gain = 1
 Material "diffuse" "floor_mat" { reflectance = 0.6 }
 Shape "rectangle" "floor" { material = @floor_mat  to_world = scale(10) }
@@ -123,7 +129,8 @@ Detector "perspective" "cam" {
 @INTEGRATOR@)",
                                    "", "", "", 1, {{"max_depth", "1"}}};
 
-// A pinhole camera on a uniform emitter of radiance 2.5 W/m²/sr (box and Gaussian pixels).
+// A pinhole camera on a uniform emitter of radiance 2.5 W/m²/sr over a flat spectrum (box and
+// Gaussian pixels): reads 2.5 / FlatBand.
 const SceneSource CameraEmitterScene{"", "grt_area_camera.wscene", "radiance", "2.5 W/m^2/sr", 2.5, {}};
 
 // A plane wave (E = 3 W/m², λ = 1 µm) on a one-row virtual_plane of three 25 µm Gaussian pixels
@@ -132,7 +139,7 @@ const SceneSource CameraEmitterScene{"", "grt_area_camera.wscene", "radiance", "
 // front of the sensor has one 600 µm × 4 mm opening; for the central pixels it is an open plate:
 // the edge waves arrive at ~70° and their fringes are averaged out by the pixels (|U_edge|² ~ 3e-5
 // of E; `rs` measures 2e-4 at most, Rs.OpenPlateGivesIrradianceTimesCosine).
-const SceneSource PlaneWaveScene{R"(wscene 1
+const SceneSource PlaneWaveScene{R"(wscene 2
 Define gain = 1
 Define theta = 10 deg
 Define plate = false
@@ -152,7 +159,7 @@ Detector "virtual_plane" "sensor" {
 // A point source (I = 2 W/sr, λ = 1 µm) 500 µm in front of one Gaussian pixel (σ = 4 µm) 30 µm and
 // −20 µm off its axis: reads I·cosθ/R² at the pixel centre, up to the pixel's curvature term
 // −3σ²/R² ≈ 2e-4.
-const SceneSource PointSourceScene{R"(wscene 1
+const SceneSource PointSourceScene{R"(wscene 2
 Define gain = 1
 Light "point" "lamp" { position = [0 0 400] um  intensity = $gain * 2 W/sr  spectrum = line(1 um) }
 Detector "virtual_plane" "sensor" {
@@ -245,7 +252,7 @@ const std::vector<ContractCase> &Cases() {
              std::vector<Verdict> out;
              for (double albedo : {0.0, 0.5}) {  // 0: the camera reads the emitted radiance itself
                  auto v = ImageMeanCase(FurnaceScene, integrator, gain, {{"albedo", std::to_string(albedo)}}, 32,
-                                        128, 7, 1 / (1 - albedo), 0);
+                                        128, 7, 1 / (1 - albedo) / FlatBand, 0);
                  v[0].detail = "albedo " + std::to_string(albedo) + ": " + v[0].detail;
                  out.push_back(v[0]);
              }
@@ -254,14 +261,15 @@ const std::vector<ContractCase> &Cases() {
         {"direct_light", 1,
          [](const std::string &integrator, double gain) {
              const double L = 5, R = 0.2, h = 1, a = 0.6;
-             return ImageMeanCase(DirectLightScene, integrator, gain, {}, 16, 32, 3, a * L * R * R / (h * h + R * R),
-                                  0);
+             return ImageMeanCase(DirectLightScene, integrator, gain, {}, 16, 32, 3,
+                                  a * L * R * R / (h * h + R * R) / FlatBand, 0);
          }},
         {"camera_emitter", 2,
          [](const std::string &integrator, double gain) {
              std::vector<Verdict> out;
              for (const char *pixel : {"box", "gaussian"}) {
-                 auto v = ImageMeanCase(CameraEmitterScene, integrator, gain, {{"pixel", pixel}}, 32, 4, 5, 2.5, 0);
+                 auto v = ImageMeanCase(CameraEmitterScene, integrator, gain, {{"pixel", pixel}}, 32, 4, 5,
+                                        2.5 / FlatBand, 0);
                  v[0].detail = std::string(pixel) + " pixels: " + v[0].detail;
                  out.push_back(v[0]);
              }

@@ -581,7 +581,7 @@ TEST(Rs, PointSourceThroughLargeDisc) {
 // ---- the integrator in a scene --------------------------------------------------------------------
 
 // The double slit of scenes/validation/double_slit.wscene, with markers for the variations below.
-const char *const kDoubleSlit = R"(wscene 1
+const char *const kDoubleSlit = R"(wscene 2
 Light "plane_wave" "wave" {
     direction = [0 0 -1]
     irradiance = 2 W/m^2

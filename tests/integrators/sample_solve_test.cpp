@@ -102,7 +102,7 @@ TEST(SampleSolve, EqualsGrtSampleBySampleWithoutPolarisationCoupling) {
 
 // A unit plane wave reflected by a glass plate (n = 1.5) at `theta`, seen by a one-pixel camera on
 // the exact specular direction (a Gaussian pixel: its GR on the mirror direction), Stokes output.
-const char *PlateScene = R"(wscene 1
+const char *PlateScene = R"(wscene 2
 Define theta = 56.30993247402022 deg
 Define pol = 0 deg
 Define usePol = false
@@ -159,7 +159,7 @@ TEST(SampleSolve, BrewsterReflectionIsFullySPolarised) {
 // through its polariser: the reflected light is s-polarised (along image x), so the polariser at θ
 // passes I(0)·cos²θ (Malus). Each sample picks reflection (p = R) or refraction at random: a Monte
 // Carlo estimate whose error comes from independent replicas.
-const char *PanelScene = R"(wscene 1
+const char *PanelScene = R"(wscene 2
 Define pol = 0 deg
 Define b = 56.30993247402022 deg
 Material "dielectric" "glass" { ior = 1.5 }
@@ -271,7 +271,7 @@ TEST(SampleSolve, ConductorTurnsLinearIntoEllipticalPolarisation) {
                       f.t.x, f.n.x, at.x, f.s.y, f.t.y, f.n.y, at.y, f.s.z, f.t.z, f.n.z, at.z);
         return std::string(b);
     };
-    std::snprintf(buf, sizeof buf, R"(wscene 1
+    std::snprintf(buf, sizeof buf, R"(wscene 2
 Light "plane_wave" "sun" { direction = %s  irradiance = 1 W/m^2  spectrum = line(633 nm) }
 Material "conductor" "metal" { ior = 0.2+3.4i }
 Material "dielectric" "glass" { ior = 1.5 }

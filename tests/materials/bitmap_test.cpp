@@ -142,8 +142,9 @@ TEST_F(Bitmap, ChannelsAndLuminance) {
     EXPECT_NEAR(At(*a, 0.5, 0.5), 0.25, 1e-7);
 }
 
-// An 8-bit PNG is sRGB-encoded (OIIO tags it so): "auto" decodes it with the IEC 61966-2-1
-// formula, c ≤ 0.04045 ? c/12.92 : ((c + 0.055)/1.055)^2.4. OCIO's ExponentWithLinearTransform
+// An 8-bit PNG is sRGB-encoded (OIIO tags it so): "auto" decodes it as a colour (AsColour: what a
+// reflectance reads) with the IEC 61966-2-1 formula, c ≤ 0.04045 ? c/12.92 : ((c + 0.055)/1.055)^2.4,
+// and reads it as data (a scalar parameter) raw. OCIO's ExponentWithLinearTransform
 // derives its own toe (break 0.00303993, slope 12.9232, core/image/color.cpp), which differs from
 // the formula by at most 9.8e-6 over [0, 1] (7.5e-7 at the 256 8-bit codes, measured); values are
 // stored as floats (6e-8): tolerance 1.2e-5 (a gamma-2.2 decoding would be off by ~1e-2). "raw"
@@ -153,7 +154,9 @@ TEST_F(Bitmap, SrgbDecodingFollowsTheFormula) {
     std::vector<float> px;
     for (int c : codes) px.insert(px.end(), {c / 255.0f, 0.0f, 0.0f});
     const std::string png = Write("ramp.png", 7, 1, 3, px, OIIO::TypeDesc::UINT8);
-    auto srgb = Build(ParamDict().Set("filename", Value::String(png)).Set("channel", Value::String("R")));
+    auto autoData = Build(ParamDict().Set("filename", Value::String(png)).Set("channel", Value::String("R")));
+    ASSERT_TRUE(autoData && autoData->AsColour());
+    std::shared_ptr<const Texture> srgb = autoData->AsColour();
     auto named = Build(ParamDict()
                            .Set("filename", Value::String(png))
                            .Set("channel", Value::String("R"))
@@ -169,7 +172,37 @@ TEST_F(Bitmap, SrgbDecodingFollowsTheFormula) {
         EXPECT_NEAR(At(*srgb, u, 0.5), linear, 1.2e-5) << "code " << codes[i];
         EXPECT_EQ(At(*named, u, 0.5), At(*srgb, u, 0.5));
         EXPECT_NEAR(At(*raw, u, 0.5), c, 1e-7);
+        EXPECT_EQ(At(*autoData, u, 0.5), At(*raw, u, 0.5));
     }
+    EXPECT_FALSE(named->AsColour());  // an explicit colour space reads alike as data and as colour
+}
+
+// "auto" reads a bitmap by what reads it: a one-channel 8-bit PNG is data (raw) as a thickness
+// map and as a plain scalar, and a colour (sRGB-decoded) as a diffuse reflectance. Code 128:
+// raw 128/255 = 0.50196, decoded ((0.50196 + 0.055)/1.055)^2.4 = 0.21586.
+TEST_F(Bitmap, AutoReadsDataRawAndColoursDecoded) {
+    const std::string grey = Write("grey_auto.png", 1, 1, 1, {128 / 255.0f}, OIIO::TypeDesc::UINT8);
+    scene_ = std::make_unique<MiniScene>();
+    scene_->Add("Texture", "bitmap", "g", ParamDict().Set("filename", Value::String(grey)))
+        .Add("Texture", "bitmap", "t",
+             ParamDict().Set("filename", Value::String(grey)).Set("scale", Value::Number(400e-9, Dim::Length())))
+        .Add("Material", "diffuse", "paint", ParamDict().Set("reflectance", Value::Ref("g")))
+        .Add("Material", "thin_film", "film", ParamDict().Set("ior", Value::Number(1.33)).Set("thickness_texture", Value::Ref("t")));
+    auto g = scene_->Build<Texture>("g"), t = scene_->Build<Texture>("t");
+    auto paint = scene_->Build<Material>("paint"), film = scene_->Build<Material>("film");
+    ASSERT_TRUE(g && t && paint && film) << scene_->FirstError();
+    const double raw = 128 / 255.0, decoded = std::pow((raw + 0.055) / 1.055, 2.4);
+    EXPECT_NEAR(At(*g, 0.5, 0.5), raw, 1e-7);
+    EXPECT_NEAR(At(*t, 0.5, 0.5), 400e-9 * raw, 1e-14);  // a thickness scale is not bent by a gamma
+    ASSERT_TRUE(g->AsColour());
+    EXPECT_NEAR(At(*g->AsColour(), 0.5, 0.5), decoded, 1.2e-5);
+    // The reflectance the diffuse kernel reads: f = R/π.
+    SampledWavelengths wl = TestWavelengths(550e-9);
+    ScatterQuery q;
+    q.wi = Vec3(0, 0, 1);
+    q.wl = &wl;
+    q.tex = TextureEvalContext::AtUV(Vec2(0.5, 0.5));
+    EXPECT_NEAR(paint->Eval(q, Vec3(0, 0, 1))[0] * Pi, decoded, 1.2e-5);
 }
 
 // The spectral kind: an RGB image without channel/scale/offset; its value is Smits' uplift of the

@@ -487,11 +487,19 @@ TEST(Parser, MissingHeader) {
     Parsed p = Parse("Shape \"s\" {}\n");
     EXPECT_FALSE(p.desc);
     EXPECT_NE(p.Errors().find("main.wscene:1:1: missing header"), std::string::npos) << p.Errors();
-    Parsed v = Parse("wscene 2\n");
+    Parsed v = Parse("wscene 3\n");
     EXPECT_NE(v.Errors().find("main.wscene:1:8: unsupported format version"), std::string::npos)
         << v.Errors();
     Parsed comments = Parse("# a comment first is fine\n\nwscene 1\n");
     EXPECT_TRUE(comments.desc) << comments.Errors();
+    // Versions 1 and 2 are read; each entity knows its file's version (plug-ins whose parameters
+    // changed meaning refuse version 1 where it matters).
+    Parsed two = Parse("wscene 2\nShape \"sphere\" {}\n");
+    ASSERT_TRUE(two.desc) << two.Errors();
+    EXPECT_EQ(two.desc->entities.at(0).params.FormatVersion(), 2);
+    Parsed one = Parse("wscene 1\nShape \"sphere\" {}\n");
+    ASSERT_TRUE(one.desc) << one.Errors();
+    EXPECT_EQ(one.desc->entities.at(0).params.FormatVersion(), 1);
 }
 
 TEST(Parser, MessagesNameEveryFamilyFromTheOneList) {

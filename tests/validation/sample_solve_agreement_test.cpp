@@ -31,7 +31,7 @@ constexpr int TestsPerComparison = Blocks * Blocks + 1;
 constexpr int Comparisons = 4;       // two scenes × (partially, fully coherent) vs grt
 double Alpha() { return SidakAlpha(0.01, Comparisons * TestsPerComparison); }
 
-const char *GratingCameraScene = R"(wscene 1
+const char *GratingCameraScene = R"(wscene 2
 # A grating plate (gold, Λ = 2 µm, h = 0.1 µm, grooves along y) under a distant source of 5 mrad
 # (Gaussian profile) at 20°, seen by a camera along the −1st order at 550 nm, 2 m away: its 4° field
 # is filled by the band of the order's glints over 500–600 nm (the order leaves at 2.4°–5.3°).

@@ -291,7 +291,7 @@ TEST(SampleSolveCoherence, CameraPixelsSeeTheirPartOfTheSource) {
     // 0.002–0.004 (the disc taken as a Gaussian in μ; same paths, so little noise). With the
     // source's whole Ω (the former rule, an outside user's report) it was 0.21–0.40, a dark fringe
     // reading 70× grt's; the bound 0.02 lies between.
-    const std::string text = R"(wscene 1
+    const std::string text = R"(wscene 2
 Light "distant" "sun" {
     direction = [(sin(30 deg)) 0 (-cos(30 deg))]
     irradiance = 1 W/m^2

@@ -204,6 +204,32 @@ Rgb8Image ToDisplay(const Image &img, const DisplayOptions &opt) {
     return out;
 }
 
+double AutoExposureStops(const Image &img) {
+    int c = img.ChannelIndex("intensity");
+    if (c < 0) c = img.ChannelIndex("Y");
+    if (c < 0 || img.width <= 0 || img.height <= 0) return 0;
+    const std::size_t n = std::size_t(img.width) * img.height, nc = img.channels.size();
+    std::vector<double> y;
+    y.reserve(n);
+    double logSum = 0;
+    std::size_t lit = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const double v = img.data[i * nc + c];
+        if (!std::isfinite(v)) continue;
+        y.push_back(std::max(v, 0.0));
+        if (v > 0) {
+            logSum += std::log(v);
+            ++lit;
+        }
+    }
+    if (lit == 0) return 0;
+    double scale = 0.18 / std::exp(logSum / double(lit));
+    const std::size_t at = std::min(y.size() - 1, std::size_t(std::floor(0.95 * double(y.size() - 1))));
+    std::nth_element(y.begin(), y.begin() + std::ptrdiff_t(at), y.end());
+    if (y[at] > 0) scale = std::min(scale, 1 / y[at]);
+    return std::isfinite(scale) && scale > 0 ? std::log2(scale) : 0;
+}
+
 void WritePng(OutputFiles &files, const std::string &path, const Image &img, const DisplayOptions &opt) {
     CheckShape(path, img);
     Rgb8Image display;

@@ -37,6 +37,12 @@ struct DisplayOptions {
 /// The display transform of the R,G,B channels of `img` (scene-linear Rec.709; a monochrome
 /// image's intensity or Y as grey) as 8-bit sRGB. Throws phasor::Error (no FileLoc).
 Rgb8Image ToDisplay(const Image &img, const DisplayOptions &opt = {});
+/// The automatic exposure of a camera image [stops], from its `intensity` (or Y) channel: the
+/// log-average of the lit pixels, exp(mean ln Y over Y > 0), brought to middle grey 0.18, and
+/// lowered if needed so that at most the brightest 5 % of the pixels pass the display's white
+/// (scale = min(0.18 / log-average, 1 / 95th percentile of Y): a lamp in view may clip, the
+/// image may not); 0 for an image without a lit pixel. The display transform then shows 2^stops × the image (DisplayOptions::exposure).
+double AutoExposureStops(const Image &img);
 /// Applies the display transform to the R,G,B channels of `img` (scene-linear Rec.709) and writes
 /// an 8-bit PNG through OIIO. Uses $OCIO if set, else the config shipped with phasor.
 void WritePng(const std::string &path, const Image &img, const DisplayOptions &opt = {});

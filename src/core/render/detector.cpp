@@ -136,8 +136,25 @@ std::vector<ParamSpec> CameraParams(std::vector<ParamSpec> extra) {
     p.push_back(P::Spectrum("white_balance",
                             "illuminant whose white is shown as white, e.g. blackbody(4500 K) or @lamp_spectrum "
                             "(Bradford adaptation to D65 in XYZ; cie_xyz only; default: none)"));
+    p.push_back(P::Number("exposure",
+                          "display brightness in stops (EV): the PNG shows 2^exposure × the image (with "
+                          "auto_exposure, a correction of the automatic choice); the EXR keeps physical values")
+                    .Default(Value::Number(0))
+                    .Min(-200)
+                    .Max(200));
+    p.push_back(P::Bool("auto_exposure",
+                        "choose the display brightness from the image: its log-average luminance to middle grey, "
+                        "no more than 5 % of the pixels clipped (README: the display transform)")
+                    .Default(Value::Bool(true)));
     for (ParamSpec &e : PolarizationParams()) p.push_back(std::move(e));
     return p;
+}
+
+DetectorExposure CameraExposure(const ParamDict &d) {
+    DetectorExposure e;
+    e.ev = d.GetNumber("exposure");
+    e.automatic = d.GetBool("auto_exposure");
+    return e;
 }
 
 SensorResponse CameraResponse(const ParamDict &d, BuildContext &ctx) {

@@ -70,6 +70,17 @@ struct DetectorPolarization {
 std::vector<ParamSpec> PolarizationParams();
 DetectorPolarization PolarizationFromParams(const ParamDict &d);
 
+/// How a camera's image is shown (the PNG beside the EXR; the EXR keeps physical values): the
+/// display transform of 2^stops × the image, stops = `exposure` [EV] plus, with `auto_exposure`,
+/// AutoExposureStops of the image (core/image/image_io.h). README "Using phasor" documents it
+/// with the display transform.
+struct DetectorExposure {
+    double ev = 0;
+    bool automatic = false;
+};
+/// A camera's `exposure` and `auto_exposure` parameters (CameraParams), read.
+DetectorExposure CameraExposure(const ParamDict &d);
+
 /// The `response` parameter every detector has ("cie_xyz" or "radiometric"), and its value.
 ParamSpec ResponseParam(const char *defaultResponse);
 SensorResponse ResponseFromParams(const ParamDict &d);
@@ -136,6 +147,9 @@ class Detector {
     }
     const DetectorPolarization &Polarization() const { return polarization_; }
     void SetPolarization(DetectorPolarization p) { polarization_ = std::move(p); }
+    /// How the image is shown (cameras; a sensor plane's default: 0 EV, no automatic exposure).
+    const DetectorExposure &Exposure() const { return exposure_; }
+    void SetExposure(DetectorExposure e) { exposure_ = e; }
 
     /// Sensor planes describe themselves for field-based integrators; nullptr for cameras.
     virtual const SensorPlaneGeometry *SensorPlane() const { return nullptr; }
@@ -151,6 +165,7 @@ class Detector {
     int width_, height_;
     SensorResponse response_;
     DetectorPolarization polarization_;
+    DetectorExposure exposure_;
 };
 
 }  // namespace phasor

@@ -74,8 +74,10 @@ struct RenderCounters {
 
 /// The estimated run time [s] above which integrators warn before rendering (WorkWarning).
 inline constexpr double LongRenderSeconds = 300;
-/// "about 3h12m (…what…), far beyond the usual: …fix…", or "" if `seconds` ≤ LongRenderSeconds.
-std::string WorkWarning(double seconds, const std::string &what, const std::string &fix);
+/// "this <run> would take about 3.2 h (…what…), far beyond the usual: …fix…", or "" if `seconds`
+/// ≤ LongRenderSeconds.
+std::string WorkWarning(double seconds, const std::string &what, const std::string &fix,
+                        const std::string &run = "render");
 
 struct RenderStats {
     int sppReached = 0;  // samples per pixel completed in every pixel (sampling integrators)
@@ -104,6 +106,10 @@ class Integrator {
     /// True for integrators that take no random samples (rs): no spp, seed or sampler applies;
     /// they report RenderStats::work and progress in their own steps.
     virtual bool Deterministic() const { return false; }
+    /// True for integrators that compute wave optics (diffraction, interference: `grt`,
+    /// `sample_solve`, `rs`), false for classical ray optics (`ray`). `compare` never grades an
+    /// integrator against a reference of the other physics as if their difference were error.
+    virtual bool WaveOptical() const = 0;
     /// True for integrators that carry polarisation (`sample_solve`): only they honour a detector's
     /// `polarizer` and `stokes` (Scene::Build refuses the others at those parameters).
     virtual bool SupportsPolarization() const { return false; }

@@ -266,6 +266,11 @@ class Material {
         (void)tex;
         return std::nullopt;
     }
+    /// How `phasor probe` names near-delta lobe `id` in its "order" column: the kernel's own
+    /// numbering of its lobes (a grating's diffraction order j on either side); by default the id.
+    /// A composite that renumbers its children's lobes names the child and the child's own name
+    /// ("b: -1"), never the renumbered id.
+    virtual std::string LobeName(int id) const { return std::to_string(id); }
     /// True if f(wi→wo) = f(wo→wi) (checked by the contract suite).
     virtual bool IsReciprocal() const { return true; }
     /// For a non-reciprocal kernel, the sense in which it conserves energy (the contract suite

@@ -9,40 +9,65 @@
 #include <cstdio>
 #include <thread>
 
+#include <time.h>
+
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
 namespace phasor {
 
-void PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt,
-                                   const Sampler &prototype) const {
-    // A pilot of up to 256 samples spread over the image (at most ~0.5 s, at least one sample),
+double PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt,
+                                     const Sampler &prototype) const {
+    // A pilot spread over the image by the R2 sequence (any prefix covers the whole image, so a
+    // pilot stopped early by its time limit is not confined to the top rows) and over the pixel's
+    // samples. The first samples fill caches and tables built on first use (a grating's order
+    // listing, Gauss–Legendre rules): they are not timed. Then up to 1024 samples or 0.5 s,
     // extrapolated to every pixel and sample on all threads; the film is not touched.
-    const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<Sampler> sampler = prototype.Clone();
     PathStats ps;
-    int n = 0;
-    double elapsed = 0;
-    for (; n < 256 && (n == 0 || elapsed < 0.5); ++n) {
-        const int x = int((n * 0.618034 - std::floor(n * 0.618034)) * w), y = (n * h) / 256;
+    auto sample = [&](int n) {
+        const double fx = n * 0.7548776662466927, fy = n * 0.5698402909980532;  // R2 (plastic number)
+        const int x = std::min(w - 1, int((fx - std::floor(fx)) * w)), y = std::min(h - 1, int((fy - std::floor(fy)) * h));
         // Samples spread over the pixel's set (a sample's cost depends on its direction).
         const int index = int((uint64_t(n) * 2654435761u + 7) % uint64_t(opt.spp));
         sampler->StartPixelSample(x, y, index);
         ps.sample = PixelSampleIndex{index, opt.spp, opt.seed};
         SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
         EstimatePixel(scene, x, y, wl, *sampler, ps);
-        elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    };
+    constexpr int WarmUp = 8;
+    for (int n = 0; n < WarmUp; ++n) sample(n);
+    // Timed in this thread's CPU time: on a machine other processes share, wall time would count
+    // their time too, and the estimate would change with the load (it is the render's time on the
+    // threads' own cores).
+    const auto cpuNow = [] {
+        timespec ts{};
+        clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+        return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+    };
+    const double c0 = cpuNow();
+    int n = 0;
+    double elapsed = 0;
+    for (; n < 1024 && (n == 0 || elapsed < 0.5); ++n) {
+        sample(WarmUp + n);
+        elapsed = cpuNow() - c0;
     }
     const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    const double perSample = elapsed / n, samples = double(w) * h * opt.spp;
+    const double perSample = elapsed / n, samples = double(w) * h * opt.spp, seconds = perSample * samples / threads;
     char what[160];
     std::snprintf(what, sizeof what, "%d spp x %dx%d pixels at %.3g ms per sample on %d threads", opt.spp, w, h,
                   perSample * 1e3, threads);
-    const std::string msg = WorkWarning(perSample * samples / threads, what,
-                                        "lower the spp (--spp) or the detector's resolution; a sample's cost "
-                                        "grows as the wavelength shrinks against the scene (openings many "
-                                        "wavelengths wide), so check the light's spectrum");
-    if (!msg.empty()) opt.warn(msg);
+    // Advice that fits the scene: an aperture's cost grows with its openings' size in wavelengths.
+    std::string fix = "lower the spp (--spp) or the detector's resolution";
+    for (const auto &shape : scene.Shapes())
+        if (shape->material && shape->material->IsFootprintAware()) {
+            fix += "; a sample through an aperture costs more the more wavelengths its openings span, so check "
+                   "the light's spectrum against the openings of '" + shape->name + "'";
+            break;
+        }
+    const std::string msg = WorkWarning(seconds, what, fix);
+    if (!msg.empty() && opt.warn) opt.warn(msg);
+    return seconds;
 }
 
 std::array<SampledSpectrum, 4> PixelIntegrator::EstimatePixelStokes(const Scene &, int, int, SampledWavelengths &,
@@ -117,7 +142,11 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
         return stats;
     }
     const int w = film.Width(), h = film.Height();
-    if (opt.warn) EstimateWork(scene, w, h, opt, *prototype);
+    if (opt.warn) {
+        char estimate[32];
+        std::snprintf(estimate, sizeof estimate, "%.4g", EstimateWork(scene, w, h, opt, *prototype));
+        stats.metadata["phasor:work_estimate_seconds"] = estimate;  // (compared with the render's time)
+    }
     TilePasses passes(film, opt.cancel);
     struct Serving {  // other processes and checkpoints see the passes while they run
         WorkShare *work;

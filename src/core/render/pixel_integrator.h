@@ -33,9 +33,11 @@ class PixelIntegrator : public Integrator {
     /// (radiance for cameras), not divided by the wavelength pdfs (the film does that).
     /// The sampler is positioned after the wavelength dimension. May drop companion wavelengths
     /// (wl.TerminateSecondary()) when a dispersive lobe is taken.
-    /// Times a few samples before the first pass and reports through opt.warn when the whole
-    /// render would take far longer than usual (WorkWarning).
-    void EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt, const Sampler &prototype) const;
+    /// Times a pilot of samples before the first pass (after a few untimed ones that warm caches)
+    /// and reports through opt.warn when the whole render would take far longer than usual
+    /// (WorkWarning), with advice that fits the scene. Returns the estimate [s] (the render records
+    /// it as phasor:work_estimate_seconds).
+    double EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt, const Sampler &prototype) const;
     virtual SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl,
                                           Sampler &sampler, PathStats &stats) const = 0;
     /// The same estimate as a Stokes vector per carried wavelength (S[0] = EstimatePixel's value),

@@ -360,15 +360,18 @@ std::string BuildContext::FamilyOf(const Value &ref) const {
 }
 
 std::shared_ptr<const Texture> BuildContext::ResolveTexture(const ParamDict &dict, const std::string &name) {
+    return std::static_pointer_cast<const Texture>(Resolve(dict.GetValue(name), "texture"));
+}
+
+void BuildContext::CheckTextureRange(const ParamDict &dict, const std::string &name, const Texture &tex) const {
     const Value &v = dict.GetValue(name);
-    auto tex = std::static_pointer_cast<const Texture>(Resolve(v, "texture"));
     const ParamSpec *spec = dict.GetSchema() ? dict.GetSchema()->Find(name) : nullptr;
-    if (!spec) return tex;
-    const double lo = tex->MinValue(), hi = tex->MaxValue();
+    if (!spec) return;
+    const double lo = tex.MinValue(), hi = tex.MaxValue();
     const bool tooLow = spec->minValue && (spec->minExclusive ? !(lo > *spec->minValue) : !(lo >= *spec->minValue));
     const bool tooHigh = spec->maxValue && !(hi <= *spec->maxValue);
     if (tooLow || tooHigh) {
-        const Dim d = tex->ScalarDim().value_or(Dim::None());
+        const Dim d = tex.ScalarDim().value_or(Dim::None());
         std::string range;
         if (spec->minValue)
             range += std::string(spec->minExclusive ? "> " : "≥ ") + Value::Number(*spec->minValue, d).ToString();
@@ -378,7 +381,6 @@ std::shared_ptr<const Texture> BuildContext::ResolveTexture(const ParamDict &dic
                                "' ranges over [" + Value::Number(lo, d).ToString() + ", " +
                                Value::Number(hi, d).ToString() + "]");
     }
-    return tex;
 }
 
 FloatTexture BuildContext::GetFloatTexture(const ParamDict &dict, const std::string &name) {
@@ -399,6 +401,7 @@ FloatTexture BuildContext::GetFloatTexture(const ParamDict &dict, const std::str
     if (!d || (!anyDim && *d != want))
         throw Error(v.loc, "'" + name + "' expects " + expected + " (or a texture of " + expected + "); texture '@" +
                                v.text + "' yields " + tex->DescribeYield());
+    CheckTextureRange(dict, name, *tex);
     return FloatTexture(std::static_pointer_cast<const ScalarTexture>(tex));
 }
 
@@ -412,9 +415,11 @@ SpectrumTexture BuildContext::GetSpectrumTexture(const ParamDict &dict, const st
     if (family == "spectrum" && allowed != "texture") return SpectrumTexture(SpectrumFromValue(v));
     if (family != "texture") Resolve(v, allowed);  // throws: undefined, or of another family
     std::shared_ptr<const Texture> tex = ResolveTexture(dict, name);
+    if (std::shared_ptr<const Texture> colour = tex->AsColour()) tex = std::move(colour);  // read as a colour
     if (const std::optional<Dim> d = tex->ScalarDim(); d && !d->IsNone())
         throw Error(v.loc, "'" + name + "' expects a spectrum or a dimensionless texture; texture '@" + v.text +
                                "' yields " + tex->DescribeYield());
+    CheckTextureRange(dict, name, *tex);
     return SpectrumTexture(std::move(tex));
 }
 

@@ -204,8 +204,11 @@ class BuildContext {
     std::shared_ptr<void> Resolve(const Value &ref, const std::string &family);
     /// The family ("texture") of the entity a reference names; "" if it names none.
     std::string FamilyOf(const Value &ref) const;
-    /// The texture a constant-or-texture parameter names, with its range checked against the spec.
+    /// The texture a constant-or-texture parameter names.
     std::shared_ptr<const Texture> ResolveTexture(const ParamDict &dict, const std::string &name);
+    /// Throws (at the parameter) when the texture's range leaves the spec's; called after the
+    /// kind and dimension checks, so that a texture of the wrong kind is reported as such.
+    void CheckTextureRange(const ParamDict &dict, const std::string &name, const Texture &tex) const;
     std::shared_ptr<void> BuildEntity(std::size_t index);
     std::shared_ptr<void> CreateFromCall(const Value &call, const std::string &family);
 

@@ -226,13 +226,13 @@ std::string Scene::DarkImageCause() const {
            "that the detector sees lit surfaces";
 }
 
-std::string WorkWarning(double seconds, const std::string &what, const std::string &fix) {
+std::string WorkWarning(double seconds, const std::string &what, const std::string &fix, const std::string &run) {
     if (!(seconds > LongRenderSeconds)) return "";
     char t[32];
     if (seconds < 3600) std::snprintf(t, sizeof t, "%.0f min", seconds / 60);
     else if (seconds < 86400 * 2) std::snprintf(t, sizeof t, "%.1f h", seconds / 3600);
     else std::snprintf(t, sizeof t, "%.3g days", seconds / 86400);
-    return std::string("this render would take about ") + t + " (" + what + "), far beyond the usual: " + fix;
+    return "this " + run + " would take about " + t + " (" + what + "), far beyond the usual: " + fix;
 }
 
 }  // namespace phasor

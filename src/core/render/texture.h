@@ -64,6 +64,12 @@ class Texture {
     virtual double MinValue() const = 0;
     virtual double MaxValue() const = 0;
     virtual std::string ToString() const = 0;
+    /// A texture whose values depend on whether they are read as data (a thickness, an angle, a
+    /// weight: BuildContext::GetFloatTexture) or as a colour (a reflectance: GetSpectrumTexture)
+    /// returns here the colour reading; nullptr (the default) when both are the same. A `bitmap`
+    /// with colorspace = "auto" is such a texture: raw values as data, decoded from its colour
+    /// space (sRGB for 8-bit images) as a colour.
+    virtual std::shared_ptr<const Texture> AsColour() const { return nullptr; }
 
     /// "a spectrum", "a length", "an angle", "a plain number" — for messages.
     std::string DescribeYield() const {

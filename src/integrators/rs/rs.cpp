@@ -313,6 +313,7 @@ class RsIntegrator final : public Integrator {
     }
 
     bool Deterministic() const override { return true; }
+    bool WaveOptical() const override { return true; }
 
     std::string ToString() const override {
         const char *m = mode_ == Mode::TwoD ? "2d" : (mode_ == Mode::ThreeD ? "3d" : "auto");
