@@ -66,6 +66,10 @@ class DiffuseMaterial final : public Material {
         return p;
     }
 
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(q, reflectance_.Eval(q.tex, *q.wl));
+    }
+
     unsigned Capabilities(const ScatterQuery &) const override { return CapContinuous; }
     void ContinuousLobes(const ScatterQuery &, ContinuousLobeIds &out) const override { out.Add(0); }
 
@@ -113,6 +117,50 @@ class DiffuseMaterial final : public Material {
 
   private:
     static bool SameSide(const Vec3 &a, const Vec3 &b) { return a.z * b.z > 0; }
+
+    /// The kernel at one hit: R evaluated there.
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const ScatterQuery &q, const SampledSpectrum &r) : PreparedKernel(q), r_(r) {
+            caps_ = CapContinuous;
+            continuous_.Add(0);
+        }
+        /// Lobe 0 (the only one): a depolariser, M = (R/π)·|cosθo|·diag(1, 0, 0, 0) (theory §4.9).
+        std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
+            if (lobe != 0 || !SameSide(q_.wi, wo)) return std::nullopt;
+            const SampledSpectrum f = r_ * (InvPi * std::abs(wo.z));
+            LobeResponse r;
+            for (int i = 0; i < q_.wl->Count(); ++i) r.mueller[i] = Mueller::Depolarizer(f[i]);
+            return r;
+        }
+
+      private:
+        std::optional<ScatterSample> SampleLobes(double, const Vec2 &u) const override {
+            if (q_.wi.z == 0) return std::nullopt;
+            // Malley's method: project a uniform disc sample up to the hemisphere (pdf = cosθ/π).
+            const Vec2 d = ConcentricDisc(u);
+            const double z = SafeSqrt(1 - d.x * d.x - d.y * d.y);
+            if (z == 0) return std::nullopt;  // exactly on the horizon: pdf 0
+            ScatterSample s;
+            s.wo = Vec3(d.x, d.y, q_.wi.z > 0 ? z : -z);  // mirrored to wi's side (two-sided)
+            s.pdf = z * InvPi;
+            s.weight = r_;  // f·|cosθo|/pdf = (R/π)·cosθ/(cosθ/π)
+            s.lobe = 0;
+            s.flags = ScatterReflection | ScatterDiffuse;
+            s.eta = 1;
+            return s;
+        }
+        SampledSpectrum EvalContinuous(const Vec3 &wo) const override {
+            return SameSide(q_.wi, wo) ? r_ * InvPi : SampledSpectrum(0);
+        }
+        double PdfContinuous(const Vec3 &wo) const override { return SameSide(q_.wi, wo) ? std::abs(wo.z) * InvPi : 0; }
+        KernelValue EvalPdfContinuous(const Vec3 &wo, const IncidentWave &) const override {
+            if (!SameSide(q_.wi, wo)) return KernelValue{};
+            return KernelValue{r_ * InvPi, std::abs(wo.z) * InvPi};
+        }
+
+        SampledSpectrum r_;  // R(λ) at the hit
+    };
 
     SampledSpectrum Reflectance(const ScatterQuery &q) const { return reflectance_.Eval(q.tex, *q.wl); }
 

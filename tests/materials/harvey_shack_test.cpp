@@ -338,12 +338,13 @@ TEST(HarveyShack, SampledWeightsAverageTheirIntegral) {
         for (double theta : thetas)
             for (bool below : {false, true}) {
                 const ScatterQuery q = Query(wl, theta, 0.7, below);
-                NearDeltaLobes lobes;
-                hs->ListNearDelta(q, lobes);
-                const double expected = (lobes.count ? lobes.lobe[0].weight[0] : 0.0) + ContinuousAlbedo(*hs, q, c.core)[0];
+                ScratchBuffer scratch;
+                const PreparedKernel &k = hs->Prepare(q, scratch);
+                const std::span<const NearDeltaLobe> lobes = k.ListNearDelta();
+                const double expected = (lobes.empty() ? 0.0 : lobes[0].weight[0]) + ContinuousAlbedo(k, c.core)[0];
                 std::vector<double> w;
                 for (int i = 0; i < 50000; ++i) {
-                    auto s = hs->Sample(q, rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
+                    auto s = k.Sample(rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
                     w.push_back(s ? s->weight[0] : 0.0);
                 }
                 TTestResult t = OneSampleTTest(w, expected);

@@ -53,11 +53,83 @@ std::optional<LobeResponse> Material::EvalContinuousLobes(const ScatterQuery &q,
     return sum;
 }
 
+NearDeltaLobe &LobeList::Add() {
+    if (count_ >= capacity_)
+        throw Error("a kernel listed more than the " + std::to_string(capacity_) + " near-delta lobes it made room for");
+    return *::new (lobe_ + count_++) NearDeltaLobe{};
+}
+
 namespace {
 unsigned MaskOf(unsigned scatterFlags) {
     return (scatterFlags & ScatterNearDelta) ? LobeNearDelta : LobeContinuous;
 }
+
+/// Transitional: a kernel that does not prepare yet, answered through its query-based methods.
+class LegacyPrepared final : public PreparedKernel {
+  public:
+    LegacyPrepared(const Material &m, const ScatterQuery &q, ScratchBuffer &scratch)
+        : PreparedKernel(q), m_(&m), full_(q) {
+        full_.lobes = LobeAll;
+        caps_ = m.Capabilities(q);
+        NearDeltaLobes listed;
+        m.ListNearDelta(q, listed);
+        LobeList l(scratch, listed.count);
+        for (const NearDeltaLobe &x : listed) l.Add() = x;
+        lobes_ = l.Lobes();
+        m.ContinuousLobes(q, continuous_);
+    }
+    std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override { return m_->EvalLobe(full_, lobe, wo); }
+
+  protected:
+    std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override { return m_->Sample(full_, u0, u); }
+    SampledSpectrum EvalContinuous(const Vec3 &wo) const override { return m_->Eval(full_, wo); }
+    SampledSpectrum EvalContinuousFrom(const Vec3 &wo, const IncidentWave &w) const override {
+        return m_->EvalFrom(full_, wo, w);
+    }
+    double PdfContinuous(const Vec3 &wo) const override { return m_->Pdf(full_, wo); }
+
+  private:
+    const Material *m_;
+    ScatterQuery full_;  // with gr and si: the caller keeps them alive while it asks
+};
 }  // namespace
+
+const PreparedKernel &Material::Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const {
+    return *scratch.New<LegacyPrepared>(*this, q, scratch);
+}
+
+const NearDeltaLobe *PreparedKernel::FindLobe(int id) const {
+    for (const NearDeltaLobe &l : lobes_)
+        if (l.id == id) return &l;
+    return nullptr;
+}
+
+std::optional<ScatterSample> PreparedKernel::Sample(double u0, const Vec2 &u, unsigned lobes) const {
+    auto s = SampleLobes(u0, u);
+    if (s && !(lobes & MaskOf(s->flags))) return std::nullopt;  // outside the mask: unbiased for the rest
+    return s;
+}
+
+std::optional<ScatterSample> PreparedKernel::SampleLobes(double u0, const Vec2 &) const {
+    return SampleListedLobe(lobes_, u0);
+}
+
+std::optional<LobeResponse> PreparedKernel::EvalContinuousLobes(const Vec3 &wo) const {
+    std::optional<LobeResponse> sum;
+    for (int id : continuous_) {
+        auto r = EvalLobe(id, wo);
+        if (!r) continue;
+        if (!sum) {
+            sum = *r;
+            continue;
+        }
+        sum->hasJones = false;
+        for (int i = 0; i < q_.wl->Count(); ++i) sum->mueller[i] = sum->mueller[i] + r->mueller[i];
+    }
+    // Continuous lobes have no interference terms (LobeCoherence is for near-delta lobes).
+    if (sum) sum->coherence = LobeCoherence{};
+    return sum;
+}
 
 std::optional<ScatterSample> Material::Sample(const ScatterQuery &q, double u0, const Vec2 &u) const {
     auto s = SampleLobes(q, u0, u);

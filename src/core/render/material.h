@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/scratch_buffer.h"
 #include "core/polarization.h"
 #include "core/spectrum/spectrum.h"
 #include "core/render/texture.h"
@@ -154,6 +155,24 @@ struct NearDeltaLobes {
     const NearDeltaLobe *end() const { return lobe.data() + count; }
 };
 
+/// The near-delta lobes a kernel lists while it is prepared (Material::Prepare), in the scratch
+/// buffer: room for at most `capacity` lobes, which the kernel knows (a smooth surface 2, a grating
+/// 2·(2·max_order + 1)). The prepared kernel keeps Lobes() (PreparedKernel::ListNearDelta).
+class LobeList {
+  public:
+    LobeList(ScratchBuffer &scratch, int capacity)
+        : lobe_(scratch.Room<NearDeltaLobe>(std::size_t(capacity))), capacity_(capacity) {}
+    /// Appends a lobe (value-initialised); throws phasor::Error past the capacity (a kernel bug).
+    NearDeltaLobe &Add();
+    int Count() const { return count_; }
+    NearDeltaLobe &operator[](int k) { return lobe_[k]; }
+    std::span<const NearDeltaLobe> Lobes() const { return {lobe_, std::size_t(count_)}; }
+
+  private:
+    NearDeltaLobe *lobe_;
+    int capacity_, count_ = 0;
+};
+
 /// The ids of a query's continuous lobes (Material::ContinuousLobes); fixed capacity.
 struct ContinuousLobeIds {
     static constexpr int Capacity = 8;
@@ -204,11 +223,133 @@ struct LobeResponse {
     LobeCoherence coherence;
 };
 
+/// The continuous lobes' value and density towards one direction (PreparedKernel::EvalPdf).
+struct KernelValue {
+    SampledSpectrum f;  // [1/sr] as PreparedKernel::Eval / EvalFrom (no cosine)
+    double pdf = 0;     // [1/sr] as PreparedKernel::Pdf
+};
+
+/// A kernel prepared for one query (Material::Prepare; pbrt-v4's BSDF from GetBSDF, Mitsuba 3's
+/// BSDF with its SurfaceInteraction): what depends on the query alone — textures, the smooth
+/// surface's optics at θ_i, a grating's orders, a mixture's weight, the plate a generalized ray
+/// meets — is evaluated once, the near-delta lobes are listed once, and every question about the
+/// query (Sample, Eval, Pdf, EvalPdf, ListNearDelta, EvalLobe, …) is a method of this object. It
+/// lives in the ScratchBuffer it was prepared in, until that buffer is reset.
+///
+/// The query it keeps (Query()) has `gr` and `si` cleared: a kernel reads what it needs of the
+/// incident generalized ray and the hit while it is prepared (the integrator moves both on).
+///
+/// The lobe mask (`lobes`, LobeMask) is the one rule for what Sample, Eval and Pdf contain, enforced
+/// here in the non-virtual methods, so no kernel can get it wrong:
+///   * Eval and Pdf report continuous lobes only, and only when the mask has LobeContinuous.
+///     Near-delta lobes have no density in Eval, not even for a generalized ray: integrators
+///     measure delta and small sources through them in closed form from ListNearDelta (D14).
+///   * Sample returns nullopt for a lobe outside the mask. Since Sample picks lobe j with
+///     probability p_j and weights it by 1/p_j, the masked estimator is an unbiased estimate of
+///     the masked part alone (e.g. LobeContinuous: the continuous lobes' ∫ f·|cosθ| dω).
+class PreparedKernel {
+  public:
+    PreparedKernel(const PreparedKernel &) = delete;
+    PreparedKernel &operator=(const PreparedKernel &) = delete;
+
+    /// The query, with `gr` and `si` cleared (see above).
+    const ScatterQuery &Query() const { return q_; }
+    /// KernelCaps for the query.
+    unsigned Capabilities() const { return caps_; }
+    /// True if the query has no continuous lobe (no point in light sampling).
+    bool IsDeltaOnly() const { return !(caps_ & CapContinuous); }
+    /// Every near-delta lobe of the query, in the order of their ids (none for a kernel without
+    /// near-delta lobes).
+    std::span<const NearDeltaLobe> ListNearDelta() const { return lobes_; }
+    /// The listed lobe of id `id`, or nullptr.
+    const NearDeltaLobe *FindLobe(int id) const;
+    /// The ids of the continuous lobes: those Sample returns with a finite pdf. Their EvalLobe
+    /// responses add up to Eval·|cosθo| at every wo (checked by the contract suite), so a polarised
+    /// integrator can weight a sampled direction by all of them, as Eval does.
+    const ContinuousLobeIds &ContinuousLobes() const { return continuous_; }
+
+    /// Picks one term of the scattering mixture with probability p_j (u0) and a direction in it
+    /// (u). Returns nullopt if the path is absorbed / no valid direction, or the picked lobe is
+    /// outside `lobes` (LobeMask).
+    std::optional<ScatterSample> Sample(double u0, const Vec2 &u, unsigned lobes = LobeAll) const;
+    /// Scattered density towards wo per unit solid angle per unit incident irradiance [1/sr]
+    /// (no cosine) of the continuous lobes; 0 unless `lobes` has LobeContinuous.
+    SampledSpectrum Eval(const Vec3 &wo, unsigned lobes = LobeAll) const {
+        return (lobes & LobeContinuous) ? EvalContinuous(wo) : SampledSpectrum(0.0);
+    }
+    /// Like Eval, for the wave `w` arriving along −wo: a spherical wave from a source at distance
+    /// w.dist [m] (its curvature over the GR's footprint matters to footprint-aware kernels;
+    /// Infinity gives Eval) or a Gaussian beam (w.beam; the value is then per unit on-axis
+    /// irradiance, see IncidentWave). Kernels that are not footprint-aware ignore w.
+    SampledSpectrum EvalFrom(const Vec3 &wo, const IncidentWave &w, unsigned lobes = LobeAll) const {
+        return (lobes & LobeContinuous) ? EvalContinuousFrom(wo, w) : SampledSpectrum(0.0);
+    }
+    /// Solid-angle density with which Sample() produces wo (continuous lobes, including their
+    /// selection probability); 0 unless `lobes` has LobeContinuous.
+    double Pdf(const Vec3 &wo, unsigned lobes = LobeAll) const {
+        return (lobes & LobeContinuous) ? PdfContinuous(wo) : 0;
+    }
+    /// EvalFrom and Pdf towards one direction together (what light sampling with MIS needs; a
+    /// kernel shares the work of the two where it can). Equal to (EvalFrom(wo, w), Pdf(wo)).
+    KernelValue EvalPdf(const Vec3 &wo, const IncidentWave &w = {}, unsigned lobes = LobeAll) const {
+        return (lobes & LobeContinuous) ? EvalPdfContinuous(wo, w) : KernelValue{};
+    }
+    /// The response (Jones / Mueller, coherence terms) of lobe `lobe` (an id Sample or
+    /// ListNearDelta gave for this query) towards wo; nullopt if the lobe does not reach wo (for a
+    /// near-delta lobe: wo is not its direction at the hero wavelength, to 1e-9). See LobeResponse.
+    virtual std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const = 0;
+    /// Σ over ContinuousLobes of EvalLobe towards wo (the Mueller sum; a Jones matrix only when
+    /// exactly one lobe answers; no coherence terms); nullopt if none answers.
+    std::optional<LobeResponse> EvalContinuousLobes(const Vec3 &wo) const;
+
+  protected:
+    /// Keeps q without its `gr` and `si` (see above). Kernels set caps_, lobes_ and continuous_.
+    explicit PreparedKernel(const ScatterQuery &q) : q_(q) {
+        q_.gr = nullptr;
+        q_.si = nullptr;
+    }
+    /// Not virtual: prepared kernels live in a ScratchBuffer, which runs no destructors (every
+    /// prepared kernel is trivially destructible).
+    ~PreparedKernel() = default;
+
+    /// Sample over all lobes (Sample applies the mask). The default serves kernels whose lobes are
+    /// all listed: it picks one of lobes_ with its `prob` (SampleListedLobe).
+    virtual std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const;
+    /// The continuous lobes' value [1/sr] (Eval without the mask); 0 for delta-only kernels.
+    virtual SampledSpectrum EvalContinuous(const Vec3 &wo) const {
+        (void)wo;
+        return SampledSpectrum(0.0);
+    }
+    /// Footprint-aware kernels: the continuous lobes' value for the incident wave w.
+    virtual SampledSpectrum EvalContinuousFrom(const Vec3 &wo, const IncidentWave &w) const {
+        (void)w;
+        return EvalContinuous(wo);
+    }
+    /// The continuous lobes' density [1/sr] (Pdf without the mask).
+    virtual double PdfContinuous(const Vec3 &wo) const {
+        (void)wo;
+        return 0;
+    }
+    /// EvalContinuousFrom and PdfContinuous together; a kernel overrides it where the two share work.
+    virtual KernelValue EvalPdfContinuous(const Vec3 &wo, const IncidentWave &w) const {
+        return KernelValue{EvalContinuousFrom(wo, w), PdfContinuous(wo)};
+    }
+
+    ScatterQuery q_;
+    unsigned caps_ = 0;
+    std::span<const NearDeltaLobe> lobes_;
+    ContinuousLobeIds continuous_;
+};
+
 class Material {
   public:
     virtual ~Material() = default;
 
-    // --- What integrators call (non-virtual: the lobe mask is enforced here, once) ----------
+    /// The kernel prepared for query q, in `scratch` (see PreparedKernel): valid until `scratch` is
+    /// reset. Reads *q.gr and *q.si (when given) only here.
+    virtual const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const;
+
+    // --- Transitional: the query-based interface, until every kernel prepares ----------------
 
     /// Picks one term of the scattering mixture with probability p_j (u0) and a direction in it
     /// (u). Returns nullopt if the path is absorbed / no valid direction, or the picked lobe is
