@@ -47,6 +47,18 @@ class ScratchBuffer {
 
     /// Drops every object allocated since the last Reset.
     void Reset();
+
+    /// A position in the buffer, to drop what was allocated after it (Rewind): nested, short-lived
+    /// preparations (a Newton solve's trial kernels) inside a sample's longer-lived ones.
+    struct Mark {
+        std::size_t blocks = 0, offset = 0;
+    };
+    Mark Save() const { return Mark{full_.size(), offset_}; }
+    /// Drops the objects allocated since `m` (which must be from this buffer since its last Reset).
+    /// If a new block was started since, the memory is reclaimed at the next Reset instead.
+    void Rewind(const Mark &m) {
+        if (m.blocks == full_.size()) offset_ = m.offset;
+    }
     /// Bytes handed out since the last Reset (tests, statistics).
     std::size_t Used() const { return fullBytes_ + offset_; }
 

@@ -70,45 +70,6 @@ class DiffuseMaterial final : public Material {
         return *scratch.New<Prepared>(q, reflectance_.Eval(q.tex, *q.wl));
     }
 
-    unsigned Capabilities(const ScatterQuery &) const override { return CapContinuous; }
-    void ContinuousLobes(const ScatterQuery &, ContinuousLobeIds &out) const override { out.Add(0); }
-
-    /// Lobe 0 (the only one): a depolariser, M = (R/π)·|cosθo|·diag(1, 0, 0, 0) (theory §4.9).
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        if (lobe != 0 || !SameSide(q.wi, wo)) return std::nullopt;
-        const SampledSpectrum f = Reflectance(q) * (InvPi * std::abs(wo.z));
-        LobeResponse r;
-        for (int i = 0; i < q.wl->Count(); ++i) r.mueller[i] = Mueller::Depolarizer(f[i]);
-        return r;
-    }
-
-  protected:
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double, const Vec2 &u) const override {
-        if (q.wi.z == 0) return std::nullopt;
-        // Malley's method: project a uniform disc sample up to the hemisphere (pdf = cosθ/π).
-        const Vec2 d = ConcentricDisc(u);
-        const double z = SafeSqrt(1 - d.x * d.x - d.y * d.y);
-        if (z == 0) return std::nullopt;  // exactly on the horizon: pdf 0
-        ScatterSample s;
-        s.wo = Vec3(d.x, d.y, q.wi.z > 0 ? z : -z);  // mirrored to wi's side (two-sided)
-        s.pdf = z * InvPi;
-        s.weight = Reflectance(q);  // f·|cosθo|/pdf = (R/π)·cosθ/(cosθ/π)
-        s.lobe = 0;
-        s.flags = ScatterReflection | ScatterDiffuse;
-        s.eta = 1;
-        return s;
-    }
-
-    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        if (!SameSide(q.wi, wo)) return SampledSpectrum(0);
-        return Reflectance(q) * InvPi;
-    }
-
-    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        return SameSide(q.wi, wo) ? std::abs(wo.z) * InvPi : 0;
-    }
-
-  public:
     std::string ToString() const override {
         std::ostringstream os;
         os << "DiffuseMaterial[ reflectance = " << reflectance_.ToString() << " ]";
@@ -161,8 +122,6 @@ class DiffuseMaterial final : public Material {
 
         SampledSpectrum r_;  // R(λ) at the hit
     };
-
-    SampledSpectrum Reflectance(const ScatterQuery &q) const { return reflectance_.Eval(q.tex, *q.wl); }
 
     SpectrumTexture reflectance_;
 };

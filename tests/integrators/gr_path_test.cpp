@@ -2,13 +2,16 @@
 // The shared GR path sampler (src/integrators/gr_path.h): `grt`'s estimate is unchanged by a sink
 // that records the path and its measurement events, and the events add up to the estimate — so a
 // forward solve over the events (sample_solve) covers exactly the terms grt adds. Checked sample
-// by sample (same sampler, same dimensions) on validation scenes that exercise every event kind:
+// by sample (same sampler, same dimensions) on every validation scene (scenes/validation/*.wscene,
+// rendered by grt), and on scenes chosen so that every event kind occurs:
 // a Cornell box (area light: emission, NEE, a dielectric's lobes), the sun's glint in a mirror
 // (D14 through lobes), a thin lens focused on a point source (closed form at the detector), a screen behind a mirror (D4a at a sensor plane, through lobes) a
 // rough plate under the sun (D14 + NEE to a distant source) and a diffuse floor under a wide
 // distant source (NEE and escapes to it).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <filesystem>
 #include <map>
 
 #include "integrators/gr_path.h"
@@ -30,11 +33,13 @@ struct RecordingSink {
     void OnEvent(const grpath::Event &e, const std::vector<grpath::Vertex> &path, const DetectorGrSample &) {
         sum += e.value;
         ++kinds[e.kind];
-        // The event's chain lies on the recorded path.
+        // The event's chain lies on the recorded path; a vertex event carries the vertex's kernel.
         EXPECT_LE(e.prefix, int(path.size()));
         if (e.kind == grpath::EventKind::DirectLight || e.kind == grpath::EventKind::ThroughLobe) {
             ASSERT_LT(e.prefix, int(path.size()));
-            EXPECT_EQ(e.at, &path[std::size_t(e.prefix)].si);
+            ASSERT_TRUE(e.at);
+            EXPECT_EQ(e.at->p, path[std::size_t(e.prefix)].si.p);
+            EXPECT_EQ(e.kernel, path[std::size_t(e.prefix)].kernel);
         }
         for (int v = 0; v < e.prefix; ++v) EXPECT_TRUE(path[std::size_t(v)].left);
     }
@@ -47,10 +52,12 @@ double Scale(const SampledSpectrum &s) {
     return m;
 }
 
-// Per sample: the recording sink's estimate equals grt's (NullSink) and the events sum to it, to
-// rounding (1e-12 relative: the events are the same products summed in another order).
+// Per sample: the recording sink's estimate is grt's (NullSink) exactly, and the events sum to it
+// to rounding (1e-12 relative: the estimate multiplies the throughput into a sum over lights or
+// light samples where each event carries its own product).
 void CheckScene(const std::string &file, int pixelsX, int pixelsY, int spp,
                 std::vector<grpath::EventKind> expectedKinds, const std::string &text = "") {
+    SCOPED_TRACE(file);
     std::unique_ptr<Scene> scene = text.empty() ? LoadValidation(file) : BuildSceneText(text, "", {}, file);
     ASSERT_TRUE(scene);
     const grpath::GrPathSampler paths(16, 3, 1);
@@ -67,14 +74,15 @@ void CheckScene(const std::string &file, int pixelsX, int pixelsY, int spp,
                     PathStats ps;
                     ps.sample = PixelSampleIndex{s, spp, 3};
                     SampledWavelengths wl = scene->Wavelengths().Sample(sampler->Get1D());
-                    return paths.Estimate(*scene, x, y, wl, *sampler, ps, sink);
+                    ScratchBuffer scratch;
+                    return paths.Estimate(*scene, x, y, wl, *sampler, scratch, ps, sink);
                 };
                 grpath::NullSink null;
                 RecordingSink rec;
                 const SampledSpectrum a = run(null), b = run(rec);
                 const double tol = 1e-12 * std::max(1e-300, Scale(a));
                 for (int i = 0; i < NumWavelengths; ++i) {
-                    EXPECT_NEAR(b[i], a[i], tol) << file << " pixel " << x << "," << y << " sample " << s;
+                    EXPECT_EQ(b[i], a[i]) << file << " pixel " << x << "," << y << " sample " << s;
                     EXPECT_NEAR(rec.sum[i], a[i], tol) << file << " pixel " << x << "," << y << " sample " << s;
                 }
                 nonZero += Scale(a) > 0;
@@ -85,6 +93,15 @@ void CheckScene(const std::string &file, int pixelsX, int pixelsY, int spp,
 }
 
 using K = grpath::EventKind;
+
+TEST(GrPath, EventsSumToTheEstimateOnEveryValidationScene) {
+    std::vector<std::string> files;
+    for (const auto &e : std::filesystem::directory_iterator(std::string(PHASOR_SOURCE_DIR) + "/scenes/validation"))
+        if (e.path().extension() == ".wscene") files.push_back(e.path().filename().string());
+    std::sort(files.begin(), files.end());
+    ASSERT_GE(files.size(), 17u);
+    for (const std::string &f : files) CheckScene(f, 4, 4, 2, {});
+}
 
 TEST(GrPath, EventsSumToTheEstimateCornell) {
     CheckScene("grt_cornell.wscene", 8, 8, 8, {K::Emission, K::DirectLight});

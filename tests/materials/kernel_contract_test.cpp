@@ -909,6 +909,13 @@ TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
     }
 }
 
+TEST_P(MaterialContract, FootprintAwarenessIsDeclared) {
+    // Material::IsFootprintAware (what scene checks and composite kernels ask without a query) is
+    // what the kernel prepared for a generalized ray says; in the ray-optics limit no kernel is.
+    EXPECT_EQ(material_->IsFootprintAware(), (k_->Capabilities() & CapFootprintAware) != 0);
+    EXPECT_FALSE(kRay_->Capabilities() & CapFootprintAware);
+}
+
 TEST_P(MaterialContract, EvalPdfIsEvalAndPdf) {
     // EvalPdf is a faster way to the same numbers: exactly (EvalFrom, Pdf), for a plane wave, a
     // spherical wave from 0.1 mm and, for footprint-aware kernels, from 5 µm, in both regimes.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — the non-virtual part of the kernel interface (core/render/material.h): the lobe mask is
-// applied here, once, for every kernel.
+// applied here (PreparedKernel::Sample and the inline Eval, EvalFrom, Pdf, EvalPdf), once, for every
+// kernel.
 #include "core/render/material.h"
 
 #include "core/diagnostics.h"
@@ -10,13 +11,6 @@ namespace phasor {
 
 double ScatterQuery::Beta2(int i) const { return gr ? gr->beta2[i] : 0; }
 double ScatterQuery::Rho(int i) const { return gr ? gr->rho[i] : 0; }
-
-NearDeltaLobe &NearDeltaLobes::Add() {
-    if (count >= Capacity)
-        throw Error("a kernel listed more than " + std::to_string(Capacity) + " near-delta lobes");
-    lobe[count] = NearDeltaLobe{};
-    return lobe[count++];
-}
 
 void ContinuousLobeIds::Add(int lobeId) {
     if (count >= Capacity)
@@ -34,25 +28,6 @@ Vec3 LobeSAxis(const Vec3 &wi, const Vec3 &wo) {
     return Vec3(0, 1, 0);
 }
 
-std::optional<LobeResponse> Material::EvalContinuousLobes(const ScatterQuery &q, const Vec3 &wo) const {
-    ContinuousLobeIds ids;
-    ContinuousLobes(q, ids);
-    std::optional<LobeResponse> sum;
-    for (int id : ids) {
-        auto r = EvalLobe(q, id, wo);
-        if (!r) continue;
-        if (!sum) {
-            sum = *r;
-            continue;
-        }
-        sum->hasJones = false;
-        for (int i = 0; i < q.wl->Count(); ++i) sum->mueller[i] = sum->mueller[i] + r->mueller[i];
-    }
-    // Continuous lobes have no interference terms (LobeCoherence is for near-delta lobes).
-    if (sum) sum->coherence = LobeCoherence{};
-    return sum;
-}
-
 NearDeltaLobe &LobeList::Add() {
     if (count_ >= capacity_)
         throw Error("a kernel listed more than the " + std::to_string(capacity_) + " near-delta lobes it made room for");
@@ -63,40 +38,7 @@ namespace {
 unsigned MaskOf(unsigned scatterFlags) {
     return (scatterFlags & ScatterNearDelta) ? LobeNearDelta : LobeContinuous;
 }
-
-/// Transitional: a kernel that does not prepare yet, answered through its query-based methods.
-class LegacyPrepared final : public PreparedKernel {
-  public:
-    LegacyPrepared(const Material &m, const ScatterQuery &q, ScratchBuffer &scratch)
-        : PreparedKernel(q), m_(&m), full_(q) {
-        full_.lobes = LobeAll;
-        caps_ = m.Capabilities(q);
-        NearDeltaLobes listed;
-        m.ListNearDelta(q, listed);
-        LobeList l(scratch, listed.count);
-        for (const NearDeltaLobe &x : listed) l.Add() = x;
-        lobes_ = l.Lobes();
-        m.ContinuousLobes(q, continuous_);
-    }
-    std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override { return m_->EvalLobe(full_, lobe, wo); }
-
-  protected:
-    std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override { return m_->Sample(full_, u0, u); }
-    SampledSpectrum EvalContinuous(const Vec3 &wo) const override { return m_->Eval(full_, wo); }
-    SampledSpectrum EvalContinuousFrom(const Vec3 &wo, const IncidentWave &w) const override {
-        return m_->EvalFrom(full_, wo, w);
-    }
-    double PdfContinuous(const Vec3 &wo) const override { return m_->Pdf(full_, wo); }
-
-  private:
-    const Material *m_;
-    ScatterQuery full_;  // with gr and si: the caller keeps them alive while it asks
-};
 }  // namespace
-
-const PreparedKernel &Material::Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const {
-    return *scratch.New<LegacyPrepared>(*this, q, scratch);
-}
 
 const NearDeltaLobe *PreparedKernel::FindLobe(int id) const {
     for (const NearDeltaLobe &l : lobes_)
@@ -131,43 +73,6 @@ std::optional<LobeResponse> PreparedKernel::EvalContinuousLobes(const Vec3 &wo) 
     return sum;
 }
 
-std::optional<ScatterSample> Material::Sample(const ScatterQuery &q, double u0, const Vec2 &u) const {
-    auto s = SampleLobes(q, u0, u);
-    if (s && !(q.lobes & MaskOf(s->flags))) return std::nullopt;  // outside the mask: unbiased for the rest
-    return s;
-}
-
-SampledSpectrum Material::Eval(const ScatterQuery &q, const Vec3 &wo) const {
-    return (q.lobes & LobeContinuous) ? EvalContinuous(q, wo) : SampledSpectrum(0.0);
-}
-
-SampledSpectrum Material::EvalFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const {
-    return (q.lobes & LobeContinuous) ? EvalContinuousFrom(q, wo, w) : SampledSpectrum(0.0);
-}
-
-double Material::Pdf(const ScatterQuery &q, const Vec3 &wo) const {
-    return (q.lobes & LobeContinuous) ? PdfContinuous(q, wo) : 0;
-}
-
-bool Material::IsFootprintAware() const {
-    static const SpectralGenRay gr;  // a generalized-ray query (Capabilities reads no geometry)
-    ScatterQuery q;
-    q.wi = Vec3(0, 0, 1);
-    q.rayOptics = false;
-    q.gr = &gr;
-    return (Capabilities(q) & CapFootprintAware) != 0;
-}
-
-std::optional<ScatterSample> Material::SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const {
-    NearDeltaLobes lobes;
-    ListNearDelta(q, lobes);
-    return SampleListedLobe(lobes, u0);
-}
-
-std::optional<ScatterSample> SampleListedLobe(const NearDeltaLobes &lobes, double u0) {
-    return SampleListedLobe(std::span<const NearDeltaLobe>(lobes.begin(), lobes.end()), u0);
-}
-
 std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0) {
     double c = 0;
     for (const NearDeltaLobe &l : lobes) {
@@ -184,6 +89,11 @@ std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lob
         return s;
     }
     return std::nullopt;
+}
+
+std::optional<double> ReferenceAngleOf(const Material &m, const TextureEvalContext &tex) {
+    const auto *r = dynamic_cast<const ReferenceDirection *>(&m);
+    return r ? r->ReferenceAngle(tex) : std::nullopt;
 }
 
 EnergySense EnergySenseOf(const Material &m) {

@@ -24,18 +24,15 @@ struct SpectralGenRay;
 struct SurfaceInteraction;
 struct GaussianBeamGeometry;
 class Shape;
-class ApertureMask;
-class SmoothSurface;
-struct Coating;
 
-/// Lobe flags returned by Sample() and ListNearDelta().
+/// Lobe flags returned by PreparedKernel::Sample and ListNearDelta.
 enum ScatterFlags : unsigned {
     ScatterReflection = 1u << 0,
     ScatterTransmission = 1u << 1,
     ScatterDiffuse = 1u << 2,     // a continuous lobe with a finite pdf
     /// A near-delta lobe (smooth reflection/refraction, grating order): in the ray-optics limit a
     /// Dirac delta; for a generalized ray its true angular width is the ray's own spread σ_k/k.
-    /// Listed by Material::ListNearDelta; never part of Eval (see LobeMask).
+    /// Listed by PreparedKernel::ListNearDelta; never part of Eval (see LobeMask).
     ScatterNearDelta = 1u << 3,
     ScatterDispersive = 1u << 4,  // direction depends on wavelength (collapse to the hero)
     /// Footprint-aware kernels (theory §9 item 5): the lobe already holds the GR's angular spread,
@@ -43,21 +40,15 @@ enum ScatterFlags : unsigned {
     ScatterSpreadFree = 1u << 5,
 };
 
-/// Which lobes a query is about — the one rule for what Sample, Eval and Pdf contain, enforced in
-/// Material's non-virtual wrappers (so no kernel can get it wrong):
-///   * Eval and Pdf report continuous lobes only, and only when the mask has LobeContinuous.
-///     Near-delta lobes have no density in Eval, not even for a generalized ray: integrators
-///     measure delta and small sources through them in closed form from ListNearDelta (D14).
-///   * Sample returns nullopt for a lobe outside the mask. Since Sample picks lobe j with
-///     probability p_j and weights it by 1/p_j, the masked estimator is an unbiased estimate of
-///     the masked part alone (e.g. LobeContinuous: the continuous lobes' ∫ f·|cosθ| dω).
+/// Which lobes a question to a prepared kernel is about (the last argument of PreparedKernel's
+/// Sample, Eval, EvalFrom, Pdf and EvalPdf; the rule is stated there).
 enum LobeMask : unsigned {
     LobeContinuous = 1u << 0,
     LobeNearDelta = 1u << 1,
     LobeAll = LobeContinuous | LobeNearDelta,
 };
 
-/// What a kernel can do for a query (Material::Capabilities). May depend on the query: the
+/// What a kernel can do for a query (PreparedKernel::Capabilities). May depend on the query: the
 /// `aperture` is a straight near-delta transmission in the ray-optics limit and a footprint-aware
 /// continuous lobe for a generalized ray.
 enum KernelCaps : unsigned {
@@ -78,13 +69,12 @@ struct ScatterQuery {
     /// Ray-optics limit requested (the `ray` integrator, spread-free GRs): near-delta lobes are
     /// true deltas and wave effects collapse to their geometric limit.
     bool rayOptics = true;
-    /// The lobes Sample, Eval and Pdf are about (LobeMask). `grt`'s NEE asks for LobeContinuous.
-    unsigned lobes = LobeAll;
     TextureEvalContext tex;                // where textures are evaluated (uv, p, dp/du, β …)
     /// The incident generalized ray and the hit, for kernels that depend on the GR's footprint:
     /// `gr` is the traced GR at the hit point in world space (gr->d points into the surface,
     /// per-wavelength k, β², ρ; traced convention, ρ > 0 diverging along d), `si` the interaction
-    /// (world shading frame, shape and its to_world). Both null for classical rays.
+    /// (world shading frame, shape and its to_world). Both null for classical rays. Read while the
+    /// kernel is prepared only (Material::Prepare).
     const SpectralGenRay *gr = nullptr;
     const SurfaceInteraction *si = nullptr;
 
@@ -123,7 +113,7 @@ struct ScatterSample {
     double eta = 1;           // relative index η_t/η_i crossed at the hero wavelength (1 for reflection)
 };
 
-/// One near-delta lobe of a kernel for a query (Material::ListNearDelta). Per carried wavelength
+/// One near-delta lobe of a kernel for a query (PreparedKernel::ListNearDelta). Per carried wavelength
 /// i < wl->Count(): the outgoing direction, the weight and the indices, obeying the vector grating
 /// equation in the local tangent plane (z = normal; k = 2π/λ):
 ///     nOut[i]·wo[i].xy = −nIn[i]·wi.xy + shift·λ_i/(2π)
@@ -143,18 +133,6 @@ struct NearDeltaLobe {
     double prob = 0;     // the probability with which Sample picks this lobe for this query
     double Eta(int i) const { return nOut[i] / nIn[i]; }  // relative index crossed
 };
-/// The near-delta lobes of one query: a fixed-capacity list (a grating lists ≤ 2·max_order+1
-/// orders per side); kernels Add() lobes, integrators iterate.
-struct NearDeltaLobes {
-    static constexpr int Capacity = 64;
-    std::array<NearDeltaLobe, Capacity> lobe;
-    int count = 0;
-    /// Appends a lobe; throws phasor::Error past Capacity (a kernel bug, not user input).
-    NearDeltaLobe &Add();
-    const NearDeltaLobe *begin() const { return lobe.data(); }
-    const NearDeltaLobe *end() const { return lobe.data() + count; }
-};
-
 /// The near-delta lobes a kernel lists while it is prepared (Material::Prepare), in the scratch
 /// buffer: room for at most `capacity` lobes, which the kernel knows (a smooth surface 2, a grating
 /// 2·(2·max_order + 1)). The prepared kernel keeps Lobes() (PreparedKernel::ListNearDelta).
@@ -173,7 +151,7 @@ class LobeList {
     int capacity_, count_ = 0;
 };
 
-/// The ids of a query's continuous lobes (Material::ContinuousLobes); fixed capacity.
+/// The ids of a query's continuous lobes (PreparedKernel::ContinuousLobes); fixed capacity.
 struct ContinuousLobeIds {
     static constexpr int Capacity = 8;
     std::array<int, Capacity> id{};
@@ -206,7 +184,7 @@ struct LobeCoherence {
     bool any = false;  // false: no coherence-dependent term (incoherent == mueller, shear 0)
 };
 
-/// The response of one given lobe towards one given direction (Material::EvalLobe), per carried
+/// The response of one given lobe towards one given direction (PreparedKernel::EvalLobe), per carried
 /// wavelength, in the s/p frame of LobeSAxis(wi, wo) — for interface lobes the plane of incidence
 /// (core/polarization.h: s = the normal × propagation direction, p completing a right-handed frame
 /// with the propagation direction; for normal incidence the local x axis is p's reference). The
@@ -341,72 +319,26 @@ class PreparedKernel {
     ContinuousLobeIds continuous_;
 };
 
+/// A diffraction kernel (a plug-in of family `material`): its parameters and what holds for every
+/// query. Everything a query asks goes through Prepare (PreparedKernel). Properties that one client
+/// alone reads are not here but facets that client asks for (the `aperture`'s openings for `rs`:
+/// core/render/aperture.h; a smooth kernel's optics and a coating's layers for the kernels built on
+/// them: materials/smooth_kernel.h; a grating's reference direction for `probe`:
+/// ReferenceDirection below).
 class Material {
   public:
     virtual ~Material() = default;
 
-    /// The kernel prepared for query q, in `scratch` (see PreparedKernel): valid until `scratch` is
-    /// reset. Reads *q.gr and *q.si (when given) only here.
-    virtual const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const;
-
-    // --- Transitional: the query-based interface, until every kernel prepares ----------------
-
-    /// Picks one term of the scattering mixture with probability p_j (u0) and a direction in it
-    /// (u). Returns nullopt if the path is absorbed / no valid direction, or the picked lobe is
-    /// outside q.lobes (LobeMask).
-    std::optional<ScatterSample> Sample(const ScatterQuery &q, double u0, const Vec2 &u) const;
-    /// Scattered density towards wo per unit solid angle per unit incident irradiance [1/sr]
-    /// (no cosine) of the continuous lobes; 0 unless q.lobes has LobeContinuous.
-    SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const;
-    /// Like Eval, for the wave `w` arriving along −wo: a spherical wave from a source at distance
-    /// w.dist [m] (its curvature over the GR's footprint matters to footprint-aware kernels;
-    /// Infinity gives Eval) or a Gaussian beam (w.beam; the value is then per unit on-axis
-    /// irradiance, see IncidentWave). Kernels that are not footprint-aware ignore w.
-    SampledSpectrum EvalFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const;
-    /// Solid-angle density with which Sample() produces wo (continuous lobes, including their
-    /// selection probability); 0 unless q.lobes has LobeContinuous.
-    double Pdf(const ScatterQuery &q, const Vec3 &wo) const;
-    /// True if the query has no continuous lobe (no point in light sampling).
-    bool IsDeltaOnly(const ScatterQuery &q) const { return !(Capabilities(q) & CapContinuous); }
-    /// Footprint-awareness for a generalized-ray query (scene checks ask without a query).
-    bool IsFootprintAware() const;
-
-    // --- What a kernel implements -------------------------------------------------------------
-
-    /// KernelCaps for the query.
-    virtual unsigned Capabilities(const ScatterQuery &q) const = 0;
-    /// Lists every near-delta lobe for the query into `out` (which arrives empty), in the order of
-    /// their ids. Kernels without near-delta lobes list none.
-    virtual void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const {
-        (void)q;
-        (void)out;
-    }
-    /// The response (Jones / Mueller, coherence terms) of lobe `lobe` (an id Sample or
-    /// ListNearDelta gave for this query) towards wo; nullopt if the lobe does not reach wo (for a
-    /// near-delta lobe: wo is not its direction at the hero wavelength, to 1e-9). See LobeResponse.
-    virtual std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const = 0;
-    /// The ids of the continuous lobes for the query: those Sample returns with a finite pdf. Their
-    /// EvalLobe responses add up to Eval·|cosθo| at every wo (checked by the contract suite), so a
-    /// polarised integrator can weight a sampled direction by all of them, as Eval does. Kernels
-    /// without continuous lobes list none.
-    virtual void ContinuousLobes(const ScatterQuery &q, ContinuousLobeIds &out) const {
-        (void)q;
-        (void)out;
-    }
-    /// Σ over ContinuousLobes of EvalLobe towards wo (the Mueller sum; a Jones matrix only when
-    /// exactly one lobe answers; no coherence terms); nullopt if none answers.
-    std::optional<LobeResponse> EvalContinuousLobes(const ScatterQuery &q, const Vec3 &wo) const;
+    /// The kernel prepared for query q, in `scratch`: valid until `scratch` is reset. Reads *q.gr
+    /// and *q.si (when given) only here (see PreparedKernel).
+    virtual const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const = 0;
+    /// True if the kernel is footprint-aware for a generalized ray (CapFootprintAware for every
+    /// wave-regime query; checked by the contract suite). Scene checks and `mix` ask without a query.
+    virtual bool IsFootprintAware() const { return false; }
     /// True if some lobe's EvalLobe may report coherence terms (LobeCoherence::any: a coated
     /// surface, thin_film, multilayer); false promises that none does (checked by the contract
     /// suite), which lets a polarised integrator skip evaluating lobes whose response cannot matter.
     virtual bool HasCoherenceTerms() const { return false; }
-    /// The kernel's reference direction in the tangent plane at `tex`, as an angle [rad]
-    /// counter-clockwise from the shading frame's x axis (dp/du) — a grating's grating vector — or
-    /// nullopt for a kernel without one (isotropic). `phasor probe` measures azimuths from it.
-    virtual std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const {
-        (void)tex;
-        return std::nullopt;
-    }
     /// True if f(wi→wo) = f(wo→wi) (checked by the contract suite).
     virtual bool IsReciprocal() const { return true; }
     /// For a non-reciprocal kernel, the sense in which it conserves energy (the contract suite
@@ -421,40 +353,22 @@ class Material {
     /// Called by the scene builder for every shape that uses this kernel; throws phasor::Error
     /// (e.g. a planar kernel on a non-planar shape).
     virtual void CheckShape(const Shape &shape) const { (void)shape; }
-    /// Aperture kernels: the plate's openings in plate coordinates (core/render/aperture.h); nullptr for
-    /// every other kernel. The forward `rs` integrator reads them.
-    virtual const ApertureMask *Openings() const { return nullptr; }
-    /// Smooth kernels (conductor, dielectric, thin_film, multilayer): their plane-wave optics, a
-    /// coating over a substrate (materials/smooth_surface.h) — what `grating` and `harvey_shack`
-    /// multiply their lobes by when they name this kernel as `substrate`; nullptr otherwise.
-    virtual const SmoothSurface *Surface() const { return nullptr; }
-    /// Coating definitions (thin_film, multilayer): their layers, which `coating = @name` puts on
-    /// another kernel's substrate; nullptr for kernels that cannot serve as a coating.
-    virtual std::shared_ptr<const Coating> AsCoating() const { return nullptr; }
     virtual std::string ToString() const = 0;
+};
+
+/// The facet of a kernel with a reference direction in the tangent plane (a grating's grating
+/// vector), from which `phasor probe` measures azimuths; composite kernels forward their children's.
+class ReferenceDirection {
+  public:
+    /// The direction at `tex` as an angle [rad] counter-clockwise from the shading frame's x axis
+    /// (dp/du), or nullopt where the kernel has none (a mix of two isotropic kernels).
+    virtual std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const = 0;
 
   protected:
-    /// Sample over all lobes (the wrapper applies the mask). The default serves kernels whose lobes
-    /// are all listed: it picks one of ListNearDelta's lobes with its `prob` (SampleListedLobe).
-    virtual std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const;
-    /// The continuous lobes' value [1/sr] (Eval without the mask); 0 for delta-only kernels.
-    virtual SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const {
-        (void)q;
-        (void)wo;
-        return SampledSpectrum(0.0);
-    }
-    /// Footprint-aware kernels: the continuous lobes' value for the incident wave w.
-    virtual SampledSpectrum EvalContinuousFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const {
-        (void)w;
-        return EvalContinuous(q, wo);
-    }
-    /// The continuous lobes' density [1/sr] (Pdf without the mask).
-    virtual double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const {
-        (void)q;
-        (void)wo;
-        return 0;
-    }
+    ~ReferenceDirection() = default;
 };
+/// m's reference angle at tex (ReferenceDirection), or nullopt for a kernel without one (isotropic).
+std::optional<double> ReferenceAngleOf(const Material &m, const TextureEvalContext &tex);
 
 /// In which sense a kernel conserves energy: the two declarations IsReciprocal and
 /// ConservesEnergyPerIncidentDirection as one value (the contract suite checks the declared sense).
@@ -486,9 +400,6 @@ bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shi
 /// A kernel's SampleLobes for lobes it has listed: picks lobe j with probability `prob` (u0) and
 /// returns its hero direction with weight a_j/p_j, pdf p_j, its id, flags and η. Nullopt if no
 /// lobe is listed or the pick has p = 0.
-std::optional<ScatterSample> SampleListedLobe(const NearDeltaLobes &lobes, double u0);
-/// The same for lobes a kernel keeps in its own small array (NearDeltaLobes is 64 lobes large:
-/// constructing one per Sample costs more than a smooth surface's optics).
 std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0);
 
 /// True if unit directions a and b agree to `tol` [rad] (EvalLobe's test for a near-delta lobe).

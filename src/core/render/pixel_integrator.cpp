@@ -9,6 +9,7 @@
 
 #include <tbb/blocked_range2d.h>
 #include <tbb/combinable.h>
+#include <tbb/enumerable_thread_specific.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -21,6 +22,7 @@ void PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Rende
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<Sampler> sampler = prototype.Clone();
     PathStats ps;
+    ScratchBuffer scratch;
     int n = 0;
     double elapsed = 0;
     for (; n < 256 && (n == 0 || elapsed < 0.5); ++n) {
@@ -30,7 +32,8 @@ void PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Rende
         sampler->StartPixelSample(x, y, index);
         ps.sample = PixelSampleIndex{index, opt.spp, opt.seed};
         SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
-        EstimatePixel(scene, x, y, wl, *sampler, ps);
+        EstimatePixel(scene, x, y, wl, *sampler, scratch, ps);
+        scratch.Reset();
         elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
@@ -46,7 +49,7 @@ void PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Rende
 }
 
 std::array<SampledSpectrum, 4> PixelIntegrator::EstimatePixelStokes(const Scene &, int, int, SampledWavelengths &,
-                                                                    Sampler &, PathStats &) const {
+                                                                    Sampler &, ScratchBuffer &, PathStats &) const {
     throw Error("integrator '" + name + "' carries no polarisation and cannot write Stokes channels");
 }
 
@@ -65,6 +68,8 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
     auto cancelled = [&] { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); };
     int done = 0;
     int batch = 1;
+    // One scratch buffer per worker thread, for what a sample prepares (kernels); reset after each.
+    tbb::enumerable_thread_specific<ScratchBuffer> scratchBuffers;
     while (done < opt.spp && !cancelled()) {
         int end = std::min(opt.spp, done + batch);
         tbb::combinable<PathStats> local;
@@ -73,6 +78,7 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
             [&](const tbb::blocked_range2d<int> &r) {
                 std::unique_ptr<Sampler> sampler = prototype->Clone();
                 PathStats &ps = local.local();
+                ScratchBuffer &scratch = scratchBuffers.local();
                 for (int y = r.rows().begin(); y < r.rows().end(); ++y)
                     for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
                         // Cancellation is checked per pixel, so a stop request is honoured within
@@ -85,11 +91,13 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                             // Wavelengths first, so they are stratified across the pixel's samples.
                             SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
                             if (film.HasStokes()) {
-                                film.AddStokesSample(x, y, EstimatePixelStokes(scene, x, y, wl, *sampler, ps), wl);
+                                film.AddStokesSample(x, y, EstimatePixelStokes(scene, x, y, wl, *sampler, scratch, ps),
+                                                     wl);
                             } else {
-                                SampledSpectrum L = EstimatePixel(scene, x, y, wl, *sampler, ps);
+                                SampledSpectrum L = EstimatePixel(scene, x, y, wl, *sampler, scratch, ps);
                                 film.AddSample(x, y, L, wl);
                             }
+                            scratch.Reset();
                         }
                     }
             },

@@ -8,6 +8,7 @@
 #pragma once
 
 #include "core/render/detector.h"
+#include "core/scratch_buffer.h"
 #include "core/render/integrator.h"
 #include "core/render/scene.h"
 
@@ -29,18 +30,20 @@ class PixelIntegrator : public Integrator {
     /// One estimate for pixel (x, y), sample `index`: the per-wavelength value the pixel reports
     /// (radiance for cameras), not divided by the wavelength pdfs (the film does that).
     /// The sampler is positioned after the wavelength dimension. May drop companion wavelengths
-    /// (wl.TerminateSecondary()) when a dispersive lobe is taken.
+    /// (wl.TerminateSecondary()) when a dispersive lobe is taken. `scratch` is the calling
+    /// thread's buffer for what the estimate prepares (kernels: Material::Prepare); the caller
+    /// resets it after each estimate.
     /// Times a few samples before the first pass and reports through opt.warn when the whole
     /// render would take far longer than usual (WorkWarning).
     void EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt, const Sampler &prototype) const;
     virtual SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl,
-                                          Sampler &sampler, PathStats &stats) const = 0;
+                                          Sampler &sampler, ScratchBuffer &scratch, PathStats &stats) const = 0;
     /// The same estimate as a Stokes vector per carried wavelength (S[0] = EstimatePixel's value),
     /// for a film with Stokes output (Film::EnableStokes). Integrators that carry no polarisation
     /// throw phasor::Error (the scene check refuses such pairs before rendering).
     virtual std::array<SampledSpectrum, 4> EstimatePixelStokes(const Scene &scene, int x, int y,
                                                                SampledWavelengths &wl, Sampler &sampler,
-                                                               PathStats &stats) const;
+                                                               ScratchBuffer &scratch, PathStats &stats) const;
 };
 
 }  // namespace phasor
