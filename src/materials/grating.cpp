@@ -243,33 +243,46 @@ Vec3 GratingMaterial::GratingVector(const ScatterQuery &q) const {
     return {-t.y, t.x, 0};  // the groove direction rotated by +90° about the normal
 }
 
+GratingMaterial::Site GratingMaterial::SiteOf(const ScatterQuery &q, double *thickness) const {
+    Site site;
+    site.period = period_.Eval(q.tex);
+    site.g = GratingVector(q);
+    surface_->Thicknesses(q.tex, thickness);
+    site.thickness = thickness;
+    for (int i = 0; i < q.wl->Count(); ++i) site.substrate[std::size_t(i)] = surface_->SubstrateIndex(q.wl->lambda[i]);
+    return site;
+}
+
 GratingOrders GratingMaterial::Orders(const ScatterQuery &q, int i) const {
+    std::vector<double> thickness(std::size_t(surface_->LayerCount()));
     GratingOrders o;
-    FillOrders(q, i, period_.Eval(q.tex), GratingVector(q), SideReflected | SideTransmitted, &o);
+    FillOrders(q, i, SiteOf(q, thickness.data()), SideReflected | SideTransmitted, true, &o);
     return o;
 }
 
-void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, const Vec3 &g, unsigned sides,
+void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
                                  GratingOrders *out) const {
     GratingOrders &o = *out;  // may hold an earlier call's orders: every field read below is set
     o.reflected.present = o.transmitted.present = false;
     o.reflected.maxOrder = o.transmitted.maxOrder = 0;
     const double lambda = q.wl->lambda[i];
-    o.period = period;
-    o.vector = Vec2(g.x, g.y);
-    o.groove = Vec2(g.y, -g.x);
+    o.period = site.period;
+    o.vector = Vec2(site.g.x, site.g.y);
+    o.groove = Vec2(site.g.y, -site.g.x);
     o.fromInside = transmission_ && q.wi.z < 0;
-    const double nSub = surface_->SubstrateIndex(lambda).real();
+    const Complex substrate = site.substrate[std::size_t(i)];
+    const double nSub = substrate.real();
     const double nI = o.fromInside ? nSub : q.etaOutside, nT = o.fromInside ? q.etaOutside : nSub;
     o.reflected.nIn = o.reflected.nOut = o.transmitted.nIn = nI;
     o.transmitted.nOut = nT;
     if (q.wi.z == 0 || !(o.period > 0)) return;
     const double cosI = std::abs(q.wi.z);
-    o.surface = surface_->Response(lambda, q.etaOutside, cosI, o.fromInside, q.tex);
+    o.surface = surface_->Response(lambda, q.etaOutside, cosI, o.fromInside, site.thickness, substrate);
     // The ray-optics limit of a coated substrate is the incoherent sum of its layers (as the smooth
     // kernels: SmoothKernel::Evaluate).
     o.incoherent = q.rayOptics && surface_->LayerCount() > 0;
-    if (o.incoherent) o.layers = surface_->IncoherentResponse(lambda, q.etaOutside, cosI, o.fromInside, q.tex);
+    if (o.incoherent)
+        o.layers = surface_->IncoherentResponse(lambda, q.etaOutside, cosI, o.fromInside, site.thickness, substrate);
     // Ray-optics limit: the smooth substrate (zeroth orders, J_0(0) = 1).
     const int maxOrder = q.rayOptics ? 0 : maxOrder_;
     const double h = q.rayOptics ? 0 : height_, k0 = 2 * Pi / lambda;
@@ -294,7 +307,9 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, co
             s.amplitude[k] = SignedBessel(jAbs, j, a);
             const double e = s.amplitude[k] * s.amplitude[k];
             total += e;
-            s.propagating[k] = NearDeltaDirection(q.wi, s.nIn, s.nOut, unitShift * double(j), lambda, transmitted, &s.wo[k]);
+            const Vec2 shift = unitShift * double(j);
+            s.propagating[k] = directions ? NearDeltaDirection(q.wi, s.nIn, s.nOut, shift, lambda, transmitted, &s.wo[k])
+                                          : NearDeltaPropagates(q.wi, s.nIn, s.nOut, shift, lambda);
             (s.propagating[k] ? s.propagatingSum : s.evanescent) += e;
         }
         s.truncated = std::max(0.0, 1 - total);
@@ -310,19 +325,19 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, co
     }
 }
 
-double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec3 &source,
+double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source,
                                          bool transmitted, int j, GratingOrders *orders) const {
     ScatterQuery from = q;
     from.wi = source;  // the light arrives from `source`: its order j is the lobe's weight towards q.wi
-    FillOrders(from, i, period, g, transmitted ? SideTransmitted : SideReflected, orders);
+    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders);
     return (transmitted ? orders->transmitted : orders->reflected).Energy(j);
 }
 
-/// The kernel at one hit: Λ and ĝ there, and the listed orders.
+/// The kernel at one hit: its site (Λ, ĝ, the substrate's layers and index) and the listed orders.
 class GratingMaterial::Prepared final : public PreparedKernel {
   public:
     Prepared(const GratingMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch)
-        : PreparedKernel(q), m_(&m), period_(m.period_.Eval(q.tex)), g_(m.GratingVector(q)) {
+        : PreparedKernel(q), m_(&m), site_(m.SiteOf(q, scratch.Room<double>(std::size_t(m.surface_->LayerCount())))) {
         caps_ = CapNearDelta;
         if (q.wi.z == 0) return;
         const int maxOrder = q.rayOptics ? 0 : m.maxOrder_;
@@ -337,8 +352,7 @@ class GratingMaterial::Prepared final : public PreparedKernel {
     void List(const ScatterQuery &q, int maxOrder, LobeList &out) const;
 
     const GratingMaterial *m_;
-    double period_;  // Λ at the hit [m]
-    Vec3 g_;         // the unit grating vector ĝ at the hit (local)
+    Site site_;
 };
 
 const PreparedKernel &GratingMaterial::Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const {
@@ -348,14 +362,12 @@ const PreparedKernel &GratingMaterial::Prepare(const ScatterQuery &q, ScratchBuf
 void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeList &out) const {
     const GratingMaterial &m = *m_;
     const int count = q.wl->Count();
-    const double period = period_;
-    const Vec3 &g = g_;
-    const Vec2 unitShift = Vec2(g.x, g.y) * (2 * Pi / period);
+    const Vec2 unitShift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period);
     // Indices of wi's medium and of the far side (the substrate, or the outside when wi is inside).
     const bool inside = m.transmission_ && q.wi.z < 0;
     std::array<double, NumWavelengths> nWi{}, nFar{};
     for (int i = 0; i < count; ++i) {
-        const double nSub = m.surface_->SubstrateIndex(q.wl->lambda[i]).real();
+        const double nSub = site_.substrate[std::size_t(i)].real();
         nWi[std::size_t(i)] = inside ? nSub : q.etaOutside;
         nFar[std::size_t(i)] = inside ? q.etaOutside : nSub;
     }
@@ -373,7 +385,7 @@ void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeLi
                 const double nOut = transmitted ? nFar[s] : nWi[s];
                 if (!NearDeltaDirection(q.wi, nWi[s], nOut, unitShift * double(j), q.wl->lambda[i], transmitted, &wo[s]))
                     continue;
-                energy[s] = m.SourceEfficiency(q, i, period, g, wo[s], transmitted, j, &scratch);
+                energy[s] = m.SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch);
                 if (energy[s] > 0 && lit < 0) lit = i;
             }
             if (lit < 0) continue;
@@ -422,8 +434,6 @@ std::optional<LobeResponse> GratingMaterial::Prepared::EvalLobe(int lobe, const 
     if (!l || !SameDirection(wo, l->wo[0])) return std::nullopt;
     const bool transmitted = (l->flags & ScatterTransmission) != 0;
     const int j = transmitted ? lobe - TransmittedId : lobe;
-    const double period = period_;
-    const Vec3 &g = g_;
     LobeResponse r;
     // In the ray-optics limit a coated substrate answers with its incoherent Mueller matrix, no Jones.
     r.hasJones = !q.rayOptics || surface.LayerCount() == 0;
@@ -435,7 +445,7 @@ std::optional<LobeResponse> GratingMaterial::Prepared::EvalLobe(int lobe, const 
         if (l->weight[i] == 0) continue;  // evanescent at this wavelength: no response
         // The orders of the light arriving along the lobe (its source direction at this wavelength).
         GratingOrders o;
-        m_->SourceEfficiency(q, i, period, g, l->wo[std::size_t(i)], transmitted, j, &o);
+        m_->SourceEfficiency(q, i, site_, l->wo[std::size_t(i)], transmitted, j, &o);
         const GratingSide &s = transmitted ? o.transmitted : o.reflected;
         const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
         // Order j's field relative to the substrate's: J_j(a)·√scale.
@@ -463,10 +473,11 @@ std::optional<LobeResponse> GratingMaterial::Prepared::EvalLobe(int lobe, const 
         }
         if (r.coherence.any) {
             const Vec3 &source = l->wo[std::size_t(i)];
-            const IncoherentStackResponse n =
-                surface.IncoherentResponse(q.wl->lambda[i], q.etaOutside, std::abs(source.z), o.fromInside, q.tex);
+            const IncoherentStackResponse n = surface.IncoherentResponse(
+                q.wl->lambda[i], q.etaOutside, std::abs(source.z), o.fromInside, site_.thickness, site_.substrate[std::size_t(i)]);
             r.coherence.incoherent[i] = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp) * (amp * amp);
-            r.coherence.shear[i] = surface.ShearVector(q.wl->lambda[i], q.etaOutside, source, o.fromInside, q.tex);
+            r.coherence.shear[i] =
+                surface.ShearVector(q.wl->lambda[i], q.etaOutside, source, o.fromInside, site_.thickness);
         }
     }
     return r;

@@ -125,14 +125,26 @@ class GratingMaterial final : public Material, public ReferenceDirection {
   private:
     class Prepared;
     static constexpr unsigned SideReflected = 1, SideTransmitted = 2;
-    /// Orders() into *o for the sides asked for, with the period Λ [m] and the unit grating vector
-    /// ĝ at the hit given.
-    void FillOrders(const ScatterQuery &q, int i, double period, const Vec3 &g, unsigned sides, GratingOrders *o) const;
+    /// What the orders at one hit depend on besides the incident direction: the period Λ [m], the
+    /// unit grating vector ĝ (local), the substrate coating's layer thicknesses (SmoothSurface::
+    /// Thicknesses; none for a bare substrate) and the substrate's index per carried wavelength.
+    struct Site {
+        double period = 0;
+        Vec3 g;
+        const double *thickness = nullptr;
+        std::array<Complex, NumWavelengths> substrate{};
+    };
+    /// The site of the query's hit; `thickness` must hold LayerCount() values (filled here).
+    Site SiteOf(const ScatterQuery &q, double *thickness) const;
+    /// Orders() into *o for the sides asked for, at the site; with `directions`, every order's
+    /// direction too (GratingSide::wo; an efficiency needs only which orders propagate).
+    void FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
+                    GratingOrders *o) const;
     /// The energy efficiency of order j (reflected or transmitted) at wavelength slot i for light
     /// arriving from `source` (a lobe's direction): what that lobe of the query at q.wi carries.
-    /// The source's orders are left in *orders.
-    double SourceEfficiency(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec3 &source,
-                            bool transmitted, int j, GratingOrders *orders) const;
+    /// The source's orders are left in *orders (without their directions).
+    double SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source, bool transmitted,
+                            int j, GratingOrders *orders) const;
 
     FloatTexture period_;  // Λ [m], > 0
     double height_ = 0;    // h, peak-to-peak [m]

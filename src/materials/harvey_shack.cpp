@@ -185,7 +185,7 @@ class HarveyShackMaterial final : public Material {
     /// diag(r_s, r_p); in the ray-optics limit a coated substrate answers with its incoherent
     /// Mueller matrix and no Jones matrix (SubstrateResponse).
     const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
-        return *scratch.New<Prepared>(*this, q);
+        return *scratch.New<Prepared>(*this, q, scratch);
     }
 
     /// f(wi → wo) depends on wo's angle (the light's) besides ζ: see the file comment.
@@ -211,7 +211,8 @@ class HarveyShackMaterial final : public Material {
 
     /// The query as the kernel sees it: wi mirrored onto the upper side and, per carried wavelength,
     /// the medium's index n and t = k²T (k = 2πn/λ, the wavenumber of the light on wi's side, which
-    /// is also the light's: reflection only).
+    /// is also the light's: reflection only); the substrate's index and its coating's thicknesses
+    /// at the hit, which every response of the substrate below reads.
     struct Local {
         Vec3 wi;             // wi with z > 0
         bool flip = false;   // wi.z < 0 in the shading frame
@@ -219,13 +220,17 @@ class HarveyShackMaterial final : public Material {
         double cosI = 0, s = 0;
         int count = 0;
         std::array<double, NumWavelengths> n{}, k{}, t{};
+        std::array<Complex, NumWavelengths> substrate{};  // SmoothSurface::SubstrateIndex(λ_i)
+        const double *thickness = nullptr;                 // SmoothSurface::Thicknesses at the hit
         double pSpec = 1;    // probability of the specular lobe (SpecularProbability of α_spec(θ_i))
         Vec3 ToUpper(const Vec3 &w) const { return flip ? Vec3(w.x, w.y, -w.z) : w; }
         Vec3 FromUpper(const Vec3 &w) const { return ToUpper(w); }
     };
 
-    /// False if wi is grazing (cosθ_i = 0: nothing arrives).
-    bool Localize(const ScatterQuery &q, Local *l) const {
+    /// False if wi is grazing (cosθ_i = 0: nothing arrives). `thickness` holds LayerCount() values.
+    bool Localize(const ScatterQuery &q, double *thickness, Local *l) const {
+        surface_->Thicknesses(q.tex, thickness);
+        l->thickness = thickness;
         if (!(q.wi.z != 0)) return false;
         l->flip = q.wi.z < 0;
         l->inside = l->flip && transparent_;
@@ -235,7 +240,8 @@ class HarveyShackMaterial final : public Material {
         l->count = q.wl->Count();
         for (int i = 0; i < l->count; ++i) {
             const double lambda = q.wl->lambda[i];
-            l->n[i] = l->inside ? surface_->SubstrateIndex(lambda).real() : q.etaOutside;
+            l->substrate[i] = surface_->SubstrateIndex(lambda);
+            l->n[i] = l->inside ? l->substrate[i].real() : q.etaOutside;
             l->k[i] = 2 * Pi * l->n[i] / lambda;
             l->t[i] = l->k[i] * l->k[i] * corrT_;
         }
@@ -260,8 +266,8 @@ class HarveyShackMaterial final : public Material {
     /// in the query's regime (coherent, or incoherent for a coated substrate in the ray-optics limit).
     double Reflectance(const ScatterQuery &q, const Local &l, int i, double cosTheta) const {
         const double c = std::max(cosTheta, 1e-300), lambda = q.wl->lambda[i];
-        return Coherent(q) ? surface_->Response(lambda, q.etaOutside, c, l.inside, q.tex).R()
-                           : surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, q.tex).R();
+        return Coherent(q) ? surface_->Response(lambda, q.etaOutside, c, l.inside, l.thickness, l.substrate[i]).R()
+                           : surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, l.thickness, l.substrate[i]).R();
     }
 
     /// The substrate's reflection at cosθ as a lobe response: R, its Mueller matrix, and (coherent
@@ -275,12 +281,13 @@ class HarveyShackMaterial final : public Material {
         const double c = std::max(cosTheta, 1e-300), lambda = q.wl->lambda[i];
         Facet f;
         if (Coherent(q)) {
-            const StackResponse s = surface_->Response(lambda, q.etaOutside, c, l.inside, q.tex);
+            const StackResponse s = surface_->Response(lambda, q.etaOutside, c, l.inside, l.thickness, l.substrate[i]);
             f.R = s.R();
             f.jones = Jones::Diagonal(s.rs, s.rp);
             f.mueller = Mueller::FromJones(f.jones);
         } else {
-            const IncoherentStackResponse s = surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, q.tex);
+            const IncoherentStackResponse s =
+                surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, l.thickness, l.substrate[i]);
             f.R = s.R();
             f.mueller = Mueller::FromDiagonalSums(s.Rs, s.Rp, s.Rsp);
         }
@@ -335,10 +342,10 @@ class HarveyShackMaterial final : public Material {
     /// The kernel at one hit: the query as the kernel sees it (Local) and the specular lobe.
     class Prepared final : public PreparedKernel {
       public:
-        Prepared(const HarveyShackMaterial &m, const ScatterQuery &q) : PreparedKernel(q), m_(&m) {
+        Prepared(const HarveyShackMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch) : PreparedKernel(q), m_(&m) {
             caps_ = CapNearDelta | (m.sigma_ > 0 ? CapContinuous : 0u);
             if (m.sigma_ > 0) continuous_.Add(ScatterLobe);
-            ok_ = m.Localize(q, &l_);
+            ok_ = m.Localize(q, scratch.Room<double>(std::size_t(m.surface_->LayerCount())), &l_);
             if (!ok_) return;
             spec_ = m.SpecularWeight(q, l_);
             if (spec_.IsZero()) return;
@@ -370,9 +377,9 @@ class HarveyShackMaterial final : public Material {
                     if (!r.coherence.any) continue;
                     const double lambda = q.wl->lambda[i];
                     const IncoherentStackResponse n =
-                        m.surface_->IncoherentResponse(lambda, q.etaOutside, l.cosI, l.inside, q.tex);
+                        m.surface_->IncoherentResponse(lambda, q.etaOutside, l.cosI, l.inside, l.thickness, l.substrate[i]);
                     r.coherence.incoherent[i] = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp) * a;
-                    r.coherence.shear[i] = m.surface_->ShearVector(lambda, q.etaOutside, l.wi, l.inside, q.tex);
+                    r.coherence.shear[i] = m.surface_->ShearVector(lambda, q.etaOutside, l.wi, l.inside, l.thickness);
                 }
                 return r;
             }

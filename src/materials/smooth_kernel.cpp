@@ -31,16 +31,17 @@ SmoothKernel::Wave SmoothKernel::Sides(const ScatterQuery &q, int i) const {
     return w;
 }
 
-SmoothKernel::Wave SmoothKernel::Evaluate(const ScatterQuery &q, int i) const {
+SmoothKernel::Wave SmoothKernel::Evaluate(const ScatterQuery &q, int i, const double *thickness) const {
     Wave w = Sides(q, i);
     if (!w.ok) return w;
     const double lambda = q.wl->lambda[i], cosI = std::abs(q.wi.z);
     if (q.rayOptics) {
-        const IncoherentStackResponse r = surface_.IncoherentResponse(lambda, q.etaOutside, cosI, FromInside(q), q.tex, w.substrate);
+        const IncoherentStackResponse r =
+            surface_.IncoherentResponse(lambda, q.etaOutside, cosI, FromInside(q), thickness, w.substrate);
         w.R = r.R();
         w.T = transmits_ ? r.T() : 0;
     } else {
-        const StackResponse r = surface_.Response(lambda, q.etaOutside, cosI, FromInside(q), q.tex, w.substrate);
+        const StackResponse r = surface_.Response(lambda, q.etaOutside, cosI, FromInside(q), thickness, w.substrate);
         w.R = r.R();
         w.T = transmits_ ? r.T() : 0;
     }
@@ -52,14 +53,19 @@ SmoothKernel::Wave SmoothKernel::Evaluate(const ScatterQuery &q, int i) const {
     return w;
 }
 
-/// The kernel at one hit: R and T per carried wavelength and the (at most two) lobes.
+/// The kernel at one hit: the layers' thicknesses there, R and T per carried wavelength and the (at
+/// most two) lobes.
 class SmoothKernel::Prepared final : public PreparedKernel {
   public:
-    Prepared(const SmoothKernel &k, const ScatterQuery &q) : PreparedKernel(q), k_(&k) {
+    Prepared(const SmoothKernel &k, const ScatterQuery &q, ScratchBuffer &scratch) : PreparedKernel(q), k_(&k) {
         caps_ = CapNearDelta;
+        if (const int layers = k.surface_.LayerCount(); layers > 0) {
+            thickness_ = scratch.Room<double>(std::size_t(layers));
+            k.surface_.Thicknesses(q.tex, thickness_);  // once per hit (a textured film)
+        }
         if (q.wi.z == 0) return;
         const int count = q.wl->Count();
-        for (int i = 0; i < count; ++i) w_[i] = k.Evaluate(q, i);
+        for (int i = 0; i < count; ++i) w_[i] = k.Evaluate(q, i, thickness_);
         if (!w_[0].ok) return;
         lobes_ = std::span<const NearDeltaLobe>(lobe_.data(), std::size_t(List(q)));
     }
@@ -71,12 +77,13 @@ class SmoothKernel::Prepared final : public PreparedKernel {
     int List(const ScatterQuery &q);
 
     const SmoothKernel *k_;
+    double *thickness_ = nullptr;            // the layers' thicknesses at the hit (none: bare)
     std::array<Wave, NumWavelengths> w_;     // Evaluate per carried wavelength (w_[0].ok false: no lobe)
     std::array<NearDeltaLobe, 2> lobe_;      // lobes_ views the first List() of them
 };
 
 const PreparedKernel &SmoothKernel::Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const {
-    return *scratch.New<Prepared>(*this, q);
+    return *scratch.New<Prepared>(*this, q, scratch);
 }
 
 int SmoothKernel::Prepared::List(const ScatterQuery &q) {
@@ -156,11 +163,11 @@ std::optional<LobeResponse> SmoothKernel::Prepared::EvalLobe(int lobe, const Vec
         const Wave w = k_->Sides(q, i);
         if (!w.ok) continue;  // zero response
         const double lambda = q.wl->lambda[i];
-        const StackResponse c = surface.Response(lambda, q.etaOutside, cosI, inside, q.tex, w.substrate);
+        const StackResponse c = surface.Response(lambda, q.etaOutside, cosI, inside, thickness_, w.substrate);
         // A bare interface has one response: its incoherent matrix is FromJones(j) (set below).
         const bool layered = surface.LayerCount() > 0;
         IncoherentStackResponse n{};
-        if (layered) n = surface.IncoherentResponse(lambda, q.etaOutside, cosI, inside, q.tex, w.substrate);
+        if (layered) n = surface.IncoherentResponse(lambda, q.etaOutside, cosI, inside, thickness_, w.substrate);
         if (!std::isfinite(c.R() + c.T() + (layered ? n.R() + n.T() : 0.0))) continue;  // as Evaluate: absorbed
         Jones j;
         Mueller incoherent;
@@ -185,7 +192,7 @@ std::optional<LobeResponse> SmoothKernel::Prepared::EvalLobe(int lobe, const Vec
         }
         r.coherence.incoherent[i] = incoherent;
         // The deeper reflections exit displaced along the incident wave's tangential travel, −wi.xy.
-        if (r.coherence.any) r.coherence.shear[i] = surface.ShearVector(lambda, q.etaOutside, q.wi, inside, q.tex);
+        if (r.coherence.any) r.coherence.shear[i] = surface.ShearVector(lambda, q.etaOutside, q.wi, inside, thickness_);
     }
     return r;
 }

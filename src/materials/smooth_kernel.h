@@ -81,7 +81,8 @@ class SmoothKernel : public Material {
         double nI = 1, nT = 1, eta = 1;
         double R = 0, T = 0;
     };
-    Wave Evaluate(const ScatterQuery &q, int i) const;
+    /// With the layers' thicknesses at the hit (SmoothSurface::Thicknesses).
+    Wave Evaluate(const ScatterQuery &q, int i, const double *thickness) const;
     /// Evaluate without R and T: only the indices (ok: the substrate has index data at λ).
     Wave Sides(const ScatterQuery &q, int i) const;
     /// From the substrate side: a transmitting surface hit from below.

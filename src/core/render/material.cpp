@@ -124,18 +124,30 @@ const char *Describe(EnergySense s) {
     return "";
 }
 
+namespace {
+/// The tangential part of a near-delta lobe's direction: theory §4.2 (vector grating equation), the
+/// tangential wave vector of the incident wave (travelling along −wi) plus the lobe's shift is the
+/// outgoing one.
+Vec2 NearDeltaTangential(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda) {
+    const double s = lambda / (2 * Pi);
+    return Vec2((-nIn * wi.x + shift.x * s) / nOut, (-nIn * wi.y + shift.y * s) / nOut);
+}
+}  // namespace
+
 bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda,
                         bool transmission, Vec3 *wo) {
-    // theory §4.2 (vector grating equation): the tangential wave vector of the incident wave
-    // (travelling along −wi) plus the lobe's shift is the outgoing one.
-    const double s = lambda / (2 * Pi);
-    const double tx = (-nIn * wi.x + shift.x * s) / nOut, ty = (-nIn * wi.y + shift.y * s) / nOut;
-    const double t2 = tx * tx + ty * ty;
+    const Vec2 t = NearDeltaTangential(wi, nIn, nOut, shift, lambda);
+    const double t2 = t.x * t.x + t.y * t.y;
     if (!(t2 < 1)) return false;  // evanescent
     const double z = std::sqrt(1 - t2);
     const double side = wi.z >= 0 ? 1.0 : -1.0;  // wi's side
-    *wo = Vec3(tx, ty, transmission ? -side * z : side * z);
+    *wo = Vec3(t.x, t.y, transmission ? -side * z : side * z);
     return true;
+}
+
+bool NearDeltaPropagates(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda) {
+    const Vec2 t = NearDeltaTangential(wi, nIn, nOut, shift, lambda);
+    return t.x * t.x + t.y * t.y < 1;
 }
 
 }  // namespace phasor

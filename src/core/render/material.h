@@ -396,6 +396,8 @@ const char *Describe(EnergySense s);
 /// the lobe is evanescent (|wo.xy| ≥ 1) at this wavelength.
 bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda,
                         bool transmission, Vec3 *wo);
+/// Whether that lobe propagates (NearDeltaDirection's answer, without the direction).
+bool NearDeltaPropagates(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda);
 
 /// A kernel's SampleLobes for lobes it has listed: picks lobe j with probability `prob` (u0) and
 /// returns its hero direction with weight a_j/p_j, pdf p_j, its id, flags and η. Nullopt if no
