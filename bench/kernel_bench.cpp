@@ -1,13 +1,18 @@
 // SPDX-License-Identifier: Apache-2.0
-// Per-kernel throughput (Google Benchmark): Material::Sample and Material::Eval for every registered
-// kernel × each of its TestPresets(), registered at start-up from the registry, so a new kernel is
-// measured without new code. Each call carries the hero wavelength 550 nm and three companions (as
+// Per-kernel throughput (Google Benchmark) for every registered kernel × each of its TestPresets(),
+// registered at start-up from the registry, so a new kernel is measured without new code:
+//   * Sample: Material::Prepare for the query, then one PreparedKernel::Sample (what a path vertex
+//     costs: one sample per prepared kernel);
+//   * Eval: Prepare, then one Eval (a kernel asked once per query);
+//   * Eval prepared: Eval on a kernel prepared once per query (what light sampling and MIS pay per
+//     further direction). Each call carries the hero wavelength 550 nm and three companions (as
 // in a render; tests/materials/material_test_util.h TestWavelengths) and cycles through a fixed set
 // of incident directions (normal, 37°, 66°, 85°, and from below) and, for Eval, of outgoing ones.
 // Footprint-aware kernels are queried in the wave regime with the contract suite's incident
 // generalized ray on its test plate (material_test_util.h); the others as `grt` queries them
 // (rayOptics = false). After Google Benchmark's own table, prints a Markdown table of ns per call
-// (CPU time, one thread) for docs/kernels.md ("Kernel throughput").
+// (CPU time, one thread) for docs/kernels.md ("Kernel throughput"). Kernels are prepared in a
+// ScratchBuffer reset after each call, as the render loop does after each sample.
 #include <benchmark/benchmark.h>
 #include <unistd.h>
 
@@ -66,10 +71,13 @@ struct Fixture {
 
 void BenchSample(benchmark::State &state, const Fixture *f) {
     double sink = 0;
+    ScratchBuffer scratch;
     for (auto _ : state)
         for (int i = 0; i < Batch; ++i) {
-            const auto s = f->material->Sample(f->q[i % NumIncidents], f->u[3 * i], Vec2(f->u[3 * i + 1], f->u[3 * i + 2]));
+            const PreparedKernel &k = f->material->Prepare(f->q[i % NumIncidents], scratch);
+            const auto s = k.Sample(f->u[3 * i], Vec2(f->u[3 * i + 1], f->u[3 * i + 2]));
             if (s) sink += s->weight[0];
+            scratch.Reset();
         }
     benchmark::DoNotOptimize(sink);
     state.SetItemsProcessed(state.iterations() * Batch);
@@ -77,8 +85,23 @@ void BenchSample(benchmark::State &state, const Fixture *f) {
 
 void BenchEval(benchmark::State &state, const Fixture *f) {
     double sink = 0;
+    ScratchBuffer scratch;
     for (auto _ : state)
-        for (int i = 0; i < Batch; ++i) sink += f->material->Eval(f->q[i % NumIncidents], f->wo[i])[0];
+        for (int i = 0; i < Batch; ++i) {
+            sink += f->material->Prepare(f->q[i % NumIncidents], scratch).Eval(f->wo[i])[0];
+            scratch.Reset();
+        }
+    benchmark::DoNotOptimize(sink);
+    state.SetItemsProcessed(state.iterations() * Batch);
+}
+
+void BenchEvalPrepared(benchmark::State &state, const Fixture *f) {
+    double sink = 0;
+    ScratchBuffer scratch;
+    const PreparedKernel *k[NumIncidents];
+    for (int d = 0; d < NumIncidents; ++d) k[d] = &f->material->Prepare(f->q[d], scratch);
+    for (auto _ : state)
+        for (int i = 0; i < Batch; ++i) sink += k[i % NumIncidents]->Eval(f->wo[i])[0];
     benchmark::DoNotOptimize(sink);
     state.SetItemsProcessed(state.iterations() * Batch);
 }
@@ -94,21 +117,22 @@ class TableReporter : public benchmark::ConsoleReporter {
             const std::string name = r.benchmark_name();  // "Sample/kernel/pN"
             const std::size_t slash = name.find('/');
             const double nsPerCall = r.GetAdjustedCPUTime() / Batch;  // the time unit is ns
-            (name.substr(0, slash) == "Sample" ? sample_ : eval_)[name.substr(slash + 1)] = nsPerCall;
+            const std::string what = name.substr(0, slash);
+            (what == "Sample" ? sample_ : what == "Eval" ? eval_ : prepared_)[name.substr(slash + 1)] = nsPerCall;
             if (std::find(order_.begin(), order_.end(), name.substr(slash + 1)) == order_.end())
                 order_.push_back(name.substr(slash + 1));
         }
     }
     void Finalize() override {
         ConsoleReporter::Finalize();
-        std::printf("\n| kernel / preset | Sample [ns] | Eval [ns] |\n|---|---:|---:|\n");
+        std::printf("\n| kernel / preset | Sample [ns] | Eval [ns] | Eval prepared [ns] |\n|---|---:|---:|---:|\n");
         for (const std::string &k : order_)
-            std::printf("| %s | %.0f | %.0f |\n", k.c_str(), sample_[k], eval_[k]);
+            std::printf("| %s | %.0f | %.0f | %.0f |\n", k.c_str(), sample_[k], eval_[k], prepared_[k]);
     }
 
   private:
     std::vector<std::string> order_;
-    std::map<std::string, double> sample_, eval_;
+    std::map<std::string, double> sample_, eval_, prepared_;
 };
 
 }  // namespace
@@ -133,6 +157,8 @@ int main(int argc, char **argv) {
             const Fixture *f = fixtures.back().get();
             benchmark::RegisterBenchmark(("Sample/" + name).c_str(), BenchSample, f)->Unit(benchmark::kNanosecond);
             benchmark::RegisterBenchmark(("Eval/" + name).c_str(), BenchEval, f)->Unit(benchmark::kNanosecond);
+            benchmark::RegisterBenchmark(("EvalPrepared/" + name).c_str(), BenchEvalPrepared, f)
+                ->Unit(benchmark::kNanosecond);
         }
     }
     TableReporter reporter;

@@ -70,7 +70,8 @@ std::vector<double> PixelSamples(const Scene &scene, const Pixel &p, int n, uint
         PathStats ps;
         ps.sample = PixelSampleIndex{s, n, seed};
         SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
-        const SampledSpectrum L = in.EstimatePixel(scene, p.x, p.y, wl, *sampler, ps);
+        ScratchBuffer scratch;
+        const SampledSpectrum L = in.EstimatePixel(scene, p.x, p.y, wl, *sampler, scratch, ps);
         double sum = 0;
         for (int i = 0; i < wl.Count(); ++i)
             if (wl.pdf[i] > 0) sum += L[i] / wl.pdf[i] * response.Intensity(wl.lambda[i]);

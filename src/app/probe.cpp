@@ -5,7 +5,7 @@
 // frame's first tangent dp/du = +x, y = dp/dv = +y; the texture context is uv = --uv (default
 // (0.5, 0.5)), p = (u, v, 0) m, n = +z, β = 0. Light of vacuum wavelength λ arrives from
 // wi = (sinθ cosφ, sinθ sinφ, cosθ) (θ from the normal, φ from x; θ > 90° = from below) out of a
-// medium of index 1, where x is the kernel's reference direction if it has one (Material::
+// medium of index 1, where x is the kernel's reference direction if it has one (ReferenceDirection::
 // ReferenceAngle: a grating's grating vector, so φ = 0 is the classical mount), else dp/du. Per
 // discrete lobe and in total, probe reports *power* fractions:
 //   * a near-delta lobe's listed weight a_j is a radiance throughput that includes the factor
@@ -172,28 +172,27 @@ class SampleProgress {
     Clock::time_point start_, last_;
 };
 
-ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64_t seed, bool bar) {
+ProbeResult Measure(const Material &m, const ScatterQuery &q, long long samples, uint64_t seed, bool bar) {
     ProbeResult r;
-    NearDeltaLobes lobes;
-    m.ListNearDelta(q, lobes);
+    ScratchBuffer scratch, other;  // the kernel prepared for q; for other queries, one at a time
+    const PreparedKernel &k = m.Prepare(q, scratch);
     // A kernel that conserves energy per incident direction (a grating) lists, for a query at wi,
     // what arrives *at* wi along each lobe; the light *from* wi into lobe l's direction is what the
     // query there lists along its lobe of the same id back towards wi (material.h).
     const bool fromSource = !m.IsReciprocal() && m.ConservesEnergyPerIncidentDirection();
-    for (const NearDeltaLobe &l : lobes) {
+    for (const NearDeltaLobe &l : k.ListNearDelta()) {
         ProbeLobe p;
         p.id = l.id;
         p.name = m.LobeName(l.id);
         p.transmission = (l.flags & ScatterTransmission) != 0;
         p.wo = l.wo[0];
         const NearDeltaLobe *carrier = &l;
-        NearDeltaLobes back;
         if (fromSource) {
             ScatterQuery there = q;
             there.wi = l.wo[0];
-            m.ListNearDelta(there, back);
+            other.Reset();
             carrier = nullptr;
-            for (const NearDeltaLobe &b : back)
+            for (const NearDeltaLobe &b : m.Prepare(there, other).ListNearDelta())
                 if (b.id == l.id && SameDirection(b.wo[0], q.wi)) carrier = &b;
             if (!carrier) continue;  // nothing reaches that direction from wi
         }
@@ -202,9 +201,8 @@ ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64
         (p.transmission ? r.discreteT : r.discreteR) += p.efficiency;
         r.lobes.push_back(p);
     }
-    r.continuous = (m.Capabilities(q) & CapContinuous) != 0;
+    r.continuous = (k.Capabilities() & CapContinuous) != 0;
     if (!r.continuous) return r;
-    q.lobes = LobeContinuous;
     Pcg32 rng(seed, 0x70726f6265ull);  // "probe"
     double meanR = 0, meanT = 0, m2R = 0, m2T = 0;  // Welford, per sample (0 when it went elsewhere)
     ScatterQuery qw = q;                            // a query at w (fromSource)
@@ -215,7 +213,7 @@ ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64
         if (n % SampleProgress::Stride == 0) progress(n);
         const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
         double xr = 0, xt = 0;
-        const std::optional<ScatterSample> s = m.Sample(q, u0, Vec2(u1, u2));
+        const std::optional<ScatterSample> s = k.Sample(u0, Vec2(u1, u2), LobeContinuous);
         if (s && (!std::isfinite(s->weight[0]) || !std::isfinite(s->eta))) {
             ++r.nonFinite;  // counted as 0
         } else if (!fromSource) {
@@ -231,9 +229,10 @@ ProbeResult Measure(const Material &m, ScatterQuery q, long long samples, uint64
             const Vec3 w1(c.x, c.y, side * std::sqrt(std::max(0.0, 1 - c.x * c.x - c.y * c.y)));
             for (const Vec3 &w : {w1, s ? s->wo : Vec3(0, 0, 0)}) {
                 if (w.z == 0) continue;  // no sample (or exactly grazing)
-                const double density = std::abs(w.z) / (2 * Pi) + m.Pdf(q, w);
+                const double density = std::abs(w.z) / (2 * Pi) + k.Pdf(w);
                 qw.wi = w;
-                const double f = m.Eval(qw, q.wi)[0];
+                other.Reset();
+                const double f = m.Prepare(qw, other).Eval(q.wi)[0];
                 if (!(density > 0) || !(f > 0)) continue;
                 const double x = f * std::abs(w.z) / density;
                 if (!std::isfinite(x)) ++r.nonFinite;
@@ -324,14 +323,15 @@ std::string ReportText(const std::string &material, const std::string &type, con
 // near-delta lobes as rings (bigger for larger efficiency, labelled with it) and the direction
 // towards the source as a cross on the reflection disc. Drawn by the plot module (app/plot.h
 // StageDiscMap): one dB scale (0 dB = the maximum, 40 dB), θ = 30° and 60° circles, a colour bar.
-DiscMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int size, double psi) {
+DiscMap MakeMap(const Material &m, const ScatterQuery &q, const ProbeResult &r, int size, double psi) {
     DiscMap map;
     map.n = size;
     // What the light from the source sends into wo: f(wi → wo), or for a kernel that conserves
     // energy per incident direction (f(wi → wo) is then the light arriving from wo) f(wo → wi).
     const bool fromSource = !m.IsReciprocal() && m.ConservesEnergyPerIncidentDirection();
     map.valueLabel = fromSource ? "Eval(wo → source)·|cosθo| [1/sr]" : "Eval·|cosθo| [1/sr]";
-    q.lobes = LobeContinuous;
+    ScratchBuffer scratch, atWo;  // the kernel prepared for q; at each wo (fromSource)
+    const PreparedKernel &k = m.Prepare(q, scratch);
     ScatterQuery qo = q;
     const double side = q.wi.z > 0 ? 1 : -1;
     for (int disc = 0; disc < 2; ++disc) {
@@ -346,9 +346,10 @@ DiscMap MakeMap(const Material &m, ScatterQuery q, const ProbeResult &r, int siz
                 // (x, y) in the probe's frame; the kernel's local frame is turned by ψ from it.
                 const Vec3 wo = RotateZ(Vec3(x, y, (disc == 0 ? side : -side) * std::sqrt(1 - s2)), psi);
                 qo.wi = wo;
+                atWo.Reset();
                 const double f = !r.continuous ? 0.0
-                                 : fromSource  ? m.Eval(qo, q.wi)[0] * std::abs(wo.z)
-                                               : m.Eval(q, wo)[0] * std::abs(wo.z);
+                                 : fromSource  ? m.Prepare(qo, atWo).Eval(q.wi)[0] * std::abs(wo.z)
+                                               : k.Eval(wo)[0] * std::abs(wo.z);
                 d.values[std::size_t(j) * size + i] = std::isfinite(f) ? f : 0.0;
             }
         map.discs.push_back(std::move(d));
@@ -461,7 +462,7 @@ int RunProbe(const CliOptions &o) {
         q.tex.n = Vec3(0, 0, 1);
         // φ is measured from the kernel's reference direction (a grating's grating vector), which
         // lies at ψ from dp/du: the kernel is asked in its own frame, its answers turned back by −ψ.
-        const std::optional<double> reference = material->ReferenceAngle(q.tex);
+        const std::optional<double> reference = ReferenceAngleOf(*material, q.tex);
         const double psi = reference.value_or(0.0);
         q.wi = RotateZ(q.wi, psi);
         const uint64_t seed = o.seed >= 0 ? uint64_t(o.seed) : 0;

@@ -30,24 +30,6 @@ void GrPathSampler::CheckDetector(const Scene &scene, const std::string &integra
                     det.name + "' does not");
 }
 
-bool GrPathSampler::HasDeltaLights(const Scene &scene) {
-    for (const Light *l : scene.Lights())
-        if (l->IsDelta()) return true;
-    return false;
-}
-
-bool GrPathSampler::HasHittableEmitters(const Scene &scene) {
-    for (const Light *l : scene.Lights())
-        if (!l->IsDelta()) return true;
-    return false;
-}
-
-bool GrPathSampler::HasClosedFormLights(const Scene &scene) {
-    for (const Light *l : scene.Lights())
-        if (l->MeasuredInClosedForm()) return true;
-    return false;
-}
-
 bool GrPathSampler::DropCompanions(SampledSpectrum &T, const SampledWavelengths &wl) {
     // T[i > 0] = 0 and T[0]·N: what SampledWavelengths::TerminateSecondary's pdf[0]/N does to
     // everything the film receives, applied to the rest of the path only.
@@ -72,17 +54,6 @@ std::optional<GrMeasurement> GrPathSampler::MeasureOne(const Scene &scene, const
     return m;
 }
 
-SampledSpectrum GrPathSampler::MeasureClosedForm(const Scene &scene, const SpectralGenRay &g,
-                                                 const SurfaceInteraction *si, const SampledWavelengths &wl,
-                                                 PathStats &stats) {
-    SampledSpectrum sum(0.0);
-    for (const Light *light : scene.Lights()) {
-        if (!light->MeasuredInClosedForm()) continue;
-        if (auto m = MeasureOne(scene, *light, g, si, wl, stats)) sum += m->value;
-    }
-    return sum;
-}
-
 SpectralGenRay GrPathSampler::AlongLobe(const SpectralGenRay &g, const SurfaceInteraction &si,
                                         const NearDeltaLobe &lobe, int i) {
     SpectralGenRay out = g;
@@ -97,40 +68,6 @@ bool GrPathSampler::UniformLobe(const NearDeltaLobe &lobe, const SampledWaveleng
     for (int i = 1; i < wl.Count(); ++i)
         uniform = uniform && lobe.wo[i] == lobe.wo[0] && lobe.Eta(i) == lobe.Eta(0);
     return uniform;
-}
-
-SampledSpectrum GrPathSampler::MeasureThroughLobe(const Scene &scene, const SpectralGenRay &g,
-                                                  const SurfaceInteraction &si, const NearDeltaLobe &lobe,
-                                                  const SampledWavelengths &wl, PathStats &stats) {
-    // A lobe whose direction or index differs between the carried wavelengths (dispersive) is
-    // measured per wavelength along that wavelength's own direction.
-    if (lobe.weight.IsZero()) return SampledSpectrum(0.0);
-    if (UniformLobe(lobe, wl)) return lobe.weight * MeasureClosedForm(scene, AlongLobe(g, si, lobe, 0), &si, wl, stats);
-    SampledSpectrum v(0.0);
-    for (int i = 0; i < wl.Count(); ++i)
-        if (lobe.weight[i] > 0)
-            v[i] = lobe.weight[i] * MeasureClosedForm(scene, AlongLobe(g, si, lobe, i), &si, wl, stats)[i];
-    return v;
-}
-
-void GrPathSampler::FootprintSample::Remember(const ScatterQuery &query, const SurfaceInteraction &hit,
-                                              const SpectralGenRay &g, const Material &m, const ScatterSample &bs) {
-    active = true;
-    q = query;
-    si = hit;
-    gr = g;
-    q.si = &si;
-    q.gr = &gr;
-    mat = &m;
-    wo = bs.wo;
-    f = bs.weight * (bs.pdf / std::max(std::abs(bs.wo.z), 1e-300));
-}
-
-SampledSpectrum GrPathSampler::FootprintSample::Correction(double dist) const {
-    const SampledSpectrum g = mat->EvalFrom(q, wo, IncidentWave{dist});  // q.lobes = LobeAll
-    SampledSpectrum r(0.0);
-    for (int i = 0; i < NumWavelengths; ++i) r[i] = f[i] > 0 ? g[i] / f[i] : 0;
-    return r;
 }
 
 }  // namespace phasor::grpath

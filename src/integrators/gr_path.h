@@ -2,9 +2,8 @@
 // phasor — the generalized-ray path sampler shared by `grt` and `sample_solve` (theory §3.3–3.4,
 // §5.1): Algorithm 1 with next-event estimation, MIS, the closed-form measurements of theory §0
 // D4a/D14 and Russian roulette, exactly as `grt` estimates a pixel (grt.cpp describes the
-// estimator). It returns `grt`'s estimate and, for a Sink that asks for them, records the path's
-// vertices and reports every *measurement event* — each term the estimate adds — with what a
-// forward solve over the path needs (sample_solve.cpp):
+// estimator). It returns `grt`'s estimate and reports every *measurement event* — each term the
+// estimate adds — to a Sink, with what a forward solve over the path needs (sample_solve.cpp):
 //   * Detector       a camera GR measures a closed-form source in closed form (D4a/Eq. 24);
 //   * Incidence      a sensor plane integrates a closed-form source over its directions (D4a);
 //   * LobeIncidence  the same through a listed lobe of a planar near-delta surface (lobe_incidence.h);
@@ -12,9 +11,15 @@
 //   * Escape         the path escapes to the infinite lights (Le, MIS-weighted);
 //   * DirectLight    next-event estimation through the continuous lobes at a vertex;
 //   * ThroughLobe    a closed-form source measured through a listed near-delta lobe at a vertex (D14).
-// Each event's value is the term the estimate adds (throughput included), computed separately from
-// the estimate (per light, per light sample), so a Sink that records changes nothing in it: the
-// sum of the events equals the estimate up to rounding, and `grt` (NullSink) is the old loop.
+//
+// The estimate is one pass over the path in named steps (PathEstimate below; pbrt-v4's Li and
+// SampleLd): MeasureAtDetector (the primary GR's closed-form measurements), FoundEmission (emission
+// where the path hits an area light or escapes), DirectLight (NEE), ThroughListedLobes (D14) and
+// Continue (the sampled lobe, Russian roulette). Each step computes each term once, adds it to the
+// estimate and reports it as an event; a Sink that does not record (`grt`'s NullSink) has the
+// reports compiled away. The estimate groups some terms before multiplying by the throughput
+// (T·Σ_lights M, T·Σ_j d_j/n) where each event carries its own product (T·M_l), so the events sum
+// to the estimate up to rounding (gr_path_test checks it sample by sample on every validation scene).
 #pragma once
 
 #include <functional>
@@ -43,22 +48,25 @@ inline ScatterQuery GrQuery(const SurfaceInteraction &si, const SpectralGenRay &
 }
 
 /// One vertex of a sampled path: the hit, the GR arriving there (tracing direction gr.d into the
-/// surface, footprint propagated to the hit) and the lobe the path left through.
+/// surface, footprint propagated to the hit), the kernel prepared there and the lobe the path left
+/// through.
 struct Vertex {
     SurfaceInteraction si;
     SpectralGenRay gr;
     const Material *mat = nullptr;
+    /// The kernel prepared for the vertex's query (GrQuery(si, gr, rayOptics)), in the sample's
+    /// scratch buffer: valid until the estimate returns.
+    const PreparedKernel *kernel = nullptr;
     bool rayOptics = false;       // a spread-free GR: the kernel was asked in its ray-optics limit
     bool left = false;            // the path continued from here through `bs`
     ScatterSample bs;             // the sampled lobe (local wo, weight a_j/p_j or f|cos|/pdf, pdf, id, flags)
-    /// The query the sampler asked here (its pointers refer to this vertex and to wl).
-    ScatterQuery Query(const SampledWavelengths &wl) const { return GrQuery(si, gr, rayOptics, wl); }
 };
 
 enum class EventKind { Detector, Incidence, LobeIncidence, Emission, Escape, DirectLight, ThroughLobe };
 
 /// A measurement event (see the top of the file). Light flows from the light to the event's own
 /// interaction (if any), then through the sampled lobes of vertices prefix−1, …, 0 to the detector.
+/// Pointers are valid during Sink::OnEvent only.
 struct Event {
     EventKind kind = EventKind::Detector;
     SampledSpectrum value;         // the term the estimate adds (throughput and 1/pdfs included)
@@ -71,6 +79,9 @@ struct Event {
     /// and LobeIncidence (lobe `lobe`); `at` is null for the other kinds.
     const SurfaceInteraction *at = nullptr;
     const SpectralGenRay *gr = nullptr;  // the GR arriving at `at` (tracing direction, footprint)
+    /// The kernel prepared at `at` (DirectLight, ThroughLobe: the vertex's); null for LobeIncidence,
+    /// whose hit the Newton solve of lobe_incidence.cpp found (prepare GrQuery(*at, *gr, rayOptics)).
+    const PreparedKernel *kernel = nullptr;
     bool rayOptics = false;
     int lobe = -1;
     Vec3 woLocal;                  // at `at`: unit direction towards the light (local)
@@ -89,17 +100,12 @@ struct Event {
     std::array<double, NumWavelengths> window = [] { std::array<double, NumWavelengths> a; a.fill(Infinity); return a; }();
 };
 
-/// Where a detector sample sits, for the polarisation frame of a forward solve.
-struct DetectorView {
-    const DetectorGrSample *ds = nullptr;
-};
-
 /// The Sink interface (a template parameter of GrPathSampler::Estimate):
-///   static constexpr bool Records;                         // record vertices and report events
+///   static constexpr bool Records;                         // record vertices and receive events
 ///   void OnEvent(const Event &, const std::vector<Vertex> &path, const DetectorGrSample &);
 ///   const Light *Measured(const Light *light, const Vec3 &p, const SampledWavelengths &wl);
 /// Measured() may replace a closed-form light by another one (sample_solve's coherent modes) for
-/// one measurement seen from p; it is asked only when Records.
+/// one measurement seen from p. A sink that does not record receives no event and no path.
 struct NullSink {
     static constexpr bool Records = false;
     void OnEvent(const Event &, const std::vector<Vertex> &, const DetectorGrSample &) {}
@@ -120,9 +126,10 @@ class GrPathSampler {
     int LightSamples() const { return lightSamples_; }
 
     /// `grt`'s estimate for pixel (x, y) (PixelIntegrator::EstimatePixel), reporting to `sink`.
+    /// Kernels are prepared in `scratch` (the caller resets it between samples).
     template <class Sink>
     SampledSpectrum Estimate(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
-                             PathStats &stats, Sink &sink) const;
+                             ScratchBuffer &scratch, PathStats &stats, Sink &sink) const;
 
     /// Throws phasor::Error if the scene's detector cannot generate GRs; `integrator` names the caller.
     static void CheckDetector(const Scene &scene, const std::string &integrator);
@@ -133,50 +140,21 @@ class GrPathSampler {
         return *lobes_;
     }
 
-    // ---- helpers shared with sample_solve -------------------------------------------------------
-    static bool HasDeltaLights(const Scene &scene);
-    static bool HasHittableEmitters(const Scene &scene);
-    static bool HasClosedFormLights(const Scene &scene);
+    // ---- helpers of the estimate ----------------------------------------------------------------
     /// Drops the companion wavelengths from the throughput (theory §0 D10); false for a line sample.
     static bool DropCompanions(SampledSpectrum &T, const SampledWavelengths &wl);
-
     /// One closed-form light seen by the GR g (traced; measured as its time reverse, D3) from g's
     /// origin (from the surface `si` when g leaves one): its k²·M if unoccluded, else nullopt.
     static std::optional<GrMeasurement> MeasureOne(const Scene &scene, const Light &light, const SpectralGenRay &g,
                                                    const SurfaceInteraction *si, const SampledWavelengths &wl,
                                                    PathStats &stats);
-    /// Σ over closed-form lights of MeasureOne (grt's closed-form measurement).
-    static SampledSpectrum MeasureClosedForm(const Scene &scene, const SpectralGenRay &g,
-                                             const SurfaceInteraction *si, const SampledWavelengths &wl,
-                                             PathStats &stats);
     /// The GR leaving `si` through listed lobe `lobe` at carried wavelength i.
     static SpectralGenRay AlongLobe(const SpectralGenRay &g, const SurfaceInteraction &si, const NearDeltaLobe &lobe,
                                     int i);
     /// True if the lobe's direction and index are the same at every carried wavelength.
     static bool UniformLobe(const NearDeltaLobe &lobe, const SampledWavelengths &wl);
-    /// k²·M of the closed-form sources seen through one listed lobe, times its weight a_j (D14).
-    static SampledSpectrum MeasureThroughLobe(const Scene &scene, const SpectralGenRay &g,
-                                              const SurfaceInteraction &si, const NearDeltaLobe &lobe,
-                                              const SampledWavelengths &wl, PathStats &stats);
 
   private:
-    /// A sample of a footprint-aware kernel (theory §9) waiting for the distance to what its ray
-    /// hits: the kernel's response depends on the incident wave's curvature (EvalFrom), and its
-    /// Sample weight assumed a plane wave.
-    struct FootprintSample {
-        bool active = false;
-        ScatterQuery q;
-        SurfaceInteraction si;
-        SpectralGenRay gr;
-        const Material *mat = nullptr;
-        Vec3 wo;            // local
-        SampledSpectrum f;  // Eval(q, wo) (plane wave)
-        void Remember(const ScatterQuery &query, const SurfaceInteraction &hit, const SpectralGenRay &g,
-                      const Material &m, const ScatterSample &bs);
-        /// EvalFrom(q, wo, dist) / Eval(q, wo) per wavelength (0 where Eval is 0).
-        SampledSpectrum Correction(double dist) const;
-    };
-
     int maxDepth_, rrDepth_, lightSamples_;
     mutable std::once_flag lobesOnce_;
     mutable std::unique_ptr<const LobeIncidence> lobes_;
@@ -184,307 +162,376 @@ class GrPathSampler {
 
 // ---- the estimate ---------------------------------------------------------------------------------
 
+/// One pixel sample's estimate: the state its steps share and the steps, in the order Run takes
+/// them (see the top of the file).
+template <class Sink>
+class PathEstimate {
+  public:
+    PathEstimate(const GrPathSampler &paths, const Scene &scene, SampledWavelengths &wl, Sampler &sampler,
+                 ScratchBuffer &scratch, PathStats &stats, Sink &sink)
+        : paths_(paths), scene_(scene), wl_(wl), sampler_(sampler), scratch_(scratch), stats_(stats), sink_(sink) {}
+
+    SampledSpectrum Run(int x, int y);
+
+  private:
+    /// The primary GR's closed-form measurements (theory §0 D4a): a sensor plane integrates every
+    /// closed-form source over its directions, directly and through the listed lobes of planar
+    /// near-delta surfaces (LobeIncidence); a camera GR measures each in closed form (Eq. 24).
+    void MeasureAtDetector();
+    /// Emission the path meets after `depth` vertices, arriving along −g.d (a hit area light, or the
+    /// infinite lights on escape), MIS-weighted by the caller.
+    void FoundEmission(EventKind kind, const SampledSpectrum &le, int depth, const Light *light, double dist);
+    /// Next-event estimation through the continuous lobes at the vertex (si, k): `light_samples`
+    /// estimates, their light positions on a rotated m×m lattice when the count is a square m²
+    /// (stratified), else independent.
+    void DirectLight(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
+    /// D14 through every listed near-delta lobe at the vertex: delta and small sources (plane waves,
+    /// lasers, point and spot lights, the sun) measured in closed form along each lobe, weighted by
+    /// its a_j; a dispersive lobe per carried wavelength along its own direction.
+    void ThroughListedLobes(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
+    /// Samples one lobe at the vertex and turns the GR into it (theory §3.3, S6.4); Russian roulette.
+    /// False if the path ends here.
+    bool Continue(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
+
+    /// Σ over the closed-form lights of what the GR `out` measures from `from` (MeasureOne; from the
+    /// surface `si` when it leaves one), each light's term reported through event(light, measured,
+    /// m) (an Event, or nullopt to report nothing).
+    template <class MakeEvent>
+    SampledSpectrum ClosedForm(const SpectralGenRay &out, const SurfaceInteraction *si, const Vec3 &from,
+                               MakeEvent &&event);
+    /// Reports the event `make()` builds, if the sink records.
+    template <class Make>
+    void Report(Make &&make) {
+        if constexpr (Sink::Records)
+            if (std::optional<Event> e = make()) sink_.OnEvent(*e, path_, *ds_);
+    }
+
+    const GrPathSampler &paths_;
+    const Scene &scene_;
+    SampledWavelengths &wl_;
+    Sampler &sampler_;
+    ScratchBuffer &scratch_;
+    PathStats &stats_;
+    Sink &sink_;
+
+    std::optional<DetectorGrSample> ds_;
+    SpectralGenRay g_;                     // the path's current GR (tracing direction, footprint)
+    SampledSpectrum T_, L_;                // throughput and estimate
+    bool measured_ = false;                // a measurement (NEE or closed form) happened: RR may start
+    std::vector<Vertex> path_;             // the recorded vertices (recording sinks only)
+    path::MisState mis_;                   // the detector counts as a delta vertex
+    bool closedFormDone_ = true;           // the current GR has measured the closed-form sources
+    /// After a footprint-aware kernel the GR is spread-free (theory §9 item 5): its angular spread
+    /// is inside that kernel's lobe, so later vertices see a classical ray (near-delta lobes become
+    /// deltas, delta sources are not measured again, area and distant sources by direction only).
+    bool spreadFree_ = false;
+    bool companionsDropped_ = false;
+    /// The last sample of a footprint-aware kernel (theory §9), until its ray hits something: its
+    /// response depends on the incident wave's curvature (EvalFrom), and its Sample weight assumed
+    /// a plane wave. f = the sample's Eval (plane wave).
+    struct {
+        const PreparedKernel *kernel = nullptr;
+        Vec3 wo;  // local
+        SampledSpectrum f;
+    } footprint_;
+};
+
 template <class Sink>
 SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
-                                        PathStats &stats, Sink &sink) const {
-    constexpr bool rec = Sink::Records;
-    auto ds = scene.GetDetector().GenerateGR(x, y, stats.sample, sampler, wl);
-    if (!ds) return SampledSpectrum(0.0);
-    SpectralGenRay g;
-    g.o = ds->ray.o;
-    g.d = ds->ray.d;
-    g.count = wl.Count();
-    for (int i = 0; i < g.count; ++i) {
-        g.k[i] = 2 * Pi / wl.lambda[i];  // detectors sit in vacuum/air (η = 1)
-        g.beta2[i] = ds->beta2[i];
-        g.rho[i] = ds->rho[i];
-    }
-    SampledSpectrum T(ds->weight), L(0.0);
-    bool measured = false;  // a measurement (NEE or closed form) happened: RR may start
-    // The recorded path (only with a recording sink), in a per-thread buffer reused across samples.
-    thread_local std::vector<Vertex> pathBuffer;
-    std::vector<Vertex> &path = pathBuffer;
-    path.clear();
-    auto report = [&](const Event &e) {
-        if constexpr (rec) sink.OnEvent(e, path, *ds);
-    };
-    // An Emission or Escape event: light `le` met by the path after `depth` vertices, arriving along −g.d.
-    auto reportFound = [&](EventKind kind, const SampledSpectrum &le, int depth, const Light *light, double dist) {
-        if constexpr (rec) {
-            if (le.IsZero()) return;
-            Event e;
-            e.kind = kind;
-            e.value = T * le;
-            e.prefix = depth;
-            e.light = light;
-            e.travel = -g.d;
-            e.dist = dist;
-            report(e);
-        }
-    };
+                                        ScratchBuffer &scratch, PathStats &stats, Sink &sink) const {
+    return PathEstimate<Sink>(*this, scene, wl, sampler, scratch, stats, sink).Run(x, y);
+}
 
-    // Primary GRs facing closed-form sources (theory §0 D4a).
-    if (ds->integratesIncidence) {
-        for (const Light *sceneLight : scene.Lights()) {
-            if (!sceneLight->MeasuredInClosedForm()) continue;
-            const Light *light = rec ? sink.Measured(sceneLight, g.o, wl) : sceneLight;
-            auto inc = light->IncidenceOnGR(g, wl);
-            if (!inc || inc->irradiance.IsZero()) continue;
-            const SampledSpectrum v = scene.GetDetector().IntegrateIncidence(*ds, *inc);
-            if (v.IsZero()) continue;
-            ++stats.rays;
-            if (!scene.GetAccel().Occluded(Ray{g.o, inc->wi}, 0, inc->dist * (1 - 1e-7))) {
-                L += v;
-                if constexpr (rec) {
-                    Event e;
-                    e.kind = EventKind::Incidence;
-                    e.value = v;
-                    e.light = sceneLight;
-                    e.ensemble = light == sceneLight;
-                    e.travel = -inc->wi;
-                    e.dist = inc->dist;
-                    report(e);
-                }
-            }
-        }
-        // …and through every listed lobe of a planar near-delta surface (D4a through lobes).
-        if (const LobeIncidence &lobes = Lobes(scene); !lobes.Empty()) {
-            if constexpr (rec) {
-                const LobeIncidence::Report onLobe = [&](const LobeIncidence::Contribution &c) {
-                    Event e;
-                    e.kind = EventKind::LobeIncidence;
-                    e.value = c.value;
-                    e.light = c.light;
-                    e.ensemble = c.ensemble;
-                    e.at = c.si;
-                    e.gr = c.gr;
-                    e.rayOptics = false;
-                    e.lobe = c.lobe;
-                    e.woLocal = c.woLocal;
-                    e.wavelength = c.wavelength;
-                    e.travel = c.travel;
-                    e.dist = c.dist;
-                    report(e);
-                };
-                const LobeIncidence::ModeOf mode = [&](const Light *l, const Vec3 &p) {
-                    return sink.Measured(l, p, wl);
-                };
-                L += lobes.Integrate(scene, *ds, g, wl, stats, &onLobe, &mode);
-            } else {
-                L += lobes.Integrate(scene, *ds, g, wl, stats);
-            }
-        }
-    } else {
-        if constexpr (rec) {
-            // Per light, as MeasureClosedForm sums them.
-            const SpectralGenRay physical = g.TimeReversed();
-            for (const Light *sceneLight : scene.Lights()) {
-                if (!sceneLight->MeasuredInClosedForm()) continue;
-                const Light *light = sink.Measured(sceneLight, g.o, wl);
-                auto m = light->MeasureGR(physical, wl);
-                if (!m || m->value.IsZero()) continue;
-                ++stats.rays;
-                if (scene.GetAccel().Occluded(Ray{g.o, m->wi}, 0, m->dist * (1 - 1e-7))) continue;
-                L += T * m->value;
-                Event e;
-                e.kind = EventKind::Detector;
-                e.value = T * m->value;
-                e.light = sceneLight;
-                e.ensemble = light == sceneLight;
-                e.travel = -m->wi;
-                e.dist = m->dist;
-                for (int i = 0; i < physical.count; ++i) e.window[std::size_t(i)] = physical.At(i).AngularVariance();
-                report(e);
-            }
-        } else {
-            L += T * MeasureClosedForm(scene, g, nullptr, wl, stats);
-        }
+template <class Sink>
+SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
+    ds_ = scene_.GetDetector().GenerateGR(x, y, stats_.sample, sampler_, wl_);
+    if (!ds_) return SampledSpectrum(0.0);
+    g_.o = ds_->ray.o;
+    g_.d = ds_->ray.d;
+    g_.count = wl_.Count();
+    for (int i = 0; i < g_.count; ++i) {
+        g_.k[i] = 2 * Pi / wl_.lambda[i];  // detectors sit in vacuum/air (η = 1)
+        g_.beta2[i] = ds_->beta2[i];
+        g_.rho[i] = ds_->rho[i];
     }
-    measured = true;
-    if (!(ds->weight > 0)) return L;
+    T_ = SampledSpectrum(ds_->weight);
+    MeasureAtDetector();
+    measured_ = true;
+    if (!(ds_->weight > 0)) return L_;
 
-    path::MisState mis;          // the detector counts as a delta vertex
-    bool closedFormDone = true;  // the current GR has measured the closed-form sources
-    // After a footprint-aware kernel the GR is spread-free (theory §9 item 5): its angular
-    // spread is inside that kernel's lobe, so later vertices see a classical ray (near-delta
-    // lobes become deltas, delta sources are not measured again, area and distant sources by
-    // direction only).
-    bool spreadFree = false;
-    FootprintSample footprint;  // the last spread-free sample, until its ray hits something
-    auto skipClosedForm = [](const Light *l) { return l->MeasuredInClosedForm(); };
-    const bool hasClosedForm = HasClosedFormLights(scene);
-    bool companionsDropped = false;
+    const int maxDepth = paths_.MaxDepth();
     for (int depth = 0;; ++depth) {
-        ++stats.rays;
-        auto si = scene.Intersect(g.MeanRay());
+        ++stats_.rays;
+        auto si = scene_.Intersect(g_.MeanRay());
         if (!si) {
-            const SampledSpectrum le = closedFormDone ? path::EscapedEmission(scene, g.d, wl, mis, skipClosedForm)
-                                                      : path::EscapedEmission(scene, g.d, wl, mis);
-            L += T * le;
-            reportFound(EventKind::Escape, le, depth, nullptr, Infinity);
+            const SampledSpectrum le = path::EscapedEmission(scene_, g_.d, wl_, mis_, closedFormDone_);
+            FoundEmission(EventKind::Escape, le, depth, nullptr, Infinity);
             break;
         }
-        g.Propagate(si->t);  // ABCD free-space update of every wavelength's footprint
-        g.o = si->p;
-        if (footprint.active) {
-            // The footprint-aware lobe was sampled as a response to a plane wave; light from
-            // this hit arrives as a spherical wave from distance t (the same integrand as
-            // NEE, EvalFrom): re-weight the throughput by EvalFrom(t)/Eval.
-            T *= footprint.Correction(si->t);
-            footprint.active = false;
+        g_.Propagate(si->t);  // ABCD free-space update of every wavelength's footprint
+        g_.o = si->p;
+        if (footprint_.kernel) {
+            // The footprint-aware lobe was sampled as a response to a plane wave; light from this
+            // hit arrives as a spherical wave from distance t (the same integrand as NEE, EvalFrom):
+            // re-weight the throughput by EvalFrom(t)/Eval.
+            const SampledSpectrum from = footprint_.kernel->EvalFrom(footprint_.wo, IncidentWave{si->t});
+            SampledSpectrum r(0.0);
+            for (int i = 0; i < NumWavelengths; ++i) r[i] = footprint_.f[i] > 0 ? from[i] / footprint_.f[i] : 0;
+            T_ *= r;
+            footprint_.kernel = nullptr;
         }
-        const SampledSpectrum le = path::HitEmission(scene, *si, g.d, wl, mis);
-        L += T * le;
-        reportFound(EventKind::Emission, le, depth, si->areaLight, si->t);
+        FoundEmission(EventKind::Emission, path::HitEmission(scene_, *si, g_.d, wl_, mis_), depth, si->areaLight,
+                      si->t);
         const Material *mat = si->material;
-        if (!mat || depth == maxDepth_) break;
+        if (!mat || depth == maxDepth) break;
 
-        if constexpr (rec) {
+        const PreparedKernel &k = mat->Prepare(GrQuery(*si, g_, spreadFree_, wl_), scratch_);
+        if constexpr (Sink::Records) {
             Vertex v;
             v.si = *si;
-            v.gr = g;
+            v.gr = g_;
             v.mat = mat;
-            v.rayOptics = spreadFree;
-            path.push_back(v);
+            v.kernel = &k;
+            v.rayOptics = spreadFree_;
+            path_.push_back(v);
         }
-        const Frame &frame = si->shading;
-        const ScatterQuery q = GrQuery(*si, g, spreadFree, wl);
-        const unsigned caps = mat->Capabilities(q);
-        if (spreadFree && mat->IsFootprintAware()) stats.counters.Add(RenderEvent::FootprintAfterSpreadFree);
-
-        // Next-event estimation through the continuous lobes.
-        const double uLight = sampler.Get1D();
-        const Vec2 uLightPos = sampler.Get2D();
-        if (caps & CapContinuous) {
-            ScatterQuery qc = q;
-            qc.lobes = LobeContinuous;  // near-delta lobes are measured in closed form below
-            // `light_samples` estimates per vertex, their light positions on a rotated
-            // m×m lattice when the count is a square m² (stratified), else independent.
-            const int m = int(std::lround(std::sqrt(double(lightSamples_))));
-            SampledSpectrum direct(0.0);
-            for (int j = 0; j < lightSamples_; ++j) {
-                Vec2 u = uLightPos;
-                double ul = uLight;
-                if (j > 0 && m * m == lightSamples_) {
-                    u = Vec2(std::fmod(uLightPos.x + double(j % m) / m, 1.0),
-                             std::fmod(uLightPos.y + double(j / m) / m, 1.0));
-                    ul = std::fmod(uLight + double(j) / lightSamples_, 1.0);
-                } else if (j > 0) {
-                    ul = sampler.Get1D();
-                    u = sampler.Get2D();
-                }
-                if constexpr (rec) {
-                    path::DirectLightInfo info;
-                    const SampledSpectrum d = path::SampleDirectLight(scene, *si, *mat, qc, ul, u, wl, stats, &info);
-                    direct += d;
-                    if (!d.IsZero()) {
-                        Event e;
-                        e.kind = EventKind::DirectLight;
-                        e.value = T * d / double(lightSamples_);
-                        e.prefix = depth;
-                        e.light = info.light;
-                        e.at = &path.back().si;
-                        e.gr = &path.back().gr;
-                        e.rayOptics = spreadFree;
-                        e.woLocal = frame.ToLocal(info.wi);
-                        e.travel = -info.wi;
-                        e.dist = info.dist;
-                        report(e);
-                    }
-                } else {
-                    direct += path::SampleDirectLight(scene, *si, *mat, qc, ul, u, wl, stats);
-                }
-            }
-            L += T * direct / double(lightSamples_);
-            measured = true;
-        }
-
-        // D14 through every listed near-delta lobe: delta and small sources (plane waves, lasers,
-        // point and spot lights, the sun) are measured in closed form along each lobe, weighted
-        // by its a_j — all of a grating's orders show their glints in one sample. The path then
-        // follows one sampled lobe, which does not measure them again (closedFormDone).
-        // At a detector's first vertex on a surface LobeIncidence covers, this was integrated
-        // over the detector's directions already.
-        const bool lobesIntegrated = depth == 0 && ds->integratesIncidence && Lobes(scene).Covers(si->shape);
-        if ((caps & CapNearDelta) && !spreadFree && hasClosedForm && !lobesIntegrated) {
-            NearDeltaLobes lobes;
-            mat->ListNearDelta(q, lobes);
-            for (const NearDeltaLobe &lobe : lobes) {
-                if constexpr (rec) {
-                    // Per light and, for a dispersive lobe, per wavelength along its own direction.
-                    if (lobe.weight.IsZero()) continue;
-                    const bool uniform = UniformLobe(lobe, wl);
-                    for (int i = 0; i < (uniform ? 1 : wl.Count()); ++i) {
-                        if (!uniform && !(lobe.weight[i] > 0)) continue;
-                        const SpectralGenRay out = AlongLobe(g, *si, lobe, i);
-                        for (const Light *sceneLight : scene.Lights()) {
-                            if (!sceneLight->MeasuredInClosedForm()) continue;
-                            const Light *light = sink.Measured(sceneLight, si->p, wl);
-                            auto m = MeasureOne(scene, *light, out, &*si, wl, stats);
-                            if (!m) continue;
-                            SampledSpectrum v(0.0);
-                            if (uniform) v = lobe.weight * m->value;
-                            else v[i] = lobe.weight[i] * m->value[i];
-                            if (v.IsZero()) continue;
-                            L += T * v;
-                            Event e;
-                            e.kind = EventKind::ThroughLobe;
-                            e.value = T * v;
-                            e.prefix = depth;
-                            e.light = sceneLight;
-                            e.ensemble = light == sceneLight;
-                            e.at = &path.back().si;
-                            e.gr = &path.back().gr;
-                            e.lobe = lobe.id;
-                            e.woLocal = lobe.wo[i];
-                            e.wavelength = uniform ? -1 : i;
-                            e.travel = -m->wi;
-                            e.dist = m->dist;
-                            for (int j = 0; j < out.count; ++j) e.window[std::size_t(j)] = out.At(j).AngularVariance();
-                            report(e);
-                        }
-                    }
-                } else {
-                    L += T * MeasureThroughLobe(scene, g, *si, lobe, wl, stats);
-                }
-            }
-            measured = true;
-        }
-
-        // A sampled direction at the last vertex can only find emission; without emitters a
-        // ray can hit (only delta lights), it would contribute nothing.
-        if (depth + 1 == maxDepth_ && !HasHittableEmitters(scene)) break;
-
-        // One term of the Eq. 22 mixture: the GR keeps β, ρ; its mean direction turns and |k|
-        // follows the medium (S6.4).
-        auto bs = mat->Sample(q, sampler.Get1D(), sampler.Get2D());
-        if (!bs || bs->weight.IsZero()) break;
-        // A dispersive lobe is followed at the hero wavelength only (D10). The companions are
-        // dropped from the throughput (T[0]·N, the same bookkeeping as TerminateSecondary), not
-        // from `wl`: what they collected up to here, including this vertex's closed-form
-        // measurement along their own directions, stays in the estimate.
-        if ((bs->flags & ScatterDispersive) && !companionsDropped) {
-            companionsDropped = DropCompanions(T, wl);
-        }
-        T *= bs->weight;
-        if constexpr (rec) {
-            path.back().left = true;
-            path.back().bs = *bs;
-        }
-        if ((bs->flags & ScatterSpreadFree) && q.gr) footprint.Remember(q, *si, g, *mat, *bs);
-        const Vec3 wo = frame.ToWorld(bs->wo);
-        g.Redirect(wo, bs->eta);
-        g.o = si->SpawnOrigin(wo);
-        const bool nearDelta = (bs->flags & ScatterNearDelta) != 0;
-        if (spreadFree && nearDelta && HasDeltaLights(scene)) stats.counters.Add(RenderEvent::SpecularAfterSpreadFree);
-        spreadFree = spreadFree || (bs->flags & ScatterSpreadFree) != 0;
-        mis = path::MisState{nearDelta, bs->pdf, LightSampleContext{si->p, si->n}};
-        // After a near-delta lobe of a GR the closed-form sources were measured at this vertex.
-        closedFormDone = nearDelta && !spreadFree;
-
-        if (depth + 1 >= rrDepth_ && measured && !path::RussianRoulette(T, sampler.Get1D())) break;
+        if (spreadFree_ && mat->IsFootprintAware()) stats_.counters.Add(RenderEvent::FootprintAfterSpreadFree);
+        DirectLight(*si, k, depth);
+        ThroughListedLobes(*si, k, depth);
+        if (!Continue(*si, k, depth)) break;
     }
-    return L;
+    return L_;
+}
+
+template <class Sink>
+void PathEstimate<Sink>::MeasureAtDetector() {
+    if (!ds_->integratesIncidence) {
+        const SampledSpectrum m = ClosedForm(g_, nullptr, g_.o, [&](const Light *light, bool ensemble, const GrMeasurement &mi) {
+            Event e;
+            e.kind = EventKind::Detector;
+            e.value = T_ * mi.value;
+            e.light = light;
+            e.ensemble = ensemble;
+            e.travel = -mi.wi;
+            e.dist = mi.dist;
+            const SpectralGenRay physical = g_.TimeReversed();
+            for (int i = 0; i < physical.count; ++i) e.window[std::size_t(i)] = physical.At(i).AngularVariance();
+            return std::optional<Event>(e);
+        });
+        L_ += T_ * m;
+        return;
+    }
+    // A sensor plane integrates each closed-form source over its directions (D4a)…
+    for (const Light *sceneLight : scene_.ClosedFormLights()) {
+        const Light *light = sink_.Measured(sceneLight, g_.o, wl_);
+        auto inc = light->IncidenceOnGR(g_, wl_);
+        if (!inc || inc->irradiance.IsZero()) continue;
+        const SampledSpectrum v = scene_.GetDetector().IntegrateIncidence(*ds_, *inc);
+        if (v.IsZero()) continue;
+        ++stats_.rays;
+        if (scene_.GetAccel().Occluded(Ray{g_.o, inc->wi}, 0, inc->dist * (1 - 1e-7))) continue;
+        L_ += v;
+        Report([&] {
+            Event e;
+            e.kind = EventKind::Incidence;
+            e.value = v;
+            e.light = sceneLight;
+            e.ensemble = light == sceneLight;
+            e.travel = -inc->wi;
+            e.dist = inc->dist;
+            return std::optional<Event>(e);
+        });
+    }
+    // …and through every listed lobe of a planar near-delta surface (D4a through lobes).
+    const LobeIncidence &lobes = paths_.Lobes(scene_);
+    if (lobes.Empty()) return;
+    if constexpr (Sink::Records) {
+        const LobeIncidence::Report onLobe = [&](const LobeIncidence::Contribution &c) {
+            Report([&] {
+                Event e;
+                e.kind = EventKind::LobeIncidence;
+                e.value = c.value;
+                e.light = c.light;
+                e.ensemble = c.ensemble;
+                e.at = c.si;
+                e.gr = c.gr;
+                e.rayOptics = false;
+                e.lobe = c.lobe;
+                e.woLocal = c.woLocal;
+                e.wavelength = c.wavelength;
+                e.travel = c.travel;
+                e.dist = c.dist;
+                return std::optional<Event>(e);
+            });
+        };
+        const LobeIncidence::ModeOf mode = [&](const Light *l, const Vec3 &p) { return sink_.Measured(l, p, wl_); };
+        L_ += lobes.Integrate(scene_, *ds_, g_, wl_, scratch_, stats_, &onLobe, &mode);
+    } else {
+        L_ += lobes.Integrate(scene_, *ds_, g_, wl_, scratch_, stats_);
+    }
+}
+
+template <class Sink>
+void PathEstimate<Sink>::FoundEmission(EventKind kind, const SampledSpectrum &le, int depth, const Light *light,
+                                       double dist) {
+    L_ += T_ * le;
+    Report([&]() -> std::optional<Event> {
+        if (le.IsZero()) return std::nullopt;
+        Event e;
+        e.kind = kind;
+        e.value = T_ * le;
+        e.prefix = depth;
+        e.light = light;
+        e.travel = -g_.d;
+        e.dist = dist;
+        return e;
+    });
+}
+
+template <class Sink>
+void PathEstimate<Sink>::DirectLight(const SurfaceInteraction &si, const PreparedKernel &k, int depth) {
+    // The light samples are drawn even when unused, to keep the sampler's dimensions aligned.
+    const double uLight = sampler_.Get1D();
+    const Vec2 uLightPos = sampler_.Get2D();
+    if (!(k.Capabilities() & CapContinuous)) return;
+    const int n = paths_.LightSamples();
+    const int m = int(std::lround(std::sqrt(double(n))));
+    SampledSpectrum direct(0.0);
+    for (int j = 0; j < n; ++j) {
+        Vec2 u = uLightPos;
+        double ul = uLight;
+        if (j > 0 && m * m == n) {
+            u = Vec2(std::fmod(uLightPos.x + double(j % m) / m, 1.0), std::fmod(uLightPos.y + double(j / m) / m, 1.0));
+            ul = std::fmod(uLight + double(j) / n, 1.0);
+        } else if (j > 0) {
+            ul = sampler_.Get1D();
+            u = sampler_.Get2D();
+        }
+        path::DirectLightInfo info;
+        const SampledSpectrum d = path::SampleDirectLight(scene_, si, k, ul, u, wl_, stats_, &info);
+        direct += d;
+        Report([&]() -> std::optional<Event> {
+            if (d.IsZero()) return std::nullopt;
+            Event e;
+            e.kind = EventKind::DirectLight;
+            e.value = T_ * d / double(n);
+            e.prefix = depth;
+            e.light = info.light;
+            e.at = &si;
+            e.gr = &g_;
+            e.kernel = &k;
+            e.rayOptics = spreadFree_;
+            e.woLocal = si.shading.ToLocal(info.wi);
+            e.travel = -info.wi;
+            e.dist = info.dist;
+            return e;
+        });
+    }
+    L_ += T_ * direct / double(n);
+    measured_ = true;
+}
+
+template <class Sink>
+void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const PreparedKernel &k, int depth) {
+    // The path then follows one sampled lobe, which does not measure these sources again
+    // (closedFormDone_). At a detector's first vertex on a surface LobeIncidence covers, they were
+    // integrated over the detector's directions already.
+    const bool integrated = depth == 0 && ds_->integratesIncidence && paths_.Lobes(scene_).Covers(si.shape);
+    if (!(k.Capabilities() & CapNearDelta) || spreadFree_ || scene_.ClosedFormLights().empty() || integrated) return;
+    for (const NearDeltaLobe &lobe : k.ListNearDelta()) {
+        const bool uniform = GrPathSampler::UniformLobe(lobe, wl_);
+        SampledSpectrum v(0.0);
+        for (int i = 0; i < (uniform ? 1 : wl_.Count()) && !lobe.weight.IsZero(); ++i) {
+            if (!uniform && !(lobe.weight[i] > 0)) continue;
+            const SpectralGenRay out = GrPathSampler::AlongLobe(g_, si, lobe, i);
+            // a_j·M per light: the lobe's weight (per wavelength along a dispersive lobe's own direction).
+            auto weighted = [&](const SampledSpectrum &mi) {
+                SampledSpectrum w(0.0);
+                if (uniform) w = lobe.weight * mi;
+                else w[i] = lobe.weight[i] * mi[i];
+                return w;
+            };
+            const SampledSpectrum m =
+                ClosedForm(out, &si, si.p, [&](const Light *light, bool ensemble, const GrMeasurement &mi) -> std::optional<Event> {
+                    const SampledSpectrum w = weighted(mi.value);
+                    if (w.IsZero()) return std::nullopt;
+                    Event e;
+                    e.kind = EventKind::ThroughLobe;
+                    e.value = T_ * w;
+                    e.prefix = depth;
+                    e.light = light;
+                    e.ensemble = ensemble;
+                    e.at = &si;
+                    e.gr = &g_;
+                    e.kernel = &k;
+                    e.lobe = lobe.id;
+                    e.woLocal = lobe.wo[i];
+                    e.wavelength = uniform ? -1 : i;
+                    e.travel = -mi.wi;
+                    e.dist = mi.dist;
+                    for (int j = 0; j < out.count; ++j) e.window[std::size_t(j)] = out.At(j).AngularVariance();
+                    return e;
+                });
+            if (uniform) v = lobe.weight * m;
+            else v[i] = lobe.weight[i] * m[i];
+        }
+        L_ += T_ * v;
+    }
+    measured_ = true;
+}
+
+template <class Sink>
+bool PathEstimate<Sink>::Continue(const SurfaceInteraction &si, const PreparedKernel &k, int depth) {
+    // A sampled direction at the last vertex can only find emission; without emitters a ray can
+    // hit (only delta lights), it would contribute nothing.
+    if (depth + 1 == paths_.MaxDepth() && scene_.HittableEmitters().empty()) return false;
+    // One term of the Eq. 22 mixture: the GR keeps β, ρ; its mean direction turns and |k|
+    // follows the medium (S6.4).
+    auto bs = k.Sample(sampler_.Get1D(), sampler_.Get2D());
+    if (!bs || bs->weight.IsZero()) return false;
+    // A dispersive lobe is followed at the hero wavelength only (D10). The companions are dropped
+    // from the throughput (T[0]·N, the same bookkeeping as TerminateSecondary), not from `wl`: what
+    // they collected up to here, including this vertex's closed-form measurement along their own
+    // directions, stays in the estimate.
+    if ((bs->flags & ScatterDispersive) && !companionsDropped_)
+        companionsDropped_ = GrPathSampler::DropCompanions(T_, wl_);
+    T_ *= bs->weight;
+    if constexpr (Sink::Records) {
+        path_.back().left = true;
+        path_.back().bs = *bs;
+    }
+    if ((bs->flags & ScatterSpreadFree) && !spreadFree_) {
+        // Footprint-aware: re-weighted by the distance its ray travels (Run).
+        footprint_.kernel = &k;
+        footprint_.wo = bs->wo;
+        footprint_.f = bs->weight * (bs->pdf / std::max(std::abs(bs->wo.z), 1e-300));
+    }
+    const Vec3 wo = si.shading.ToWorld(bs->wo);
+    g_.Redirect(wo, bs->eta);
+    g_.o = si.SpawnOrigin(wo);
+    const bool nearDelta = (bs->flags & ScatterNearDelta) != 0;
+    if (spreadFree_ && nearDelta && !scene_.DeltaLights().empty())
+        stats_.counters.Add(RenderEvent::SpecularAfterSpreadFree);
+    spreadFree_ = spreadFree_ || (bs->flags & ScatterSpreadFree) != 0;
+    mis_ = path::MisState{nearDelta, bs->pdf, LightSampleContext{si.p, si.n}};
+    // After a near-delta lobe of a GR the closed-form sources were measured at this vertex.
+    closedFormDone_ = nearDelta && !spreadFree_;
+    return !(depth + 1 >= paths_.RrDepth() && measured_ && !path::RussianRoulette(T_, sampler_.Get1D()));
+}
+
+template <class Sink>
+template <class MakeEvent>
+SampledSpectrum PathEstimate<Sink>::ClosedForm(const SpectralGenRay &out, const SurfaceInteraction *si,
+                                               const Vec3 &from, MakeEvent &&event) {
+    SampledSpectrum sum(0.0);
+    for (const Light *sceneLight : scene_.ClosedFormLights()) {
+        const Light *light = sink_.Measured(sceneLight, from, wl_);
+        auto m = GrPathSampler::MeasureOne(scene_, *light, out, si, wl_, stats_);
+        if (!m) continue;
+        sum += m->value;
+        Report([&] { return event(sceneLight, light == sceneLight, *m); });
+    }
+    return sum;
 }
 
 }  // namespace phasor::grpath

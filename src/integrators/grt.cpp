@@ -9,12 +9,12 @@
 //   * area lights: L_e where the mean ray hits them (theory §2.4 item 4), MIS (power heuristic)
 //     against next-event estimation after continuous lobes, in full after near-delta lobes;
 //   * next-event estimation to one uniformly chosen light per vertex through the continuous lobes
-//     (ScatterQuery::lobes = LobeContinuous: near-delta lobes have no density in Eval);
+//     (near-delta lobes have no density in Eval);
 //   * closed-form sources (Light::MeasuredInClosedForm: plane waves, point/spot lights, distant
 //     sources, Gaussian beams) are measured analytically (Eq. 24, theory §2.4) by every GR that
 //     leaves the detector — D4a for primary GRs (a `virtual_plane` integrates them over its
 //     directions exactly) — and, at every vertex, through *every* near-delta lobe the kernel lists
-//     (Material::ListNearDelta; D14: glints of the sun or a laser in mirrors, refractions and all
+//     (PreparedKernel::ListNearDelta; D14: glints of the sun or a laser in mirrors, refractions and all
 //     of a grating's orders in one sample), weighted by the lobe's a_j, with a shadow ray towards
 //     the source; a dispersive lobe is measured per carried wavelength along its own direction.
 //     The path then follows one sampled lobe; a GR that left through a near-delta lobe does not
@@ -68,9 +68,9 @@ class GrtIntegrator final : public PixelIntegrator {
     }
 
     SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
-                                  PathStats &stats) const override {
+                                  ScratchBuffer &scratch, PathStats &stats) const override {
         grpath::NullSink sink;
-        return paths_.Estimate(scene, x, y, wl, sampler, stats, sink);
+        return paths_.Estimate(scene, x, y, wl, sampler, scratch, stats, sink);
     }
 
     bool WaveOptical() const override { return true; }

@@ -40,6 +40,7 @@ struct LobeTarget {
     Vec3 o;                     // the detector sample's origin
     const SpectralGenRay &g;    // its GR (footprint at the detector)
     const SampledWavelengths &wl;
+    ScratchBuffer &scratch;     // each trial kernel is prepared here and dropped after Evaluate
 
     /// The state along direction `dir` from o; false if the ray does not reach the shape first, the
     /// lobe is not listed there, or no light arrives at p.
@@ -59,19 +60,18 @@ struct LobeTarget {
         q.tex = TextureEvalContext(*si, std::sqrt(g.beta2[0]));
         q.gr = &gp;
         q.si = &*si;
-        NearDeltaLobes lobes;
-        si->material->ListNearDelta(q, lobes);
-        const NearDeltaLobe *lobe = nullptr;
-        for (const NearDeltaLobe &l : lobes)
-            if (l.id == id) lobe = &l;
-        if (!lobe || !(lobe->weight[i] > 0)) return false;
-        auto inc = light->IncidenceOnGR(gp, wl);
-        if (!inc) return false;
-        st->si = *si;
-        for (int k = 0; k < wl.Count(); ++k) st->weight[k] = lobe->weight[k];
-        st->inc = *inc;
-        st->wo = si->shading.ToWorld(lobe->wo[i]);
-        return true;
+        const ScratchBuffer::Mark mark = scratch.Save();
+        const NearDeltaLobe *lobe = si->material->Prepare(q, scratch).FindLobe(id);
+        std::optional<GrIncidence> inc;
+        if (lobe && lobe->weight[i] > 0) inc = light->IncidenceOnGR(gp, wl);
+        if (inc) {
+            st->si = *si;
+            for (int k = 0; k < wl.Count(); ++k) st->weight[k] = lobe->weight[k];
+            st->inc = *inc;
+            st->wo = si->shading.ToWorld(lobe->wo[i]);
+        }
+        scratch.Rewind(mark);
+        return inc.has_value();
     }
 
     /// r = ω_j − s in the plane ⊥ `perp.n` (a frame fixed during one Newton step).
@@ -161,6 +161,7 @@ LobeIncidence::LobeIncidence(const Scene &scene) {
     SampledWavelengths wl;
     wl.lambda[0] = 550e-9;  // Capabilities do not depend on λ for any kernel; one is needed for the query
     wl.pdf[0] = 1;
+    ScratchBuffer scratch;
     for (const auto &shape : scene.Shapes()) {
         const Material *m = shape->material;
         if (!m || !shape->IsPlanar() || m->IsFootprintAware()) continue;
@@ -168,7 +169,8 @@ LobeIncidence::LobeIncidence(const Scene &scene) {
         q.wi = Vec3(0, 0, 1);
         q.wl = &wl;
         q.rayOptics = false;
-        if (m->Capabilities(q) & CapNearDelta) shapes_.push_back(shape.get());
+        scratch.Reset();
+        if (m->Prepare(q, scratch).Capabilities() & CapNearDelta) shapes_.push_back(shape.get());
     }
 }
 
@@ -177,18 +179,18 @@ bool LobeIncidence::Covers(const Shape *shape) const {
 }
 
 SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSample &ds, const SpectralGenRay &g,
-                                         const SampledWavelengths &wl, PathStats &stats, const Report *report,
-                                         const ModeOf *mode) const {
+                                         const SampledWavelengths &wl, ScratchBuffer &scratch, PathStats &stats,
+                                         const Report *report, const ModeOf *mode) const {
     SampledSpectrum sum(0.0);
     const Detector &detector = scene.GetDetector();
     for (const Shape *shape : shapes_) {
         const std::vector<Vec3> seeds = Seeds(*shape, ds.ray.o);
-        for (const Light *sceneLight : scene.Lights()) {
-            if (!sceneLight->MeasuredInClosedForm()) continue;
+        for (const Light *sceneLight : scene.ClosedFormLights()) {
             const Light *light = sceneLight;
             // The lobes listed where the first seed that reaches the shape hits it; each is then
             // followed by its id (a planar kernel lists the same ids over the surface).
-            NearDeltaLobes seedLobes;
+            const ScratchBuffer::Mark mark = scratch.Save();
+            std::span<const NearDeltaLobe> seedLobes;
             Vec3 seed, seedHit;
             bool found = false;
             for (const Vec3 &d : seeds) {
@@ -205,13 +207,16 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                 q.tex = TextureEvalContext(*si, std::sqrt(g.beta2[0]));
                 q.gr = &gp;
                 q.si = &*si;
-                si->material->ListNearDelta(q, seedLobes);
+                seedLobes = si->material->Prepare(q, scratch).ListNearDelta();
                 seed = d;
                 seedHit = si->p;
                 found = true;
                 break;
             }
-            if (!found) continue;
+            if (!found) {
+                scratch.Rewind(mark);
+                continue;
+            }
             // A replacement light (a coherent mode) is drawn once per light and shape, where the
             // seed ray meets the shape.
             if (mode) light = (*mode)(sceneLight, seedHit);
@@ -221,7 +226,7 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                 // One solve serves every wavelength of a lobe whose direction does not depend on λ;
                 // a dispersive lobe is solved per carried wavelength, each along its own direction.
                 for (int i = 0; i < (uniform ? 1 : wl.Count()); ++i) {
-                    const LobeTarget target{scene, shape, light, lobe.id, i, ds.ray.o, g, wl};
+                    const LobeTarget target{scene, shape, light, lobe.id, i, ds.ray.o, g, wl, scratch};
                     LobeState st;
                     double absDet = 0;
                     if (!target.Solve(seed, &st, &absDet, stats)) continue;
@@ -259,6 +264,7 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                     }
                 }
             }
+            scratch.Rewind(mark);  // the seed's kernel and what the reports prepared
         }
     }
     return sum;

@@ -71,11 +71,12 @@ class LobeIncidence {
     /// The pixel value (the detector's IntegrateIncidence units) of every closed-form light seen
     /// from the sample's origin through one listed lobe of a covered shape, each unoccluded
     /// (detector → p → light). `g` is the sample's GR at its origin (footprint per wavelength).
+    /// The kernels met are prepared in `scratch` and dropped again before the call returns.
     /// `report` (if given) receives every term; `mode` (if given) picks the light measured for each
     /// closed-form light.
     SampledSpectrum Integrate(const Scene &scene, const DetectorGrSample &ds, const SpectralGenRay &g,
-                              const SampledWavelengths &wl, PathStats &stats, const Report *report = nullptr,
-                              const ModeOf *mode = nullptr) const;
+                              const SampledWavelengths &wl, ScratchBuffer &scratch, PathStats &stats,
+                              const Report *report = nullptr, const ModeOf *mode = nullptr) const;
 
   private:
     std::vector<const Shape *> shapes_;

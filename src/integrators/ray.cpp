@@ -32,7 +32,7 @@ class RayIntegrator final : public PixelIntegrator {
     }
 
     SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
-                                  PathStats &stats) const override {
+                                  ScratchBuffer &scratch, PathStats &stats) const override {
         Vec2 pFilm = Vec2(x, y) + sampler.GetPixel2D();
         auto ds = scene.GetDetector().Generate(pFilm, sampler.Get2D());
         if (!ds) return SampledSpectrum(0.0);
@@ -59,15 +59,15 @@ class RayIntegrator final : public PixelIntegrator {
             q.rayOptics = true;
             q.tex = TextureEvalContext(*si);  // a classical ray: footprint 0
             q.si = &*si;
+            const PreparedKernel &k = mat->Prepare(q, scratch);
 
             // Next-event estimation (the samples are drawn even when unused, to keep dimensions aligned).
             double uLight = sampler.Get1D();
             Vec2 uLightPos = sampler.Get2D();
-            if (!mat->IsDeltaOnly(q))
-                L += beta * path::SampleDirectLight(scene, *si, *mat, q, uLight, uLightPos, wl, stats);
+            if (!k.IsDeltaOnly()) L += beta * path::SampleDirectLight(scene, *si, k, uLight, uLightPos, wl, stats);
 
             // Continue the path by sampling the kernel.
-            auto bs = mat->Sample(q, sampler.Get1D(), sampler.Get2D());
+            auto bs = k.Sample(sampler.Get1D(), sampler.Get2D());
             if (!bs || bs->weight.IsZero()) break;
             if (bs->flags & ScatterDispersive) wl.TerminateSecondary();
             beta *= bs->weight;

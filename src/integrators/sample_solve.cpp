@@ -47,8 +47,6 @@
 #include "integrators/gr_path.h"
 #include "lights/closed_form.h"
 
-#include <deque>
-
 namespace phasor {
 
 namespace {
@@ -126,12 +124,13 @@ class SampleSolveIntegrator final : public PixelIntegrator {
     }
 
     SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
-                                  PathStats &stats) const override {
-        return Solve(scene, x, y, wl, sampler, stats)[0];
+                                  ScratchBuffer &scratch, PathStats &stats) const override {
+        return Solve(scene, x, y, wl, sampler, scratch, stats)[0];
     }
     std::array<SampledSpectrum, 4> EstimatePixelStokes(const Scene &scene, int x, int y, SampledWavelengths &wl,
-                                                       Sampler &sampler, PathStats &stats) const override {
-        return Solve(scene, x, y, wl, sampler, stats);
+                                                       Sampler &sampler, ScratchBuffer &scratch,
+                                                       PathStats &stats) const override {
+        return Solve(scene, x, y, wl, sampler, scratch, stats);
     }
 
     std::string ToString() const override {
@@ -151,12 +150,17 @@ class SampleSolveIntegrator final : public PixelIntegrator {
         Pcg32 rng;  // draws coherent modes (force_coherent) without touching the path's dimensions
         std::array<SampledSpectrum, 4> stokes{SampledSpectrum(0.0), SampledSpectrum(0.0), SampledSpectrum(0.0),
                                               SampledSpectrum(0.0)};
-        // Per-sample state in per-thread buffers (cleared by Solve): the coherent modes drawn (alive
-        // for the sample: the sampler measures them right away), and per path vertex its sampled
-        // lobe's response and whether it passes polarisation unchanged.
-        std::deque<CoherentMode> &modes;
-        std::vector<std::optional<LobeResponse>> &responses;
-        std::vector<char> &scalarVertex;
+        ScratchBuffer &scratch;  // the sample's: the path's kernels live here, and what OnEvent prepares
+        // The coherent modes drawn (alive for the sample: the sampler measures them right away).
+        std::vector<std::unique_ptr<CoherentMode>> modes{};
+        /// Per path vertex, its sampled lobe's response (computed on first use) and whether it passes
+        /// polarisation unchanged; in the scratch buffer, grown with the path.
+        struct VertexResponse {
+            bool done = false;
+            bool scalar = false;
+            std::optional<LobeResponse> response;
+        };
+        std::span<VertexResponse> vertices{};
 
         const Light *Measured(const Light *light, const Vec3 &p, const SampledWavelengths &w) {
             // A distant source with an angular profile is an ensemble; fully coherent transport
@@ -166,17 +170,18 @@ class SampleSolveIntegrator final : public PixelIntegrator {
             auto ls = light->SampleLi(LightSampleContext{p, Vec3(0, 0, 0)}, u, w);
             SampledSpectrum e(0.0);
             if (ls && ls->pdf > 0) e = ls->L / ls->pdf;
-            modes.emplace_back(*light, ls ? -ls->wi : Vec3(0, 0, -1), e);
-            return &modes.back();
+            modes.push_back(std::make_unique<CoherentMode>(*light, ls ? -ls->wi : Vec3(0, 0, -1), e));
+            return modes.back().get();
         }
 
-        /// One interaction of the beam: the lobe's response `r` (nullopt: no response, the beam is
-        /// extinguished) towards the light along wo (local), relative to its M00; `scalar`: the
-        /// vertex passes polarisation unchanged (footprint-aware kernels).
-        void Interact(PltBeam &beam, const SurfaceInteraction &si, const ScatterQuery &q, const Vec3 &wo,
+        /// One interaction of the beam at si, which the path left along wi (local): the lobe's
+        /// response `r` (nullopt: no response, the beam is extinguished) towards the light along wo
+        /// (local), relative to its M00; `scalar`: the vertex passes polarisation unchanged
+        /// (footprint-aware kernels).
+        void Interact(PltBeam &beam, const SurfaceInteraction &si, const Vec3 &wi, const Vec3 &wo,
                       const std::optional<LobeResponse> &r, bool nearDelta, bool scalar) const {
-            const Vec3 out = si.shading.ToWorld(q.wi);
-            const Vec3 sAxis = si.shading.ToWorld(LobeSAxis(q.wi, wo));
+            const Vec3 out = si.shading.ToWorld(wi);
+            const Vec3 sAxis = si.shading.ToWorld(LobeSAxis(wi, wo));
             beam.d = -si.shading.ToWorld(wo);  // the light arrives along −wo
             beam.t = PerpendicularTo(beam.d, beam.t);
             std::array<Mueller, NumWavelengths> m{};
@@ -197,32 +202,26 @@ class SampleSolveIntegrator final : public PixelIntegrator {
                 }
                 m[std::size_t(i)] = ReciprocalMueller(mi) * (1 / n);
             }
-            const double scale = std::abs(q.wi.z) > 0 ? std::abs(wo.z) / std::abs(q.wi.z) : 1;
+            const double scale = std::abs(wi.z) > 0 ? std::abs(wo.z) / std::abs(wi.z) : 1;
             beam.Interact(sAxis, out, m, scale, !nearDelta || scalar);
         }
 
-        /// The hero direction of listed lobe `id` at the query (EvalLobe answers there; a
-        /// dispersive companion's own direction differs).
-        std::optional<Vec3> HeroDirection(const Material &mat, const ScatterQuery &q, int id) const {
-            NearDeltaLobes lobes;
-            mat.ListNearDelta(q, lobes);
-            for (const NearDeltaLobe &l : lobes)
-                if (l.id == id) return l.wo[0];
-            return std::nullopt;
-        }
-
-        const std::optional<LobeResponse> &VertexResponse(const std::vector<grpath::Vertex> &path, int v) {
-            if (responses.size() < path.size()) {
-                responses.resize(path.size());
-                scalarVertex.resize(path.size(), 0);
+        /// Vertex v's sampled lobe's response (computed once per sample) and whether it is scalar.
+        const VertexResponse &ResponseAt(const std::vector<grpath::Vertex> &path, int v) {
+            if (vertices.size() < path.size()) {
+                const std::size_t n = std::max<std::size_t>({8, 2 * vertices.size(), path.size()});
+                VertexResponse *grown = scratch.Room<VertexResponse>(n);
+                for (std::size_t i = 0; i < n; ++i)
+                    ::new (grown + i) VertexResponse(i < vertices.size() ? vertices[i] : VertexResponse{});
+                vertices = std::span<VertexResponse>(grown, n);
             }
-            std::optional<LobeResponse> &r = responses[std::size_t(v)];
+            VertexResponse &r = vertices[std::size_t(v)];
             const grpath::Vertex &vx = path[std::size_t(v)];
-            if (!r && !scalarVertex[std::size_t(v)]) {
-                const ScatterQuery q = vx.Query(wl);
-                if (vx.bs.flags & ScatterSpreadFree) scalarVertex[std::size_t(v)] = true;
-                else if (vx.bs.flags & ScatterNearDelta) r = vx.mat->EvalLobe(q, vx.bs.lobe, vx.bs.wo);
-                else r = vx.mat->EvalContinuousLobes(q, vx.bs.wo);
+            if (!r.done) {
+                r.done = true;
+                if (vx.bs.flags & ScatterSpreadFree) r.scalar = true;
+                else if (vx.bs.flags & ScatterNearDelta) r.response = vx.kernel->EvalLobe(vx.bs.lobe, vx.bs.wo);
+                else r.response = vx.kernel->EvalContinuousLobes(vx.bs.wo);
             }
             return r;
         }
@@ -258,8 +257,9 @@ class SampleSolveIntegrator final : public PixelIntegrator {
             int coupling = e.at ? 1 : 0;
             for (int v = e.prefix - 1; v >= 0; --v) {
                 const grpath::Vertex &vx = path[std::size_t(v)];
-                const std::optional<LobeResponse> &r = VertexResponse(path, v);
-                if (scalarVertex[std::size_t(v)]) {
+                const VertexResponse &vr = ResponseAt(path, v);
+                const std::optional<LobeResponse> &r = vr.response;
+                if (vr.scalar) {
                     coherenceAlive = false;
                     continue;
                 }
@@ -289,27 +289,29 @@ class SampleSolveIntegrator final : public PixelIntegrator {
             for (int i = 0; i < wl.Count(); ++i) beam.SetWindow(i, e.window[std::size_t(i)]);
             if (std::isfinite(e.dist)) beam.Propagate(e.dist);
             if (e.at) {
-                const ScatterQuery q = grpath::GrQuery(*e.at, *e.gr, e.rayOptics, wl);
-                const Material &mat = *e.at->material;
+                // The kernel at the event's interaction: the vertex's, or prepared for the hit a
+                // LobeIncidence solve found.
+                const PreparedKernel &k =
+                    e.kernel ? *e.kernel : e.at->material->Prepare(grpath::GrQuery(*e.at, *e.gr, e.rayOptics, wl), scratch);
+                const Vec3 &wi = k.Query().wi;
                 if (e.kind == grpath::EventKind::DirectLight) {
-                    const bool scalar = mat.IsFootprintAware() && !e.rayOptics;
-                    Interact(beam, *e.at, q, e.woLocal, scalar ? std::nullopt : mat.EvalContinuousLobes(q, e.woLocal),
-                             false, scalar);
+                    const bool scalar = e.at->material->IsFootprintAware() && !e.rayOptics;
+                    Interact(beam, *e.at, wi, e.woLocal, scalar ? std::nullopt : k.EvalContinuousLobes(e.woLocal), false,
+                             scalar);
                 } else {
+                    // EvalLobe answers at the lobe's hero direction (a dispersive companion's own differs).
                     std::optional<LobeResponse> r;
-                    const std::optional<Vec3> hero =
-                        e.wavelength > 0 ? HeroDirection(mat, q, e.lobe) : std::optional<Vec3>(e.woLocal);
-                    if (hero) r = mat.EvalLobe(q, e.lobe, *hero);
-                    Interact(beam, *e.at, q, e.woLocal, r, true, false);
+                    const NearDeltaLobe *lobe = e.wavelength > 0 ? k.FindLobe(e.lobe) : nullptr;
+                    if (e.wavelength <= 0 || lobe) r = k.EvalLobe(e.lobe, lobe ? lobe->wo[0] : e.woLocal);
+                    Interact(beam, *e.at, wi, e.woLocal, r, true, false);
                 }
             }
             for (int v = e.prefix - 1; v >= 0; --v) {
                 const grpath::Vertex &vx = path[std::size_t(v)];
-                const std::optional<LobeResponse> &r = VertexResponse(path, v);
-                const ScatterQuery q = vx.Query(wl);
+                const VertexResponse &vr = ResponseAt(path, v);
                 beam.Propagate(Length(vx.si.p - (v + 1 < int(path.size()) ? path[std::size_t(v + 1)].si.p : vx.si.p)));
-                Interact(beam, vx.si, q, vx.bs.wo, r, (vx.bs.flags & ScatterNearDelta) != 0,
-                         scalarVertex[std::size_t(v)]);
+                Interact(beam, vx.si, vx.kernel->Query().wi, vx.bs.wo, vr.response, (vx.bs.flags & ScatterNearDelta) != 0,
+                         vr.scalar);
             }
             const Vec3 x = det.PolarizationX(ds);
             const std::optional<double> &pol = det.Polarization().polarizer;
@@ -323,23 +325,15 @@ class SampleSolveIntegrator final : public PixelIntegrator {
     };
 
     std::array<SampledSpectrum, 4> Solve(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
-                                         PathStats &stats) const {
-        thread_local std::deque<CoherentMode> modes;
-        thread_local std::vector<std::optional<LobeResponse>> responses;
-        thread_local std::vector<char> scalarVertex;
-        modes.clear();
-        responses.clear();
-        scalarVertex.clear();
+                                         ScratchBuffer &scratch, PathStats &stats) const {
         Sink sink{scene,
                   wl,
                   forceCoherent_,
                   Pcg32(Hash(stats.sample.seed, uint64_t(uint32_t(x)), uint64_t(uint32_t(y))),
                         uint64_t(stats.sample.index)),
                   {SampledSpectrum(0.0), SampledSpectrum(0.0), SampledSpectrum(0.0), SampledSpectrum(0.0)},
-                  modes,
-                  responses,
-                  scalarVertex};
-        paths_.Estimate(scene, x, y, wl, sampler, stats, sink);
+                  scratch};
+        paths_.Estimate(scene, x, y, wl, sampler, scratch, stats, sink);
         return sink.stokes;
     }
 

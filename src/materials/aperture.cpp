@@ -61,7 +61,7 @@ double Normal2Aniso(double a, double b, double st, double sp) {
 
 }  // namespace
 
-class ApertureMaterial final : public Material {
+class ApertureMaterial final : public Material, public PlateOpenings {
   public:
     ApertureMaterial(ApertureMask mask, double window) : mask_(std::move(mask)), window_(window) {}
 
@@ -258,114 +258,20 @@ class ApertureMaterial final : public Material {
         return p;
     }
 
-    /// Ray-optics limit (or no GR): one near-delta lobe, straight transmission. A generalized ray:
-    /// one footprint-aware continuous lobe (the diffraction pattern |A|²).
-    unsigned Capabilities(const ScatterQuery &q) const override {
-        return RayLimit(q) ? CapNearDelta : (CapContinuous | CapFootprintAware);
+    /// Ray-optics limit (or no GR): one near-delta lobe (id 1), straight transmission with the
+    /// transmission t at the hit. A generalized ray: one footprint-aware continuous lobe (id 0, the
+    /// diffraction pattern |A|²). EvalLobe: scalar diffraction (Kirchhoff) keeps the polarisation:
+    /// M = value·I, Jones = √value·I (the phase of a single lobe does not enter its Mueller matrix);
+    /// lobe 0's value is Eval·|cosθo|, lobe 1's is t.
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(*this, q);
     }
-
-    /// For a generalized ray, lobe 0 (the footprint's diffraction lobe).
-    void ContinuousLobes(const ScatterQuery &q, ContinuousLobeIds &out) const override {
-        if (!RayLimit(q)) out.Add(0);
-    }
-
-    /// Ray-optics limit: lobe 1, straight through with the transmission t at the hit.
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
-        if (!RayLimit(q)) return;
-        const double t = TransmissionAtHit(q);
-        if (!(t > 0) || q.wi.z == 0) return;
-        NearDeltaLobe &l = out.Add();
-        l.id = StraightLobe;
-        l.flags = ScatterTransmission | ScatterNearDelta;
-        l.wo.fill(-q.wi);
-        l.weight = SampledSpectrum(t);
-        l.nIn.fill(q.etaOutside);
-        l.nOut.fill(q.etaOutside);
-        l.prob = 1;
-    }
-
-    /// Scalar diffraction (Kirchhoff) keeps the polarisation: M = value·I, Jones = √value·I
-    /// (the phase of a single lobe does not enter its Mueller matrix). Lobe 0: the GR's
-    /// diffraction lobe, value Eval·|cosθo|; lobe 1 (ray limit): straight transmission t.
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        SampledSpectrum v(0.0);
-        if (lobe == StraightLobe && RayLimit(q) && SameDirection(wo, -q.wi)) v = SampledSpectrum(TransmissionAtHit(q));
-        else if (lobe == 0 && !RayLimit(q)) v = EvalContinuous(q, wo) * std::abs(wo.z);
-        else return std::nullopt;
-        LobeResponse r;
-        r.hasJones = true;
-        for (int i = 0; i < q.wl->Count(); ++i) {
-            r.jones[i] = Jones::Identity() * Complex(std::sqrt(std::max(0.0, v[i])), 0);
-            r.mueller[i] = Mueller::Identity() * std::max(0.0, v[i]);
-        }
-        return r;
-    }
+    bool IsFootprintAware() const override { return true; }
 
     // See the file comment: the value depends on the incident GR's footprint.
     bool IsReciprocal() const override { return false; }
-    const ApertureMask *Openings() const override { return &mask_; }
+    const ApertureMask &Openings() const override { return mask_; }
 
-  protected:
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
-        if (RayLimit(q)) return SampleRay(q);
-        Geometry geo;
-        if (!MakeGeometry(q, &geo)) return std::nullopt;
-        const Proxy px = MakeProxy(q, geo);
-        if (!px.valid) return std::nullopt;
-        // One direction from the proxy mixture, in plate coordinates.
-        Vec3 woPlate;
-        if (u0 < ProbLobe + ProbDiffraction) {
-            // Box–Muller: two standard normals from u.
-            const double r = std::sqrt(-2 * std::log(std::max(1 - u.x, 1e-300))), phi = 2 * Pi * u.y;
-            const double n1 = r * std::cos(phi), n2 = r * std::sin(phi);
-            Vec2 kappa;
-            if (u0 < ProbLobe)
-                kappa = px.kappa0 + px.t * (n1 * px.sigmaT) + px.p * (n2 * px.sigmaP);
-            else
-                kappa = px.kappa0 + Vec2(n1, n2) * px.sigmaD;
-            const Vec2 s = kappa / px.k;
-            const double s2 = LengthSquared(s);
-            if (!(s2 < 1)) return std::nullopt;  // evanescent: no propagating direction
-            woPlate = Vec3(s.x, s.y, geo.side * std::sqrt(1 - s2));
-        } else {
-            // Cosine lobe on the far side.
-            const Vec2 c = ConcentricDisc(u);
-            woPlate = Vec3(c.x, c.y, geo.side * SafeSqrt(1 - LengthSquared(c)));
-            if (woPlate.z == 0) return std::nullopt;
-        }
-        const Vec3 woWorld = Normalize(geo.f.e1 * woPlate.x + geo.f.e2 * woPlate.y + geo.f.n * woPlate.z);
-        ScatterSample s;
-        s.wo = q.si->shading.ToLocal(woWorld);
-        s.pdf = ProxyPdf(px, geo, woWorld);
-        if (!(s.pdf > 0) || s.wo.z == 0) return std::nullopt;
-        s.weight = EvalWorld(q, geo, woWorld, s.wo.z, IncidentWave{}) * (std::abs(s.wo.z) / s.pdf);
-        s.lobe = 0;
-        s.flags = ScatterTransmission | ScatterDiffuse | ScatterSpreadFree;
-        s.eta = 1;
-        return s;
-    }
-
-    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        return EvalContinuousFrom(q, wo, IncidentWave{});
-    }
-
-    SampledSpectrum EvalContinuousFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const override {
-        if (RayLimit(q) || wo.z == 0) return SampledSpectrum(0.0);
-        Geometry geo;
-        if (!MakeGeometry(q, &geo)) return SampledSpectrum(0.0);
-        return EvalWorld(q, geo, q.si->shading.ToWorld(wo), wo.z, w);
-    }
-
-    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        if (RayLimit(q)) return 0;
-        Geometry geo;
-        if (!MakeGeometry(q, &geo)) return 0;
-        const Proxy px = MakeProxy(q, geo);
-        if (!px.valid) return 0;
-        return ProxyPdf(px, geo, q.si->shading.ToWorld(wo));
-    }
-
-  public:
     void CheckShape(const Shape &shape) const override {
         const std::string desc = shape.ToString();
         const std::string type = desc.substr(0, desc.find(' '));
@@ -426,19 +332,19 @@ class ApertureMaterial final : public Material {
         return Bounds2{hit - h, hit + h};
     }
 
-    // Eval/EvalFrom for a world direction wo (local z = woZ) and the incident wave w.
-    SampledSpectrum EvalWorld(const ScatterQuery &q, const Geometry &geo, const Vec3 &woWorld, double woZ,
-                              const IncidentWave &w) const {
+    // Eval/EvalFrom for a world direction wo (local z = woZ) and the incident wave w, for the GR gr
+    // meeting the plate at p (world).
+    SampledSpectrum EvalWorld(const SampledWavelengths &wl, const SpectralGenRay &gr, const Vec3 &p,
+                              const Geometry &geo, const Vec3 &woWorld, double woZ, const IncidentWave &w) const {
         SampledSpectrum f(0.0);
         if (!(Dot(woWorld, geo.f.n) * geo.side > 0)) return f;  // transmission only
         const Vec3 s = -woWorld;                                // the incident wave's direction
-        const SpectralGenRay &gr = *q.gr;
-        const int n = std::min(q.wl->Count(), gr.count);
+        const int n = std::min(wl.Count(), gr.count);
         for (int i = 0; i < n; ++i) {
             if (!(gr.beta2[i] > 0 && gr.k[i] > 0)) continue;  // no footprint: nothing to diffract
             PlateGaussian g = MakePlateGaussian(geo.d, s, geo.f.e1, geo.f.e2, geo.f.n, gr.k[i], gr.beta2[i],
                                                 gr.rho[i], w.beam ? Infinity : w.dist, window_);
-            if (w.beam) AddIncidentBeam(&g, *w.beam, q.si->p, geo.f.e1, geo.f.e2);
+            if (w.beam) AddIncidentBeam(&g, *w.beam, p, geo.f.e1, geo.f.e2);
             Complex a = 0;
             mask_.ForEachPiece(PieceBox(g, geo.hit), [&](const MaskPiece &piece) {
                 a += piece.t * IntegratePiece(g, piece, geo.hit);
@@ -520,19 +426,121 @@ class ApertureMaterial final : public Material {
         return mask_.Transmission(Vec2(Dot(rel, tw.Vector(Vec3(1, 0, 0))), Dot(rel, tw.Vector(Vec3(0, 1, 0)))));
     }
 
-    // Ray-optics limit: straight transmission with the transmission at the hit point.
-    std::optional<ScatterSample> SampleRay(const ScatterQuery &q) const {
-        const double t = TransmissionAtHit(q);
-        if (!(t > 0) || q.wi.z == 0) return std::nullopt;
-        ScatterSample s;
-        s.wo = -q.wi;
-        s.weight = SampledSpectrum(t);
-        s.pdf = 1;
-        s.lobe = StraightLobe;
-        s.flags = ScatterTransmission | ScatterNearDelta;
-        s.eta = 1;
-        return s;
-    }
+    /// The plate at one hit: in the ray-optics limit the transmission there; for a generalized ray
+    /// its footprint (a copy of the GR), the plate's geometry and the sampling proxy.
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const ApertureMaterial &m, const ScatterQuery &q) : PreparedKernel(q), m_(&m), rayLimit_(RayLimit(q)) {
+            if (rayLimit_) {
+                caps_ = CapNearDelta;
+                t_ = m.TransmissionAtHit(q);
+                if (!(t_ > 0) || q.wi.z == 0) return;
+                lobe_.id = StraightLobe;
+                lobe_.flags = ScatterTransmission | ScatterNearDelta;
+                lobe_.wo.fill(-q.wi);
+                lobe_.weight = SampledSpectrum(t_);
+                lobe_.nIn.fill(q.etaOutside);
+                lobe_.nOut.fill(q.etaOutside);
+                lobe_.prob = 1;
+                lobes_ = std::span<const NearDeltaLobe>(&lobe_, 1);
+                return;
+            }
+            caps_ = CapContinuous | CapFootprintAware;
+            continuous_.Add(0);
+            gr_ = *q.gr;
+            if (q.si) {
+                p_ = q.si->p;
+                shading_ = q.si->shading;
+            }
+            geoOk_ = m.MakeGeometry(q, &geo_);  // false without a hit
+            if (geoOk_) px_ = m.MakeProxy(q, geo_);
+        }
+
+        std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
+            SampledSpectrum v(0.0);
+            if (lobe == StraightLobe && rayLimit_ && SameDirection(wo, -q_.wi)) v = SampledSpectrum(t_);
+            else if (lobe == 0 && !rayLimit_) v = EvalContinuous(wo) * std::abs(wo.z);
+            else return std::nullopt;
+            LobeResponse r;
+            r.hasJones = true;
+            for (int i = 0; i < q_.wl->Count(); ++i) {
+                r.jones[i] = Jones::Identity() * Complex(std::sqrt(std::max(0.0, v[i])), 0);
+                r.mueller[i] = Mueller::Identity() * std::max(0.0, v[i]);
+            }
+            return r;
+        }
+
+      private:
+        std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override {
+            if (rayLimit_) return SampleRay();
+            if (!geoOk_ || !px_.valid) return std::nullopt;
+            const Geometry &geo = geo_;
+            const Proxy &px = px_;
+            // One direction from the proxy mixture, in plate coordinates.
+            Vec3 woPlate;
+            if (u0 < ProbLobe + ProbDiffraction) {
+                // Box–Muller: two standard normals from u.
+                const double r = std::sqrt(-2 * std::log(std::max(1 - u.x, 1e-300))), phi = 2 * Pi * u.y;
+                const double n1 = r * std::cos(phi), n2 = r * std::sin(phi);
+                Vec2 kappa;
+                if (u0 < ProbLobe)
+                    kappa = px.kappa0 + px.t * (n1 * px.sigmaT) + px.p * (n2 * px.sigmaP);
+                else
+                    kappa = px.kappa0 + Vec2(n1, n2) * px.sigmaD;
+                const Vec2 s = kappa / px.k;
+                const double s2 = LengthSquared(s);
+                if (!(s2 < 1)) return std::nullopt;  // evanescent: no propagating direction
+                woPlate = Vec3(s.x, s.y, geo.side * std::sqrt(1 - s2));
+            } else {
+                // Cosine lobe on the far side.
+                const Vec2 c = ConcentricDisc(u);
+                woPlate = Vec3(c.x, c.y, geo.side * SafeSqrt(1 - LengthSquared(c)));
+                if (woPlate.z == 0) return std::nullopt;
+            }
+            const Vec3 woWorld = Normalize(geo.f.e1 * woPlate.x + geo.f.e2 * woPlate.y + geo.f.n * woPlate.z);
+            ScatterSample s;
+            s.wo = shading_.ToLocal(woWorld);
+            s.pdf = ProxyPdf(px, geo, woWorld);
+            if (!(s.pdf > 0) || s.wo.z == 0) return std::nullopt;
+            s.weight = m_->EvalWorld(*q_.wl, gr_, p_, geo, woWorld, s.wo.z, IncidentWave{}) * (std::abs(s.wo.z) / s.pdf);
+            s.lobe = 0;
+            s.flags = ScatterTransmission | ScatterDiffuse | ScatterSpreadFree;
+            s.eta = 1;
+            return s;
+        }
+        SampledSpectrum EvalContinuous(const Vec3 &wo) const override { return EvalContinuousFrom(wo, IncidentWave{}); }
+        SampledSpectrum EvalContinuousFrom(const Vec3 &wo, const IncidentWave &w) const override {
+            if (rayLimit_ || wo.z == 0 || !geoOk_) return SampledSpectrum(0.0);
+            return m_->EvalWorld(*q_.wl, gr_, p_, geo_, shading_.ToWorld(wo), wo.z, w);
+        }
+        double PdfContinuous(const Vec3 &wo) const override {
+            if (rayLimit_ || !geoOk_ || !px_.valid) return 0;
+            return ProxyPdf(px_, geo_, shading_.ToWorld(wo));
+        }
+        // Ray-optics limit: straight transmission with the transmission at the hit point.
+        std::optional<ScatterSample> SampleRay() const {
+            if (!(t_ > 0) || q_.wi.z == 0) return std::nullopt;
+            ScatterSample s;
+            s.wo = -q_.wi;
+            s.weight = SampledSpectrum(t_);
+            s.pdf = 1;
+            s.lobe = StraightLobe;
+            s.flags = ScatterTransmission | ScatterNearDelta;
+            s.eta = 1;
+            return s;
+        }
+
+        const ApertureMaterial *m_;
+        bool rayLimit_;
+        double t_ = 0;            // ray-optics limit: the transmission at the hit
+        NearDeltaLobe lobe_;      // ray-optics limit: straight through, listed when t_ > 0
+        SpectralGenRay gr_;       // the incident GR at the hit (generalized rays)
+        Vec3 p_;                  // the hit (world)
+        Frame shading_;           // the hit's shading frame
+        bool geoOk_ = false;      // the plate is not seen edge-on (MakeGeometry)
+        Geometry geo_;
+        Proxy px_;                // Sample's proxy (hero wavelength)
+    };
 
     ApertureMask mask_;
     double window_;

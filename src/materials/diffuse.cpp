@@ -66,45 +66,10 @@ class DiffuseMaterial final : public Material {
         return p;
     }
 
-    unsigned Capabilities(const ScatterQuery &) const override { return CapContinuous; }
-    void ContinuousLobes(const ScatterQuery &, ContinuousLobeIds &out) const override { out.Add(0); }
-
-    /// Lobe 0 (the only one): a depolariser, M = (R/π)·|cosθo|·diag(1, 0, 0, 0) (theory §4.9).
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        if (lobe != 0 || !SameSide(q.wi, wo)) return std::nullopt;
-        const SampledSpectrum f = Reflectance(q) * (InvPi * std::abs(wo.z));
-        LobeResponse r;
-        for (int i = 0; i < q.wl->Count(); ++i) r.mueller[i] = Mueller::Depolarizer(f[i]);
-        return r;
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(q, reflectance_.Eval(q.tex, *q.wl));
     }
 
-  protected:
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double, const Vec2 &u) const override {
-        if (q.wi.z == 0) return std::nullopt;
-        // Malley's method: project a uniform disc sample up to the hemisphere (pdf = cosθ/π).
-        const Vec2 d = ConcentricDisc(u);
-        const double z = SafeSqrt(1 - d.x * d.x - d.y * d.y);
-        if (z == 0) return std::nullopt;  // exactly on the horizon: pdf 0
-        ScatterSample s;
-        s.wo = Vec3(d.x, d.y, q.wi.z > 0 ? z : -z);  // mirrored to wi's side (two-sided)
-        s.pdf = z * InvPi;
-        s.weight = Reflectance(q);  // f·|cosθo|/pdf = (R/π)·cosθ/(cosθ/π)
-        s.lobe = 0;
-        s.flags = ScatterReflection | ScatterDiffuse;
-        s.eta = 1;
-        return s;
-    }
-
-    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        if (!SameSide(q.wi, wo)) return SampledSpectrum(0);
-        return Reflectance(q) * InvPi;
-    }
-
-    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        return SameSide(q.wi, wo) ? std::abs(wo.z) * InvPi : 0;
-    }
-
-  public:
     std::string ToString() const override {
         std::ostringstream os;
         os << "DiffuseMaterial[ reflectance = " << reflectance_.ToString() << " ]";
@@ -114,7 +79,49 @@ class DiffuseMaterial final : public Material {
   private:
     static bool SameSide(const Vec3 &a, const Vec3 &b) { return a.z * b.z > 0; }
 
-    SampledSpectrum Reflectance(const ScatterQuery &q) const { return reflectance_.Eval(q.tex, *q.wl); }
+    /// The kernel at one hit: R evaluated there.
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const ScatterQuery &q, const SampledSpectrum &r) : PreparedKernel(q), r_(r) {
+            caps_ = CapContinuous;
+            continuous_.Add(0);
+        }
+        /// Lobe 0 (the only one): a depolariser, M = (R/π)·|cosθo|·diag(1, 0, 0, 0) (theory §4.9).
+        std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
+            if (lobe != 0 || !SameSide(q_.wi, wo)) return std::nullopt;
+            const SampledSpectrum f = r_ * (InvPi * std::abs(wo.z));
+            LobeResponse r;
+            for (int i = 0; i < q_.wl->Count(); ++i) r.mueller[i] = Mueller::Depolarizer(f[i]);
+            return r;
+        }
+
+      private:
+        std::optional<ScatterSample> SampleLobes(double, const Vec2 &u) const override {
+            if (q_.wi.z == 0) return std::nullopt;
+            // Malley's method: project a uniform disc sample up to the hemisphere (pdf = cosθ/π).
+            const Vec2 d = ConcentricDisc(u);
+            const double z = SafeSqrt(1 - d.x * d.x - d.y * d.y);
+            if (z == 0) return std::nullopt;  // exactly on the horizon: pdf 0
+            ScatterSample s;
+            s.wo = Vec3(d.x, d.y, q_.wi.z > 0 ? z : -z);  // mirrored to wi's side (two-sided)
+            s.pdf = z * InvPi;
+            s.weight = r_;  // f·|cosθo|/pdf = (R/π)·cosθ/(cosθ/π)
+            s.lobe = 0;
+            s.flags = ScatterReflection | ScatterDiffuse;
+            s.eta = 1;
+            return s;
+        }
+        SampledSpectrum EvalContinuous(const Vec3 &wo) const override {
+            return SameSide(q_.wi, wo) ? r_ * InvPi : SampledSpectrum(0);
+        }
+        double PdfContinuous(const Vec3 &wo) const override { return SameSide(q_.wi, wo) ? std::abs(wo.z) * InvPi : 0; }
+        KernelValue EvalPdfContinuous(const Vec3 &wo, const IncidentWave &) const override {
+            if (!SameSide(q_.wi, wo)) return KernelValue{};
+            return KernelValue{r_ * InvPi, std::abs(wo.z) * InvPi};
+        }
+
+        SampledSpectrum r_;  // R(λ) at the hit
+    };
 
     SpectrumTexture reflectance_;
 };

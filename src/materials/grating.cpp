@@ -64,10 +64,9 @@
 // render of a grating on a lossless substrate keeps the energy the wave-optical kernel
 // (renormalised) reflects and `phasor compare` shows only what diffraction redistributes.
 //
-// Lobes (all listed near-delta lobes; Sample picks one ∝ its radiance weight at the hero
-// wavelength, SampleListedLobe; each thread keeps its last listing, since grt lists a vertex's lobes
-// and then samples them, and a listing evaluates the orders of every lobe's source direction):
-// reflected order j has id j, transmitted order j id 1000 + j
+// Lobes (all listed near-delta lobes, listed once when the kernel is prepared for a query — a
+// listing evaluates the orders of every lobe's source direction; Sample picks one ∝ its radiance
+// weight at the hero wavelength, SampleListedLobe): reflected order j has id j, transmitted order j id 1000 + j
 // (GratingMaterial::TransmittedId). Orders j ≠ 0 are ScatterDispersive (their direction depends
 // on λ); the zeroth reflected order is not, the zeroth transmitted order is when the substrate
 // disperses. An order is listed if it propagates with non-zero weight at some carried wavelength;
@@ -77,7 +76,7 @@
 // Parameters: `period` Λ and `angle` (the groove direction, radians from the first shading
 // tangent dp/du, counter-clockwise about the normal) are constants or scalar textures (texture-
 // driven pitch and orientation over a body, as on the boa's scales), `angle_texture` names an angle
-// texture instead of `angle`; `height` h; `substrate` a conductor or dielectric (Material::Surface);
+// texture instead of `angle`; `height` h; `substrate` a conductor or dielectric (ReadSubstrate);
 // `max_order`, `transmission`, `renormalize` as above.
 //
 // References: J. W. Goodman, Introduction to Fourier Optics, 3rd ed. (2005), §4.4.4 (thin
@@ -87,9 +86,7 @@
 #include "materials/grating.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <cstdint>
 #include <sstream>
 
 #include "core/diagnostics.h"
@@ -97,6 +94,7 @@
 #include "core/render/registry.h"
 #include "materials/smooth_surface.h"
 #include "materials/validity.h"
+#include "materials/smooth_kernel.h"
 
 namespace phasor {
 
@@ -109,26 +107,19 @@ double SignedBessel(const double *jAbs, int j, double a) {
     return flip ? -jAbs[n] : jAbs[n];
 }
 
-/// A unique id per kernel instance (the listing cache's key: an address may be reused).
-std::uint64_t NextInstanceId() {
-    static std::atomic<std::uint64_t> next{1};
-    return next++;
-}
-
 }  // namespace
 
 GratingMaterial::GratingMaterial(FloatTexture period, double height, FloatTexture angle,
-                                 std::shared_ptr<const Material> substrate, int maxOrder, bool transmission,
+                                 std::shared_ptr<const SmoothKernel> substrate, int maxOrder, bool transmission,
                                  bool renormalize)
     : period_(std::move(period)),
       height_(height),
       angle_(std::move(angle)),
       substrate_(std::move(substrate)),
-      surface_(substrate_->Surface()),
+      surface_(&substrate_->Surface()),
       maxOrder_(maxOrder),
       transmission_(transmission),
-      renormalize_(renormalize),
-      id_(NextInstanceId()) {
+      renormalize_(renormalize) {
     // Dispersive if the substrate's index varies over the band a path may carry (as dielectric.cpp).
     const double n0 = surface_->SubstrateIndex(550e-9).real();
     for (double l = 200e-9; l <= 3000e-9; l *= 1.005)
@@ -203,19 +194,13 @@ std::unique_ptr<Material> GratingMaterial::Create(const ParamDict &d, BuildConte
     } else {
         angle = ctx.GetFloatTexture(d, "angle");
     }
-    std::shared_ptr<Material> substrate = ctx.GetRef<Material>(d, "substrate");
+    std::shared_ptr<const SmoothKernel> substrate = ReadSubstrate(d, ctx);
     const std::string name = "'" + d.GetValue("substrate").ToString() + "'";
-    if (!substrate->Surface()) {
-        const SceneEntity *e = ctx.EntityOf(substrate.get());
-        throw Error(d.Loc("substrate"), "'substrate' must be a smooth kernel with a Fresnel response (a conductor or a "
-                                        "dielectric); " + name + " is a '" + (e ? e->type : std::string("?")) +
-                                            "' material");
-    }
     const bool transmission = d.GetBool("transmission");
     if (transmission) {
         for (double l = 360e-9; l <= 1000e-9; l += 5e-9) {
-            if (!substrate->Surface()->Absorbing(l)) continue;
-            const Complex n = substrate->Surface()->SubstrateIndex(l);
+            if (!substrate->Surface().Absorbing(l)) continue;
+            const Complex n = substrate->Surface().SubstrateIndex(l);
             std::ostringstream os;
             os << "'transmission = true' needs a transparent substrate (a dielectric), but " << name << " absorbs: n + iκ = "
                << n.real() << (n.imag() < 0 ? "" : "+") << n.imag() << "i at " << std::lround(l * 1e9) << " nm";
@@ -262,33 +247,46 @@ Vec3 GratingMaterial::GratingVector(const ScatterQuery &q) const {
     return {-t.y, t.x, 0};  // the groove direction rotated by +90° about the normal
 }
 
+GratingMaterial::Site GratingMaterial::SiteOf(const ScatterQuery &q, double *thickness) const {
+    Site site;
+    site.period = period_.Eval(q.tex);
+    site.g = GratingVector(q);
+    surface_->Thicknesses(q.tex, thickness);
+    site.thickness = thickness;
+    for (int i = 0; i < q.wl->Count(); ++i) site.substrate[std::size_t(i)] = surface_->SubstrateIndex(q.wl->lambda[i]);
+    return site;
+}
+
 GratingOrders GratingMaterial::Orders(const ScatterQuery &q, int i) const {
+    std::vector<double> thickness(std::size_t(surface_->LayerCount()));
     GratingOrders o;
-    FillOrders(q, i, period_.Eval(q.tex), GratingVector(q), SideReflected | SideTransmitted, &o);
+    FillOrders(q, i, SiteOf(q, thickness.data()), SideReflected | SideTransmitted, true, &o);
     return o;
 }
 
-void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, const Vec3 &g, unsigned sides,
+void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
                                  GratingOrders *out) const {
     GratingOrders &o = *out;  // may hold an earlier call's orders: every field read below is set
     o.reflected.present = o.transmitted.present = false;
     o.reflected.maxOrder = o.transmitted.maxOrder = 0;
     const double lambda = q.wl->lambda[i];
-    o.period = period;
-    o.vector = Vec2(g.x, g.y);
-    o.groove = Vec2(g.y, -g.x);
+    o.period = site.period;
+    o.vector = Vec2(site.g.x, site.g.y);
+    o.groove = Vec2(site.g.y, -site.g.x);
     o.fromInside = transmission_ && q.wi.z < 0;
-    const double nSub = surface_->SubstrateIndex(lambda).real();
+    const Complex substrate = site.substrate[std::size_t(i)];
+    const double nSub = substrate.real();
     const double nI = o.fromInside ? nSub : q.etaOutside, nT = o.fromInside ? q.etaOutside : nSub;
     o.reflected.nIn = o.reflected.nOut = o.transmitted.nIn = nI;
     o.transmitted.nOut = nT;
     if (q.wi.z == 0 || !(o.period > 0)) return;
     const double cosI = std::abs(q.wi.z);
-    o.surface = surface_->Response(lambda, q.etaOutside, cosI, o.fromInside, q.tex);
+    o.surface = surface_->Response(lambda, q.etaOutside, cosI, o.fromInside, site.thickness, substrate);
     // The ray-optics limit of a coated substrate is the incoherent sum of its layers (as the smooth
     // kernels: SmoothKernel::Evaluate).
     o.incoherent = q.rayOptics && surface_->LayerCount() > 0;
-    if (o.incoherent) o.layers = surface_->IncoherentResponse(lambda, q.etaOutside, cosI, o.fromInside, q.tex);
+    if (o.incoherent)
+        o.layers = surface_->IncoherentResponse(lambda, q.etaOutside, cosI, o.fromInside, site.thickness, substrate);
     // Ray-optics limit: the smooth substrate (zeroth orders, J_0(0) = 1).
     const int maxOrder = q.rayOptics ? 0 : maxOrder_;
     const double h = q.rayOptics ? 0 : height_, k0 = 2 * Pi / lambda;
@@ -313,7 +311,9 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, co
             s.amplitude[k] = SignedBessel(jAbs, j, a);
             const double e = s.amplitude[k] * s.amplitude[k];
             total += e;
-            s.propagating[k] = NearDeltaDirection(q.wi, s.nIn, s.nOut, unitShift * double(j), lambda, transmitted, &s.wo[k]);
+            const Vec2 shift = unitShift * double(j);
+            s.propagating[k] = directions ? NearDeltaDirection(q.wi, s.nIn, s.nOut, shift, lambda, transmitted, &s.wo[k])
+                                          : NearDeltaPropagates(q.wi, s.nIn, s.nOut, shift, lambda);
             (s.propagating[k] ? s.propagatingSum : s.evanescent) += e;
         }
         s.truncated = std::max(0.0, 1 - total);
@@ -329,78 +329,55 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, double period, co
     }
 }
 
-namespace {
-
-/// The last listing of each thread (ListNearDelta): grt lists a vertex's lobes and then samples
-/// one (Sample lists them again), sample_solve evaluates them (EvalLobe); each listing evaluates
-/// the orders of every lobe's source direction. The key is everything a listing reads.
-struct ListingCache {
-    std::uint64_t owner = 0;  // GratingMaterial instance id; 0 = empty
-    Vec3 wi;
-    double etaOutside = 0;
-    bool rayOptics = false;
-    int count = 0;
-    std::array<double, NumWavelengths> lambda{};
-    TextureEvalContext tex;
-    NearDeltaLobes lobes;
-
-    bool Matches(std::uint64_t id, const ScatterQuery &q) const {
-        if (owner != id || !(wi == q.wi) || etaOutside != q.etaOutside || rayOptics != q.rayOptics ||
-            count != q.wl->Count())
-            return false;
-        for (int i = 0; i < count; ++i)
-            if (lambda[std::size_t(i)] != q.wl->lambda[i]) return false;
-        const TextureEvalContext &t = q.tex;
-        return tex.uv == t.uv && tex.p == t.p && tex.dpdu == t.dpdu && tex.dpdv == t.dpdv && tex.n == t.n &&
-               tex.beta == t.beta;
-    }
-    void Store(std::uint64_t id, const ScatterQuery &q, const NearDeltaLobes &from, int first) {
-        owner = id;
-        wi = q.wi;
-        etaOutside = q.etaOutside;
-        rayOptics = q.rayOptics;
-        count = q.wl->Count();
-        for (int i = 0; i < count; ++i) lambda[std::size_t(i)] = q.wl->lambda[i];
-        tex = q.tex;
-        lobes.count = 0;
-        for (int k = first; k < from.count; ++k) lobes.Add() = from.lobe[std::size_t(k)];
-    }
-};
-thread_local ListingCache listingCache;
-
-}  // namespace
-
-double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec3 &source,
+double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source,
                                          bool transmitted, int j, GratingOrders *orders) const {
     ScatterQuery from = q;
     from.wi = source;  // the light arrives from `source`: its order j is the lobe's weight towards q.wi
-    FillOrders(from, i, period, g, transmitted ? SideTransmitted : SideReflected, orders);
+    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders);
     return (transmitted ? orders->transmitted : orders->reflected).Energy(j);
 }
 
-void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const {
-    if (q.wi.z == 0) return;
-    if (listingCache.Matches(id_, q)) {
-        for (const NearDeltaLobe &l : listingCache.lobes) out.Add() = l;
-        return;
+/// The kernel at one hit: its site (Λ, ĝ, the substrate's layers and index) and the listed orders.
+class GratingMaterial::Prepared final : public PreparedKernel {
+  public:
+    Prepared(const GratingMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch)
+        : PreparedKernel(q), m_(&m), site_(m.SiteOf(q, scratch.Room<double>(std::size_t(m.surface_->LayerCount())))) {
+        caps_ = CapNearDelta;
+        if (q.wi.z == 0) return;
+        const int maxOrder = q.rayOptics ? 0 : m.maxOrder_;
+        LobeList lobes(scratch, (m.transmission_ ? 2 : 1) * (2 * maxOrder + 1));
+        List(q, maxOrder, lobes);
+        lobes_ = lobes.Lobes();
     }
-    const int first = out.count;
+
+    std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override;
+
+  private:
+    void List(const ScatterQuery &q, int maxOrder, LobeList &out) const;
+
+    const GratingMaterial *m_;
+    Site site_;
+};
+
+const PreparedKernel &GratingMaterial::Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const {
+    return *scratch.New<Prepared>(*this, q, scratch);
+}
+
+void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeList &out) const {
+    const GratingMaterial &m = *m_;
     const int count = q.wl->Count();
-    const double period = period_.Eval(q.tex);
-    const Vec3 g = GratingVector(q);
-    const Vec2 unitShift = Vec2(g.x, g.y) * (2 * Pi / period);
-    const int maxOrder = q.rayOptics ? 0 : maxOrder_;
+    const Vec2 unitShift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period);
     // Indices of wi's medium and of the far side (the substrate, or the outside when wi is inside).
-    const bool inside = transmission_ && q.wi.z < 0;
+    const bool inside = m.transmission_ && q.wi.z < 0;
     std::array<double, NumWavelengths> nWi{}, nFar{};
     for (int i = 0; i < count; ++i) {
-        const double nSub = surface_->SubstrateIndex(q.wl->lambda[i]).real();
+        const double nSub = site_.substrate[std::size_t(i)].real();
         nWi[std::size_t(i)] = inside ? nSub : q.etaOutside;
         nFar[std::size_t(i)] = inside ? q.etaOutside : nSub;
     }
     GratingOrders scratch;
     for (const bool transmitted : {false, true}) {
-        if (transmitted && !transmission_) break;
+        if (transmitted && !m.transmission_) break;
         for (int j = -maxOrder; j <= maxOrder; ++j) {
             // Lobe j's direction per wavelength (vector grating equation from wi) and its weight:
             // the efficiency of order j for light arriving from that direction (see the file comment).
@@ -412,14 +389,14 @@ void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) 
                 const double nOut = transmitted ? nFar[s] : nWi[s];
                 if (!NearDeltaDirection(q.wi, nWi[s], nOut, unitShift * double(j), q.wl->lambda[i], transmitted, &wo[s]))
                     continue;
-                energy[s] = SourceEfficiency(q, i, period, g, wo[s], transmitted, j, &scratch);
+                energy[s] = m.SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch);
                 if (energy[s] > 0 && lit < 0) lit = i;
             }
             if (lit < 0) continue;
             NearDeltaLobe &l = out.Add();
             l.id = (transmitted ? TransmittedId : 0) + j;
             l.flags = ScatterNearDelta | (transmitted ? ScatterTransmission : ScatterReflection) |
-                      (j != 0 || (transmitted && dispersive_) ? ScatterDispersive : 0u);
+                      (j != 0 || (transmitted && m.dispersive_) ? ScatterDispersive : 0u);
             l.shift = unitShift * double(j);
             for (int i = 0; i < count; ++i) {
                 const std::size_t s = std::size_t(i);
@@ -434,19 +411,18 @@ void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) 
     // Sample picks a lobe ∝ its weight at the hero (then a_j/p_j is the same for every lobe);
     // if the hero carries nothing, ∝ the weight summed over the carried wavelengths.
     double hero = 0, all = 0;
-    for (int k = first; k < out.count; ++k) {
-        hero += out.lobe[std::size_t(k)].weight[0];
-        for (int i = 0; i < count; ++i) all += out.lobe[std::size_t(k)].weight[i];
+    for (int k = 0; k < out.Count(); ++k) {
+        hero += out[k].weight[0];
+        for (int i = 0; i < count; ++i) all += out[k].weight[i];
     }
-    for (int k = first; k < out.count; ++k) {
-        NearDeltaLobe &l = out.lobe[std::size_t(k)];
+    for (int k = 0; k < out.Count(); ++k) {
+        NearDeltaLobe &l = out[k];
         double w = 0;
         if (hero > 0) w = l.weight[0];
         else
             for (int i = 0; i < count; ++i) w += l.weight[i];
         l.prob = hero > 0 ? w / hero : w / all;
     }
-    listingCache.Store(id_, q, out, first);
 }
 
 bool GratingMaterial::HasCoherenceTerms() const { return surface_->LayerCount() > 0; }
@@ -460,29 +436,25 @@ std::string GratingMaterial::LobeName(int id) const {
     return std::to_string(id >= TransmittedId / 2 ? id - TransmittedId : id);
 }
 
-std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const {
-    NearDeltaLobes lobes;
-    ListNearDelta(q, lobes);
-    const NearDeltaLobe *l = nullptr;
-    for (const NearDeltaLobe &x : lobes)
-        if (x.id == lobe) l = &x;
+std::optional<LobeResponse> GratingMaterial::Prepared::EvalLobe(int lobe, const Vec3 &wo) const {
+    const ScatterQuery &q = q_;
+    const SmoothSurface &surface = *m_->surface_;
+    const NearDeltaLobe *l = FindLobe(lobe);
     if (!l || !SameDirection(wo, l->wo[0])) return std::nullopt;
     const bool transmitted = (l->flags & ScatterTransmission) != 0;
     const int j = transmitted ? lobe - TransmittedId : lobe;
-    const double period = period_.Eval(q.tex);
-    const Vec3 g = GratingVector(q);
     LobeResponse r;
     // In the ray-optics limit a coated substrate answers with its incoherent Mueller matrix, no Jones.
-    r.hasJones = !q.rayOptics || surface_->LayerCount() == 0;
+    r.hasJones = !q.rayOptics || surface.LayerCount() == 0;
     // A reflected order over a coated substrate carries the coating's coherence terms (its incoherent
     // response at the source's angle times the order's share, and its shear): sample_solve weights
     // the coating's interference by the light's coherence. The relief itself has none (see above).
-    r.coherence.any = !transmitted && surface_->LayerCount() > 0;
+    r.coherence.any = !transmitted && surface.LayerCount() > 0;
     for (int i = 0; i < q.wl->Count(); ++i) {
         if (l->weight[i] == 0) continue;  // evanescent at this wavelength: no response
         // The orders of the light arriving along the lobe (its source direction at this wavelength).
         GratingOrders o;
-        SourceEfficiency(q, i, period, g, l->wo[std::size_t(i)], transmitted, j, &o);
+        m_->SourceEfficiency(q, i, site_, l->wo[std::size_t(i)], transmitted, j, &o);
         const GratingSide &s = transmitted ? o.transmitted : o.reflected;
         const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
         // Order j's field relative to the substrate's: J_j(a)·√scale.
@@ -510,10 +482,11 @@ std::optional<LobeResponse> GratingMaterial::EvalLobe(const ScatterQuery &q, int
         }
         if (r.coherence.any) {
             const Vec3 &source = l->wo[std::size_t(i)];
-            const IncoherentStackResponse n =
-                surface_->IncoherentResponse(q.wl->lambda[i], q.etaOutside, std::abs(source.z), o.fromInside, q.tex);
+            const IncoherentStackResponse n = surface.IncoherentResponse(
+                q.wl->lambda[i], q.etaOutside, std::abs(source.z), o.fromInside, site_.thickness, site_.substrate[std::size_t(i)]);
             r.coherence.incoherent[i] = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp) * (amp * amp);
-            r.coherence.shear[i] = surface_->ShearVector(q.wl->lambda[i], q.etaOutside, source, o.fromInside, q.tex);
+            r.coherence.shear[i] =
+                surface.ShearVector(q.wl->lambda[i], q.etaOutside, source, o.fromInside, site_.thickness);
         }
     }
     return r;

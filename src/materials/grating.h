@@ -20,6 +20,7 @@
 
 namespace phasor {
 
+class SmoothKernel;
 class SmoothSurface;
 
 /// The orders of one side of the grating (reflected or transmitted) at one wavelength, for one
@@ -85,13 +86,13 @@ struct GratingOrders {
 };
 
 /// The `grating` kernel (see grating.cpp for the physics and the parameters).
-class GratingMaterial final : public Material {
+class GratingMaterial final : public Material, public ReferenceDirection {
   public:
     /// Lobe ids: reflected order j has id j; transmitted order j has id TransmittedId + j.
     static constexpr int TransmittedId = 1000;
 
-    GratingMaterial(FloatTexture period, double height, FloatTexture angle, std::shared_ptr<const Material> substrate,
-                    int maxOrder, bool transmission, bool renormalize);
+    GratingMaterial(FloatTexture period, double height, FloatTexture angle,
+                    std::shared_ptr<const SmoothKernel> substrate, int maxOrder, bool transmission, bool renormalize);
 
     static const Schema &GetSchema();
     static std::unique_ptr<Material> Create(const ParamDict &dict, BuildContext &ctx);
@@ -107,15 +108,14 @@ class GratingMaterial final : public Material {
     /// order +1 shifts the tangential wave vector, by 2π/Λ.
     Vec3 GratingVector(const ScatterQuery &q) const;
 
-    unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override;
+    /// Lists the orders (see grating.cpp, "Lobes"); EvalLobe gives an order's Jones matrix.
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override;
     /// Reflected orders carry a coated substrate's coherence terms.
     bool HasCoherenceTerms() const override;
     /// The grating vector ĝ: the groove direction (`angle`) + 90°.
     std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override;
     /// The diffraction order j of a reflected (id j) or transmitted (id TransmittedId + j) lobe.
     std::string LobeName(int id) const override;
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override;
     /// Not reciprocal: m = k·h·cosθ_i depends on the light's incident direction only (D6), and the
     /// renormalisation on that direction's set of propagating orders.
     bool IsReciprocal() const override { return false; }
@@ -125,25 +125,37 @@ class GratingMaterial final : public Material {
     std::string ToString() const override;
 
   private:
+    class Prepared;
     static constexpr unsigned SideReflected = 1, SideTransmitted = 2;
-    /// Orders() into *o for the sides asked for, with the period Λ [m] and the unit grating vector
-    /// ĝ at the hit given.
-    void FillOrders(const ScatterQuery &q, int i, double period, const Vec3 &g, unsigned sides, GratingOrders *o) const;
+    /// What the orders at one hit depend on besides the incident direction: the period Λ [m], the
+    /// unit grating vector ĝ (local), the substrate coating's layer thicknesses (SmoothSurface::
+    /// Thicknesses; none for a bare substrate) and the substrate's index per carried wavelength.
+    struct Site {
+        double period = 0;
+        Vec3 g;
+        const double *thickness = nullptr;
+        std::array<Complex, NumWavelengths> substrate{};
+    };
+    /// The site of the query's hit; `thickness` must hold LayerCount() values (filled here).
+    Site SiteOf(const ScatterQuery &q, double *thickness) const;
+    /// Orders() into *o for the sides asked for, at the site; with `directions`, every order's
+    /// direction too (GratingSide::wo; an efficiency needs only which orders propagate).
+    void FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
+                    GratingOrders *o) const;
     /// The energy efficiency of order j (reflected or transmitted) at wavelength slot i for light
     /// arriving from `source` (a lobe's direction): what that lobe of the query at q.wi carries.
-    /// The source's orders are left in *orders.
-    double SourceEfficiency(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec3 &source,
-                            bool transmitted, int j, GratingOrders *orders) const;
+    /// The source's orders are left in *orders (without their directions).
+    double SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source, bool transmitted,
+                            int j, GratingOrders *orders) const;
 
     FloatTexture period_;  // Λ [m], > 0
     double height_ = 0;    // h, peak-to-peak [m]
     FloatTexture angle_;   // groove direction [rad] from the first shading tangent
-    std::shared_ptr<const Material> substrate_;
-    const SmoothSurface *surface_ = nullptr;  // substrate_->Surface()
+    std::shared_ptr<const SmoothKernel> substrate_;
+    const SmoothSurface *surface_ = nullptr;  // &substrate_->Surface()
     int maxOrder_ = 0;
     bool transmission_ = false, renormalize_ = true;
     bool dispersive_ = false;  // the substrate's index varies with λ (the transmitted zeroth order disperses)
-    std::uint64_t id_ = 0;     // unique per instance (the listing cache's key)
 };
 
 }  // namespace phasor

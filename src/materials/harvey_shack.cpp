@@ -75,6 +75,7 @@
 #include "materials/k_correlation_psd.h"
 #include "materials/smooth_surface.h"
 #include "materials/validity.h"
+#include "materials/smooth_kernel.h"
 
 namespace phasor {
 
@@ -83,9 +84,9 @@ class HarveyShackMaterial final : public Material {
     /// Vacuum wavelength at which alpha_r defines T (theory §4.3: k̄ = 2π/0.55 µm).
     static constexpr double AlphaRWavelength = 0.55e-6;
 
-    HarveyShackMaterial(std::shared_ptr<const Material> substrate, double sigmaH, double corrT, double gamma)
+    HarveyShackMaterial(std::shared_ptr<const SmoothKernel> substrate, double sigmaH, double corrT, double gamma)
         : substrate_(std::move(substrate)),
-          surface_(substrate_->Surface()),
+          surface_(&substrate_->Surface()),
           sigma_(sigmaH),
           corrT_(corrT),
           table_(VisibleMassTable::For(gamma)) {
@@ -126,11 +127,7 @@ class HarveyShackMaterial final : public Material {
     }
 
     static std::unique_ptr<Material> Create(const ParamDict &dict, BuildContext &ctx) {
-        auto substrate = ctx.GetRef<Material>(dict, "substrate");
-        if (!substrate || !substrate->Surface())
-            throw Error(dict.Loc("substrate"),
-                        "'substrate' must be a smooth kernel with a Fresnel response (conductor or dielectric); "
-                        "it is " + (substrate ? substrate->ToString() : std::string("null")));
+        std::shared_ptr<const SmoothKernel> substrate = ReadSubstrate(dict, ctx);
         const bool hasT = dict.Has("correlation_t"), hasAlpha = dict.Has("alpha_r");
         if (hasT && hasAlpha)
             throw Error(dict.Loc("alpha_r"), "give either 'correlation_t' or 'alpha_r', not both");
@@ -186,76 +183,15 @@ class HarveyShackMaterial final : public Material {
         return p;
     }
 
-    unsigned Capabilities(const ScatterQuery &) const override {
-        return CapNearDelta | (sigma_ > 0 ? CapContinuous : 0u);
-    }
-    void ContinuousLobes(const ScatterQuery &, ContinuousLobeIds &out) const override {
-        if (sigma_ > 0) out.Add(ScatterLobe);
-    }
-
-    /// Lobe 0: the specular direction on wi's side, weight α_spec(λ)·F(λ) at θ_i (= θ_o), probability
-    /// α_spec at the hero (the same as Sample's).
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
-        Local l;
-        if (!Prepare(q, &l)) return;
-        const SampledSpectrum a = SpecularWeight(q, l);
-        if (a.IsZero()) return;
-        NearDeltaLobe &d = out.Add();
-        d.id = SpecularLobe;
-        d.flags = ScatterReflection | ScatterNearDelta;
-        d.wo.fill(ReflectLocal(q.wi));
-        d.weight = a;
-        for (int i = 0; i < l.count; ++i) d.nIn[i] = d.nOut[i] = l.n[i];
-        d.prob = l.pSpec;
-    }
-
-    /// Lobe 0 (mirror direction): √α_spec times the substrate's response at θ_i. Lobe 1 (any wo on
-    /// wi's side): the substrate's response at the facet angle θ_h, scaled so that M00 = f·|cosθo|
-    /// (a depolariser of that value where R(θ_h) = 0), in the s/p frame of the plane through wi and
-    /// wo. Jones matrices diag(r_s, r_p); in the ray-optics limit a coated substrate answers with its
-    /// incoherent Mueller matrix and no Jones matrix (SubstrateResponse).
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        Local l;
-        if (!Prepare(q, &l)) return std::nullopt;
-        LobeResponse r;
-        r.hasJones = Coherent(q);
-        if (lobe == SpecularLobe) {
-            if (!SameDirection(wo, ReflectLocal(q.wi))) return std::nullopt;
-            // A coated substrate's coherence terms, times the specular share α_spec (sample_solve).
-            r.coherence.any = surface_->LayerCount() > 0;
-            for (int i = 0; i < l.count; ++i) {
-                const Facet s = SubstrateResponse(q, l, i, l.cosI);
-                const double a = Alpha(l, i, l.cosI);
-                r.jones[i] = s.jones * Complex(std::sqrt(a), 0);
-                r.mueller[i] = s.mueller * a;
-                if (!r.coherence.any) continue;
-                const double lambda = q.wl->lambda[i];
-                const IncoherentStackResponse n = surface_->IncoherentResponse(lambda, q.etaOutside, l.cosI, l.inside, q.tex);
-                r.coherence.incoherent[i] = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp) * a;
-                r.coherence.shear[i] = surface_->ShearVector(lambda, q.etaOutside, l.wi, l.inside, q.tex);
-            }
-            return r;
-        }
-        if (lobe != ScatterLobe || !(sigma_ > 0)) return std::nullopt;
-        const Vec3 o = l.ToUpper(wo);
-        if (!(o.z > 0)) return std::nullopt;
-        const SampledSpectrum f = Scatter(q, l, o);
-        const Vec3 h = Normalize(l.wi + o);
-        const double cosH = Clamp(Dot(l.wi, h), 0.0, 1.0);
-        for (int i = 0; i < l.count; ++i) {
-            const double value = f[i] * o.z;
-            const Facet s = SubstrateResponse(q, l, i, cosH);
-            if (s.R > 0) {
-                r.jones[i] = s.jones * Complex(std::sqrt(value / s.R), 0);
-                r.mueller[i] = s.mueller * (value / s.R);
-            } else {
-                r.hasJones = false;
-                r.mueller[i] = Mueller::Depolarizer(value);
-            }
-        }
-        if (!r.hasJones)
-            for (int i = 0; i < l.count; ++i) r.jones[i] = Jones();
-        return r;
+    /// Lists lobe 0, the specular direction on wi's side, weight α_spec(λ)·F(λ) at θ_i (= θ_o),
+    /// probability α_spec at the hero (the same as Sample's). EvalLobe: lobe 0 (mirror direction):
+    /// √α_spec times the substrate's response at θ_i; lobe 1 (any wo on wi's side): the substrate's
+    /// response at the facet angle θ_h, scaled so that M00 = f·|cosθo| (a depolariser of that value
+    /// where R(θ_h) = 0), in the s/p frame of the plane through wi and wo. Jones matrices
+    /// diag(r_s, r_p); in the ray-optics limit a coated substrate answers with its incoherent
+    /// Mueller matrix and no Jones matrix (SubstrateResponse).
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(*this, q, scratch);
     }
 
     /// f(wi → wo) depends on wo's angle (the light's) besides ζ: see the file comment.
@@ -281,7 +217,8 @@ class HarveyShackMaterial final : public Material {
 
     /// The query as the kernel sees it: wi mirrored onto the upper side and, per carried wavelength,
     /// the medium's index n and t = k²T (k = 2πn/λ, the wavenumber of the light on wi's side, which
-    /// is also the light's: reflection only).
+    /// is also the light's: reflection only); the substrate's index and its coating's thicknesses
+    /// at the hit, which every response of the substrate below reads.
     struct Local {
         Vec3 wi;             // wi with z > 0
         bool flip = false;   // wi.z < 0 in the shading frame
@@ -289,24 +226,28 @@ class HarveyShackMaterial final : public Material {
         double cosI = 0, s = 0;
         int count = 0;
         std::array<double, NumWavelengths> n{}, k{}, t{};
+        std::array<Complex, NumWavelengths> substrate{};  // SmoothSurface::SubstrateIndex(λ_i)
+        const double *thickness = nullptr;                 // SmoothSurface::Thicknesses at the hit
         double pSpec = 1;    // probability of the specular lobe (SpecularProbability of α_spec(θ_i))
         Vec3 ToUpper(const Vec3 &w) const { return flip ? Vec3(w.x, w.y, -w.z) : w; }
         Vec3 FromUpper(const Vec3 &w) const { return ToUpper(w); }
     };
 
-    /// False if wi is grazing (cosθ_i = 0: nothing arrives). With heroOnly, only the hero's n and t
-    /// (what ScatterPdf reads; Pdf is called ~10× as often as the rest).
-    bool Prepare(const ScatterQuery &q, Local *l, bool heroOnly = false) const {
+    /// False if wi is grazing (cosθ_i = 0: nothing arrives). `thickness` holds LayerCount() values.
+    bool Localize(const ScatterQuery &q, double *thickness, Local *l) const {
+        surface_->Thicknesses(q.tex, thickness);
+        l->thickness = thickness;
         if (!(q.wi.z != 0)) return false;
         l->flip = q.wi.z < 0;
         l->inside = l->flip && transparent_;
         l->wi = l->ToUpper(q.wi);
         l->cosI = std::min(1.0, l->wi.z);
         l->s = std::min(1.0, std::hypot(l->wi.x, l->wi.y));
-        l->count = heroOnly ? 1 : q.wl->Count();
+        l->count = q.wl->Count();
         for (int i = 0; i < l->count; ++i) {
             const double lambda = q.wl->lambda[i];
-            l->n[i] = l->inside ? surface_->SubstrateIndex(lambda).real() : q.etaOutside;
+            l->substrate[i] = surface_->SubstrateIndex(lambda);
+            l->n[i] = l->inside ? l->substrate[i].real() : q.etaOutside;
             l->k[i] = 2 * Pi * l->n[i] / lambda;
             l->t[i] = l->k[i] * l->k[i] * corrT_;
         }
@@ -331,8 +272,8 @@ class HarveyShackMaterial final : public Material {
     /// in the query's regime (coherent, or incoherent for a coated substrate in the ray-optics limit).
     double Reflectance(const ScatterQuery &q, const Local &l, int i, double cosTheta) const {
         const double c = std::max(cosTheta, 1e-300), lambda = q.wl->lambda[i];
-        return Coherent(q) ? surface_->Response(lambda, q.etaOutside, c, l.inside, q.tex).R()
-                           : surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, q.tex).R();
+        return Coherent(q) ? surface_->Response(lambda, q.etaOutside, c, l.inside, l.thickness, l.substrate[i]).R()
+                           : surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, l.thickness, l.substrate[i]).R();
     }
 
     /// The substrate's reflection at cosθ as a lobe response: R, its Mueller matrix, and (coherent
@@ -346,12 +287,13 @@ class HarveyShackMaterial final : public Material {
         const double c = std::max(cosTheta, 1e-300), lambda = q.wl->lambda[i];
         Facet f;
         if (Coherent(q)) {
-            const StackResponse s = surface_->Response(lambda, q.etaOutside, c, l.inside, q.tex);
+            const StackResponse s = surface_->Response(lambda, q.etaOutside, c, l.inside, l.thickness, l.substrate[i]);
             f.R = s.R();
             f.jones = Jones::Diagonal(s.rs, s.rp);
             f.mueller = Mueller::FromJones(f.jones);
         } else {
-            const IncoherentStackResponse s = surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, q.tex);
+            const IncoherentStackResponse s =
+                surface_->IncoherentResponse(lambda, q.etaOutside, c, l.inside, l.thickness, l.substrate[i]);
             f.R = s.R();
             f.mueller = Mueller::FromDiagonalSums(s.Rs, s.Rp, s.Rsp);
         }
@@ -403,58 +345,134 @@ class HarveyShackMaterial final : public Material {
         return (1 - l.pSpec) * (Pi / phiMax) * psd.Density(t, r * r) * o.z / m;
     }
 
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
-        Local l;
-        if (!Prepare(q, &l)) return std::nullopt;
-        ScatterSample s;
-        s.eta = 1;
-        if (u0 < l.pSpec) {
-            // The specular lobe, chosen with probability p_spec ≈ α_spec(λ_hero): weight α_spec(λ)F(λ)/p_spec.
-            s.wo = ReflectLocal(q.wi);
-            s.weight = SpecularWeight(q, l) / l.pSpec;
-            s.pdf = l.pSpec;
-            s.lobe = SpecularLobe;
-            s.flags = ScatterReflection | ScatterNearDelta;
+    /// The kernel at one hit: the query as the kernel sees it (Local) and the specular lobe.
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const HarveyShackMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch) : PreparedKernel(q), m_(&m) {
+            caps_ = CapNearDelta | (m.sigma_ > 0 ? CapContinuous : 0u);
+            if (m.sigma_ > 0) continuous_.Add(ScatterLobe);
+            ok_ = m.Localize(q, scratch.Room<double>(std::size_t(m.surface_->LayerCount())), &l_);
+            if (!ok_) return;
+            spec_ = m.SpecularWeight(q, l_);
+            if (spec_.IsZero()) return;
+            lobe_.id = SpecularLobe;
+            lobe_.flags = ScatterReflection | ScatterNearDelta;
+            lobe_.wo.fill(ReflectLocal(q.wi));
+            lobe_.weight = spec_;
+            for (int i = 0; i < l_.count; ++i) lobe_.nIn[i] = lobe_.nOut[i] = l_.n[i];
+            lobe_.prob = l_.pSpec;
+            lobes_ = std::span<const NearDeltaLobe>(&lobe_, 1);
+        }
+
+        std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
+            const HarveyShackMaterial &m = *m_;
+            const ScatterQuery &q = q_;
+            const Local &l = l_;
+            if (!ok_) return std::nullopt;
+            LobeResponse r;
+            r.hasJones = m.Coherent(q);
+            if (lobe == SpecularLobe) {
+                if (!SameDirection(wo, ReflectLocal(q.wi))) return std::nullopt;
+                // A coated substrate's coherence terms, times the specular share α_spec (sample_solve).
+                r.coherence.any = m.surface_->LayerCount() > 0;
+                for (int i = 0; i < l.count; ++i) {
+                    const Facet s = m.SubstrateResponse(q, l, i, l.cosI);
+                    const double a = m.Alpha(l, i, l.cosI);
+                    r.jones[i] = s.jones * Complex(std::sqrt(a), 0);
+                    r.mueller[i] = s.mueller * a;
+                    if (!r.coherence.any) continue;
+                    const double lambda = q.wl->lambda[i];
+                    const IncoherentStackResponse n =
+                        m.surface_->IncoherentResponse(lambda, q.etaOutside, l.cosI, l.inside, l.thickness, l.substrate[i]);
+                    r.coherence.incoherent[i] = Mueller::FromDiagonalSums(n.Rs, n.Rp, n.Rsp) * a;
+                    r.coherence.shear[i] = m.surface_->ShearVector(lambda, q.etaOutside, l.wi, l.inside, l.thickness);
+                }
+                return r;
+            }
+            if (lobe != ScatterLobe || !(m.sigma_ > 0)) return std::nullopt;
+            const Vec3 o = l.ToUpper(wo);
+            if (!(o.z > 0)) return std::nullopt;
+            const SampledSpectrum f = m.Scatter(q, l, o);
+            const Vec3 h = Normalize(l.wi + o);
+            const double cosH = Clamp(Dot(l.wi, h), 0.0, 1.0);
+            for (int i = 0; i < l.count; ++i) {
+                const double value = f[i] * o.z;
+                const Facet s = m.SubstrateResponse(q, l, i, cosH);
+                if (s.R > 0) {
+                    r.jones[i] = s.jones * Complex(std::sqrt(value / s.R), 0);
+                    r.mueller[i] = s.mueller * (value / s.R);
+                } else {
+                    r.hasJones = false;
+                    r.mueller[i] = Mueller::Depolarizer(value);
+                }
+            }
+            if (!r.hasJones)
+                for (int i = 0; i < l.count; ++i) r.jones[i] = Jones();
+            return r;
+        }
+
+      private:
+        std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override {
+            const HarveyShackMaterial &m = *m_;
+            const Local &l = l_;
+            if (!ok_) return std::nullopt;
+            ScatterSample s;
+            s.eta = 1;
+            if (u0 < l.pSpec) {
+                // The specular lobe, chosen with probability p_spec ≈ α_spec(λ_hero): weight α_spec(λ)F(λ)/p_spec.
+                s.wo = ReflectLocal(q_.wi);
+                s.weight = spec_ / l.pSpec;
+                s.pdf = l.pSpec;
+                s.lobe = SpecularLobe;
+                s.flags = ScatterReflection | ScatterNearDelta;
+                return s;
+            }
+            // Holzschuch–Pacanowski (theory §4.3 steps 1–4) at the hero wavelength.
+            const KCorrelationPsd &psd = m.table_->Psd();
+            const double t = l.t[0];
+            const double mass = psd.RadialCdf(t, 1 + l.s);
+            const double r = psd.InverseRadialCdf(t, mass * u.x);
+            const double phiMax = KCorrelationPsd::ArcHalfAngle(r, l.s);
+            if (!(phiMax > 0)) return std::nullopt;  // r = 1 + s exactly: a set of measure zero
+            const double phiI = l.s > 0 ? std::atan2(l.wi.y, l.wi.x) : 0.0;
+            const double phi = phiI + (2 * u.y - 1) * phiMax;
+            const double ox = r * std::cos(phi) - l.wi.x, oy = r * std::sin(phi) - l.wi.y;
+            const double z2 = 1 - ox * ox - oy * oy;
+            if (!(z2 > 0)) return std::nullopt;  // on the horizon (rounding): pdf 0
+            const Vec3 o(ox, oy, std::sqrt(z2));
+            const double pdf = m.ScatterPdf(l, o);
+            if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
+            s.wo = l.FromUpper(o);
+            s.pdf = pdf;
+            s.weight = m.Scatter(q_, l, o) * (o.z / pdf);
+            s.lobe = ScatterLobe;
+            s.flags = ScatterReflection | ScatterDiffuse;
             return s;
         }
-        // Holzschuch–Pacanowski (theory §4.3 steps 1–4) at the hero wavelength.
-        const KCorrelationPsd &psd = table_->Psd();
-        const double t = l.t[0];
-        const double m = psd.RadialCdf(t, 1 + l.s);
-        const double r = psd.InverseRadialCdf(t, m * u.x);
-        const double phiMax = KCorrelationPsd::ArcHalfAngle(r, l.s);
-        if (!(phiMax > 0)) return std::nullopt;  // r = 1 + s exactly: a set of measure zero
-        const double phiI = l.s > 0 ? std::atan2(l.wi.y, l.wi.x) : 0.0;
-        const double phi = phiI + (2 * u.y - 1) * phiMax;
-        const double ox = r * std::cos(phi) - l.wi.x, oy = r * std::sin(phi) - l.wi.y;
-        const double z2 = 1 - ox * ox - oy * oy;
-        if (!(z2 > 0)) return std::nullopt;  // on the horizon (rounding): pdf 0
-        const Vec3 o(ox, oy, std::sqrt(z2));
-        const double pdf = ScatterPdf(l, o);
-        if (!(pdf > 0) || !std::isfinite(pdf)) return std::nullopt;
-        s.wo = l.FromUpper(o);
-        s.pdf = pdf;
-        s.weight = Scatter(q, l, o) * (o.z / pdf);
-        s.lobe = ScatterLobe;
-        s.flags = ScatterReflection | ScatterDiffuse;
-        return s;
-    }
+        SampledSpectrum EvalContinuous(const Vec3 &wo) const override {
+            if (!(m_->sigma_ > 0) || !ok_) return SampledSpectrum(0.0);
+            const Vec3 o = l_.ToUpper(wo);
+            if (!(o.z > 0)) return SampledSpectrum(0.0);
+            return m_->Scatter(q_, l_, o);
+        }
+        double PdfContinuous(const Vec3 &wo) const override {
+            if (!(m_->sigma_ > 0) || !ok_) return 0;
+            return m_->ScatterPdf(l_, l_.ToUpper(wo));
+        }
+        KernelValue EvalPdfContinuous(const Vec3 &wo, const IncidentWave &) const override {
+            if (!(m_->sigma_ > 0) || !ok_) return KernelValue{};
+            const Vec3 o = l_.ToUpper(wo);
+            return KernelValue{o.z > 0 ? m_->Scatter(q_, l_, o) : SampledSpectrum(0.0), m_->ScatterPdf(l_, o)};
+        }
 
-    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        Local l;
-        if (!(sigma_ > 0) || !Prepare(q, &l)) return SampledSpectrum(0.0);
-        const Vec3 o = l.ToUpper(wo);
-        if (!(o.z > 0)) return SampledSpectrum(0.0);
-        return Scatter(q, l, o);
-    }
+        const HarveyShackMaterial *m_;
+        Local l_;
+        bool ok_ = false;        // wi is not grazing (Localize)
+        SampledSpectrum spec_;   // the specular lobe's weight α_spec(θ_i)·F(θ_i)
+        NearDeltaLobe lobe_;     // the specular lobe, listed when spec_ is not zero
+    };
 
-    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        Local l;
-        if (!(sigma_ > 0) || !Prepare(q, &l, true)) return 0;
-        return ScatterPdf(l, l.ToUpper(wo));
-    }
-
-    std::shared_ptr<const Material> substrate_;  // keeps surface_ alive
+    std::shared_ptr<const SmoothKernel> substrate_;  // keeps surface_ alive
     const SmoothSurface *surface_;
     double sigma_;   // σ_h [m]
     double corrT_;   // T [m²]

@@ -40,7 +40,7 @@ namespace {
 constexpr double OneMinusEpsilon = 0x1.fffffffffffffp-1;  // the largest double below 1
 }  // namespace
 
-class MixMaterial final : public Material {
+class MixMaterial final : public Material, public ReferenceDirection {
   public:
     /// The children must have a combined energy sense (CombinedEnergySense; Create checks it).
     MixMaterial(std::shared_ptr<const Material> a, std::shared_ptr<const Material> b, FloatTexture weight)
@@ -113,58 +113,11 @@ class MixMaterial final : public Material {
         return p;
     }
 
-    unsigned Capabilities(const ScatterQuery &q) const override {
-        const double w = Weight(q);
-        return (w < 1 ? a_->Capabilities(q) : 0u) | (w > 0 ? b_->Capabilities(q) : 0u);
-    }
-
-    /// a's lobes (ids 2j) and b's (ids 2j + 1), weights and probabilities times the child's share,
-    /// merged in id order; a child with share 0 lists nothing.
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
-        const double w = Weight(q);
-        if (w < 1) a_->ListNearDelta(q, out);
-        for (int k = 0; k < out.count; ++k) Scale(out.lobe[k], false, 1 - w);
-        if (!(w > 0)) return;
-        NearDeltaLobes lb;
-        b_->ListNearDelta(q, lb);
-        // Merge b's lobes in from the back (both lists are in id order).
-        int ia = out.count - 1, ib = lb.count - 1;
-        for (int k = 0; k < lb.count; ++k) out.Add();
-        for (int k = out.count - 1; ib >= 0; --k) {
-            if (ia >= 0 && out.lobe[ia].id > MixId(lb.lobe[ib].id, true)) {
-                out.lobe[k] = out.lobe[ia--];
-            } else {
-                out.lobe[k] = lb.lobe[ib--];
-                Scale(out.lobe[k], true, w);
-            }
-        }
-    }
-
-    /// a's continuous lobes (ids 2j) and b's (2j + 1), of the children with a non-zero share.
-    void ContinuousLobes(const ScatterQuery &q, ContinuousLobeIds &out) const override {
-        const double w = Weight(q);
-        ContinuousLobeIds c;
-        if (w < 1) a_->ContinuousLobes(q, c);
-        for (int id : c) out.Add(MixId(id, false));
-        c = ContinuousLobeIds{};
-        if (w > 0) b_->ContinuousLobes(q, c);
-        for (int id : c) out.Add(MixId(id, true));
-    }
-
-    /// The child's response, times its share (the Jones matrix times √share).
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        const bool isB = (lobe & 1) != 0;
-        const double share = isB ? Weight(q) : 1 - Weight(q);
-        if (!(share > 0)) return std::nullopt;
-        std::optional<LobeResponse> r = (isB ? b_ : a_)->EvalLobe(q, (lobe - int(isB)) / 2, wo);
-        if (!r) return std::nullopt;
-        const Complex amp(std::sqrt(share), 0);
-        for (int i = 0; i < q.wl->Count(); ++i) {
-            r->mueller[i] = r->mueller[i] * share;
-            r->jones[i] = r->jones[i] * amp;
-            r->coherence.incoherent[i] = r->coherence.incoherent[i] * share;
-        }
-        return r;
+    /// Both children prepared for the query (a child with share 0 is not); lists a's lobes (ids 2j)
+    /// and b's (ids 2j + 1), weights and probabilities times the child's share, merged in id order.
+    /// EvalLobe: the child's response, times its share (the Jones matrix times √share).
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(*this, q, scratch);
     }
 
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
@@ -177,8 +130,8 @@ class MixMaterial final : public Material {
         return (id - 2 * child == 0 ? "a: " + a_->LobeName(child) : "b: " + b_->LobeName(child));
     }
     std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override {
-        const std::optional<double> a = a_->ReferenceAngle(tex);
-        return a ? a : b_->ReferenceAngle(tex);
+        const std::optional<double> a = ReferenceAngleOf(*a_, tex);
+        return a ? a : ReferenceAngleOf(*b_, tex);
     }
 
     void CheckShape(const Shape &shape) const override {
@@ -211,39 +164,98 @@ class MixMaterial final : public Material {
         l.prob *= share;
     }
 
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
-        const double w = Weight(q);
-        // Child b with probability w, a with 1 − w; u0 rescaled to [0, 1) within the choice.
-        const bool isB = w >= 1 || (w > 0 && u0 >= 1 - w);
-        const double share = isB ? w : 1 - w;
-        const double uc = std::min((isB ? u0 - (1 - w) : u0) / share, OneMinusEpsilon);
-        std::optional<ScatterSample> s = (isB ? b_ : a_)->Sample(q, std::max(uc, 0.0), u);
-        if (!s) return std::nullopt;
-        s->lobe = MixId(s->lobe, isB);
-        if (s->flags & ScatterNearDelta) {
-            s->pdf *= share;  // the lobe's probability in the mixture; a_j·share / (p_j·share) = a_j/p_j
+    /// The mixture at one hit: w there and the children prepared (a if w < 1, b if w > 0).
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const MixMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch) : PreparedKernel(q), w_(m.Weight(q)) {
+            a_ = w_ < 1 ? &m.a_->Prepare(q, scratch) : nullptr;
+            b_ = w_ > 0 ? &m.b_->Prepare(q, scratch) : nullptr;
+            caps_ = (a_ ? a_->Capabilities() : 0u) | (b_ ? b_->Capabilities() : 0u);
+            const std::span<const NearDeltaLobe> la = a_ ? a_->ListNearDelta() : std::span<const NearDeltaLobe>();
+            const std::span<const NearDeltaLobe> lb = b_ ? b_->ListNearDelta() : std::span<const NearDeltaLobe>();
+            if (!la.empty() || !lb.empty()) {
+                // Both lists are in id order; so is their merge (a's ids even, b's odd).
+                LobeList out(scratch, int(la.size() + lb.size()));
+                std::size_t ia = 0, ib = 0;
+                while (ia < la.size() || ib < lb.size()) {
+                    const bool takeA = ib == lb.size() || (ia < la.size() && MixId(la[ia].id, false) < MixId(lb[ib].id, true));
+                    NearDeltaLobe &l = out.Add();
+                    l = takeA ? la[ia++] : lb[ib++];
+                    Scale(l, !takeA, takeA ? 1 - w_ : w_);
+                }
+                lobes_ = out.Lobes();
+            }
+            if (a_)
+                for (int id : a_->ContinuousLobes()) continuous_.Add(MixId(id, false));
+            if (b_)
+                for (int id : b_->ContinuousLobes()) continuous_.Add(MixId(id, true));
+        }
+
+        std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
+            const bool isB = (lobe & 1) != 0;
+            const double share = isB ? w_ : 1 - w_;
+            if (!(share > 0)) return std::nullopt;
+            std::optional<LobeResponse> r = (isB ? b_ : a_)->EvalLobe((lobe - int(isB)) / 2, wo);
+            if (!r) return std::nullopt;
+            const Complex amp(std::sqrt(share), 0);
+            for (int i = 0; i < q_.wl->Count(); ++i) {
+                r->mueller[i] = r->mueller[i] * share;
+                r->jones[i] = r->jones[i] * amp;
+                r->coherence.incoherent[i] = r->coherence.incoherent[i] * share;
+            }
+            return r;
+        }
+
+      private:
+        std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override {
+            const double w = w_;
+            // Child b with probability w, a with 1 − w; u0 rescaled to [0, 1) within the choice.
+            const bool isB = w >= 1 || (w > 0 && u0 >= 1 - w);
+            const double share = isB ? w : 1 - w;
+            const double uc = std::min((isB ? u0 - (1 - w) : u0) / share, OneMinusEpsilon);
+            std::optional<ScatterSample> s = (isB ? b_ : a_)->Sample(std::max(uc, 0.0), u);
+            if (!s) return std::nullopt;
+            s->lobe = MixId(s->lobe, isB);
+            if (s->flags & ScatterNearDelta) {
+                s->pdf *= share;  // the lobe's probability in the mixture; a_j·share / (p_j·share) = a_j/p_j
+                return s;
+            }
+            // A continuous direction: the mixture's density and value there (either child may reach wo).
+            const double pdf = PdfContinuous(s->wo);
+            if (!(pdf > 0)) return std::nullopt;
+            s->weight = EvalContinuous(s->wo) * (std::abs(s->wo.z) / pdf);
+            s->pdf = pdf;
             return s;
         }
-        // A continuous direction: the mixture's density and value there (either child may reach wo).
-        const double pdf = PdfContinuous(q, s->wo);
-        if (!(pdf > 0)) return std::nullopt;
-        s->weight = EvalContinuous(q, s->wo) * (std::abs(s->wo.z) / pdf);
-        s->pdf = pdf;
-        return s;
-    }
+        SampledSpectrum EvalContinuous(const Vec3 &wo) const override {
+            SampledSpectrum f(0.0);
+            if (a_) f += a_->Eval(wo) * (1 - w_);
+            if (b_) f += b_->Eval(wo) * w_;
+            return f;
+        }
+        double PdfContinuous(const Vec3 &wo) const override {
+            return (a_ ? (1 - w_) * a_->Pdf(wo) : 0.0) + (b_ ? w_ * b_->Pdf(wo) : 0.0);
+        }
+        KernelValue EvalPdfContinuous(const Vec3 &wo, const IncidentWave &w) const override {
+            KernelValue v;
+            double pa = 0, pb = 0;
+            if (a_) {
+                const KernelValue c = a_->EvalPdf(wo, w);
+                v.f += c.f * (1 - w_);
+                pa = (1 - w_) * c.pdf;
+            }
+            if (b_) {
+                const KernelValue c = b_->EvalPdf(wo, w);
+                v.f += c.f * w_;
+                pb = w_ * c.pdf;
+            }
+            v.pdf = pa + pb;
+            return v;
+        }
 
-    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        const double w = Weight(q);
-        SampledSpectrum f(0.0);
-        if (w < 1) f += a_->Eval(q, wo) * (1 - w);
-        if (w > 0) f += b_->Eval(q, wo) * w;
-        return f;
-    }
-
-    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        const double w = Weight(q);
-        return (w < 1 ? (1 - w) * a_->Pdf(q, wo) : 0.0) + (w > 0 ? w * b_->Pdf(q, wo) : 0.0);
-    }
+        double w_;  // b's share at the hit
+        const PreparedKernel *a_ = nullptr, *b_ = nullptr;
+    };
 
     std::shared_ptr<const Material> a_, b_;
     FloatTexture weight_;  // w: b's share, dimensionless, in [0, 1]

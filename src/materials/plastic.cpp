@@ -70,88 +70,14 @@ class PlasticMaterial final : public Material {
         return p;
     }
 
-    unsigned Capabilities(const ScatterQuery &) const override {
-        return CapNearDelta | (albedo_.MaxValue() > 0 ? CapContinuous : 0u);
-    }
-    void ContinuousLobes(const ScatterQuery &, ContinuousLobeIds &out) const override {
-        if (albedo_.MaxValue() > 0) out.Add(1);
-    }
-
-    /// Lobe 0: the coat's mirror reflection, weight F(θ_i, λ), picked with probability Coat::spec.
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
-        Coat c;
-        if (!Evaluate(q, &c) || !(c.specProb > 0)) return;
-        NearDeltaLobe &l = out.Add();
-        l.id = 0;
-        l.flags = ScatterReflection | ScatterNearDelta;
-        l.wo.fill(ReflectLocal(q.wi));
-        l.weight = c.fresnel;
-        l.nIn.fill(q.etaOutside);
-        l.nOut.fill(q.etaOutside);
-        l.prob = c.specProb;
-    }
-
-    /// Lobe 0: Jones diag(r_s, r_p) of the coat's surface; lobe 1: the diffuse light, depolarised.
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        LobeResponse r;
-        if (lobe == 0 && SameDirection(wo, ReflectLocal(q.wi))) {
-            r.hasJones = true;
-            for (int i = 0; i < q.wl->Count(); ++i) {
-                const double n = ior_->Eval(q.wl->lambda[i]).real();
-                const FresnelCoefficients f = FresnelAmplitudes(std::abs(q.wi.z), q.etaOutside, Complex(n, 0));
-                r.jones[i] = Jones::Diagonal(f.rs, f.rp);
-                r.mueller[i] = Mueller::FromJones(r.jones[i]);
-            }
-            return r;
-        }
-        if (lobe != 1 || q.wi.z * wo.z <= 0) return std::nullopt;
-        const SampledSpectrum f = EvalContinuous(q, wo) * std::abs(wo.z);
-        for (int i = 0; i < q.wl->Count(); ++i) r.mueller[i] = Mueller::Depolarizer(f[i]);
-        return r;
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(*this, q, scratch);
     }
 
     std::string ToString() const override {
         std::ostringstream os;
         os << "PlasticMaterial[ reflectance = " << albedo_.ToString() << ", ior = " << ior_->ToString() << " ]";
         return os.str();
-    }
-
-  protected:
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
-        Coat c;
-        if (!Evaluate(q, &c)) return std::nullopt;
-        ScatterSample s;
-        s.eta = 1;
-        if (u0 < c.specProb) {  // the coat's mirror reflection
-            s.wo = ReflectLocal(q.wi);
-            s.weight = c.fresnel / c.specProb;
-            s.pdf = c.specProb;
-            s.lobe = 0;
-            s.flags = ScatterReflection | ScatterNearDelta;
-            return s;
-        }
-        // The diffuse lobe, cosine-weighted on wi's side (Malley's method).
-        const Vec2 d = ConcentricDisc(u);
-        const double z = SafeSqrt(1 - d.x * d.x - d.y * d.y);
-        if (z == 0) return std::nullopt;
-        s.wo = Vec3(d.x, d.y, q.wi.z > 0 ? z : -z);
-        s.pdf = (1 - c.specProb) * z * InvPi;
-        s.weight = Diffuse(q, c, z) * (z / s.pdf);
-        s.lobe = 1;
-        s.flags = ScatterReflection | ScatterDiffuse;
-        return s;
-    }
-
-    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        Coat c;
-        if (q.wi.z * wo.z <= 0 || !Evaluate(q, &c)) return SampledSpectrum(0.0);
-        return Diffuse(q, c, std::abs(wo.z));
-    }
-
-    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        Coat c;
-        if (q.wi.z * wo.z <= 0 || !Evaluate(q, &c)) return 0;
-        return (1 - c.specProb) * std::abs(wo.z) * InvPi;
     }
 
   private:
@@ -179,15 +105,98 @@ class PlasticMaterial final : public Material {
         c->specProb = spec / (spec + diffuse);
         return true;
     }
-    /// The diffuse lobe's f [1/sr] towards |cosθ_o| = cosO (file comment).
-    SampledSpectrum Diffuse(const ScatterQuery &q, const Coat &c, double cosO) const {
-        SampledSpectrum f(0.0);
-        for (int i = 0; i < q.wl->Count(); ++i) {
-            const double e = c.eta[i], rho = c.albedo[i];
-            f[i] = rho * (1 - c.fresnel[i]) * (1 - FresnelDielectric(cosO, e)) / (Pi * e * e * (1 - rho * c.inner[i]));
+
+    /// The kernel at one hit: the coat evaluated there (lobe 0, the coat's mirror reflection, listed
+    /// with weight F(θ_i, λ) and probability Coat::specProb; lobe 1, the diffuse light).
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const PlasticMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch) : PreparedKernel(q), m_(&m) {
+            const bool diffuse = m.albedo_.MaxValue() > 0;
+            caps_ = CapNearDelta | (diffuse ? CapContinuous : 0u);
+            if (diffuse) continuous_.Add(1);
+            ok_ = m.Evaluate(q, &c_);
+            if (!ok_ || !(c_.specProb > 0)) return;
+            LobeList list(scratch, 1);
+            NearDeltaLobe &l = list.Add();
+            l.id = 0;
+            l.flags = ScatterReflection | ScatterNearDelta;
+            l.wo.fill(ReflectLocal(q.wi));
+            l.weight = c_.fresnel;
+            l.nIn.fill(q.etaOutside);
+            l.nOut.fill(q.etaOutside);
+            l.prob = c_.specProb;
+            lobes_ = list.Lobes();
         }
-        return f;
-    }
+
+        /// Lobe 0: Jones diag(r_s, r_p) of the coat's surface; lobe 1: the diffuse light, depolarised.
+        std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
+            LobeResponse r;
+            if (lobe == 0 && SameDirection(wo, ReflectLocal(q_.wi))) {
+                r.hasJones = true;
+                for (int i = 0; i < q_.wl->Count(); ++i) {
+                    const double n = m_->ior_->Eval(q_.wl->lambda[i]).real();
+                    const FresnelCoefficients f = FresnelAmplitudes(std::abs(q_.wi.z), q_.etaOutside, Complex(n, 0));
+                    r.jones[i] = Jones::Diagonal(f.rs, f.rp);
+                    r.mueller[i] = Mueller::FromJones(r.jones[i]);
+                }
+                return r;
+            }
+            if (lobe != 1 || q_.wi.z * wo.z <= 0) return std::nullopt;
+            const SampledSpectrum f = EvalContinuous(wo) * std::abs(wo.z);
+            for (int i = 0; i < q_.wl->Count(); ++i) r.mueller[i] = Mueller::Depolarizer(f[i]);
+            return r;
+        }
+
+      private:
+        std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override {
+            if (!ok_) return std::nullopt;
+            ScatterSample s;
+            s.eta = 1;
+            if (u0 < c_.specProb) {  // the coat's mirror reflection
+                s.wo = ReflectLocal(q_.wi);
+                s.weight = c_.fresnel / c_.specProb;
+                s.pdf = c_.specProb;
+                s.lobe = 0;
+                s.flags = ScatterReflection | ScatterNearDelta;
+                return s;
+            }
+            // The diffuse lobe, cosine-weighted on wi's side (Malley's method).
+            const Vec2 d = ConcentricDisc(u);
+            const double z = SafeSqrt(1 - d.x * d.x - d.y * d.y);
+            if (z == 0) return std::nullopt;
+            s.wo = Vec3(d.x, d.y, q_.wi.z > 0 ? z : -z);
+            s.pdf = (1 - c_.specProb) * z * InvPi;
+            s.weight = Diffuse(z) * (z / s.pdf);
+            s.lobe = 1;
+            s.flags = ScatterReflection | ScatterDiffuse;
+            return s;
+        }
+        SampledSpectrum EvalContinuous(const Vec3 &wo) const override {
+            if (q_.wi.z * wo.z <= 0 || !ok_) return SampledSpectrum(0.0);
+            return Diffuse(std::abs(wo.z));
+        }
+        double PdfContinuous(const Vec3 &wo) const override {
+            if (q_.wi.z * wo.z <= 0 || !ok_) return 0;
+            return (1 - c_.specProb) * std::abs(wo.z) * InvPi;
+        }
+        KernelValue EvalPdfContinuous(const Vec3 &wo, const IncidentWave &) const override {
+            if (q_.wi.z * wo.z <= 0 || !ok_) return KernelValue{};
+            return KernelValue{Diffuse(std::abs(wo.z)), (1 - c_.specProb) * std::abs(wo.z) * InvPi};
+        }
+        /// The diffuse lobe's f [1/sr] towards |cosθ_o| = cosO (file comment).
+        SampledSpectrum Diffuse(double cosO) const {
+            SampledSpectrum f(0.0);
+            for (int i = 0; i < q_.wl->Count(); ++i) {
+                const double e = c_.eta[i], rho = c_.albedo[i];
+                f[i] = rho * (1 - c_.fresnel[i]) * (1 - FresnelDielectric(cosO, e)) / (Pi * e * e * (1 - rho * c_.inner[i]));
+            }
+            return f;
+        }
+
+        const PlasticMaterial *m_;
+        Coat c_;
+        bool ok_ = false;  // Evaluate succeeded: the coat reflects something
+    };
 
     SpectrumTexture albedo_;
     std::shared_ptr<const ComplexSpectrum> ior_;

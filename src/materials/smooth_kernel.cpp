@@ -31,16 +31,17 @@ SmoothKernel::Wave SmoothKernel::Sides(const ScatterQuery &q, int i) const {
     return w;
 }
 
-SmoothKernel::Wave SmoothKernel::Evaluate(const ScatterQuery &q, int i) const {
+SmoothKernel::Wave SmoothKernel::Evaluate(const ScatterQuery &q, int i, const double *thickness) const {
     Wave w = Sides(q, i);
     if (!w.ok) return w;
     const double lambda = q.wl->lambda[i], cosI = std::abs(q.wi.z);
     if (q.rayOptics) {
-        const IncoherentStackResponse r = surface_.IncoherentResponse(lambda, q.etaOutside, cosI, FromInside(q), q.tex, w.substrate);
+        const IncoherentStackResponse r =
+            surface_.IncoherentResponse(lambda, q.etaOutside, cosI, FromInside(q), thickness, w.substrate);
         w.R = r.R();
         w.T = transmits_ ? r.T() : 0;
     } else {
-        const StackResponse r = surface_.Response(lambda, q.etaOutside, cosI, FromInside(q), q.tex, w.substrate);
+        const StackResponse r = surface_.Response(lambda, q.etaOutside, cosI, FromInside(q), thickness, w.substrate);
         w.R = r.R();
         w.T = transmits_ ? r.T() : 0;
     }
@@ -52,24 +53,42 @@ SmoothKernel::Wave SmoothKernel::Evaluate(const ScatterQuery &q, int i) const {
     return w;
 }
 
-void SmoothKernel::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const {
-    std::array<NearDeltaLobe, 2> lobes;
-    const int count = Lobes(q, lobes);
-    for (int k = 0; k < count; ++k) out.Add() = lobes[k];
+/// The kernel at one hit: the layers' thicknesses there, R and T per carried wavelength and the (at
+/// most two) lobes.
+class SmoothKernel::Prepared final : public PreparedKernel {
+  public:
+    Prepared(const SmoothKernel &k, const ScatterQuery &q, ScratchBuffer &scratch) : PreparedKernel(q), k_(&k) {
+        caps_ = CapNearDelta;
+        if (const int layers = k.surface_.LayerCount(); layers > 0) {
+            thickness_ = scratch.Room<double>(std::size_t(layers));
+            k.surface_.Thicknesses(q.tex, thickness_);  // once per hit (a textured film)
+        }
+        if (q.wi.z == 0) return;
+        const int count = q.wl->Count();
+        for (int i = 0; i < count; ++i) w_[i] = k.Evaluate(q, i, thickness_);
+        if (!w_[0].ok) return;
+        lobes_ = std::span<const NearDeltaLobe>(lobe_.data(), std::size_t(List(q)));
+    }
+
+    std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override;
+
+  private:
+    /// Fills lobe_ as the header describes; returns how many lobes it lists.
+    int List(const ScatterQuery &q);
+
+    const SmoothKernel *k_;
+    double *thickness_ = nullptr;            // the layers' thicknesses at the hit (none: bare)
+    std::array<Wave, NumWavelengths> w_;     // Evaluate per carried wavelength (w_[0].ok false: no lobe)
+    std::array<NearDeltaLobe, 2> lobe_;      // lobes_ views the first List() of them
+};
+
+const PreparedKernel &SmoothKernel::Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const {
+    return *scratch.New<Prepared>(*this, q, scratch);
 }
 
-std::optional<ScatterSample> SmoothKernel::SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const {
-    std::array<NearDeltaLobe, 2> lobes;
-    const int count = Lobes(q, lobes);
-    return SampleListedLobe(std::span<const NearDeltaLobe>(lobes.data(), count), u0);
-}
-
-int SmoothKernel::Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out) const {
-    if (q.wi.z == 0) return 0;
+int SmoothKernel::Prepared::List(const ScatterQuery &q) {
     const int count = q.wl->Count();
-    std::array<Wave, NumWavelengths> w;
-    for (int i = 0; i < count; ++i) w[i] = Evaluate(q, i);
-    if (!w[0].ok) return 0;
+    const std::array<Wave, NumWavelengths> &w = w_;
     int listed = 0;
 
     bool reflects = false, transmits = false;
@@ -78,7 +97,7 @@ int SmoothKernel::Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out
         transmits = transmits || w[i].T > 0;
     }
     Vec3 hero;
-    transmits = transmits && transmits_ && RefractLocal(q.wi, w[0].eta, &hero);
+    transmits = transmits && k_->transmits_ && RefractLocal(q.wi, w[0].eta, &hero);
     // Lobe probabilities: half ∝ the energy each carries at the hero, half ∝ its mean over the
     // carried wavelengths. A film's reflectance swings with λ: by the hero alone a lobe that is dark
     // at the hero but bright at a companion would be picked rarely and weighted by up to 1/1e-6
@@ -96,7 +115,7 @@ int SmoothKernel::Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out
         return heroTotal > 0 && meanTotal > 0 ? 0.5 * (a + b) : a + b;
     };
     if (reflects) {
-        NearDeltaLobe &r = out[listed++];
+        NearDeltaLobe &r = lobe_[listed++];
         r.id = 0;
         r.flags = ScatterReflection | ScatterNearDelta;
         r.wo.fill(ReflectLocal(q.wi));
@@ -107,9 +126,9 @@ int SmoothKernel::Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out
         }
     }
     if (transmits) {
-        NearDeltaLobe &t = out[listed++];
+        NearDeltaLobe &t = lobe_[listed++];
         t.id = 1;
-        t.flags = ScatterTransmission | ScatterNearDelta | (dispersive_ ? ScatterDispersive : 0u);
+        t.flags = ScatterTransmission | ScatterNearDelta | (k_->dispersive_ ? ScatterDispersive : 0u);
         t.prob = probability(w[0].T, meanT);
         for (int i = 0; i < count; ++i) {
             t.nIn[i] = w[i].nI;
@@ -122,31 +141,33 @@ int SmoothKernel::Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out
     return listed;
 }
 
-std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const {
-    if (q.wi.z == 0 || (lobe != 0 && lobe != 1) || (lobe == 1 && !transmits_)) return std::nullopt;
-    const Wave hero = Evaluate(q, 0);  // as ListNearDelta: no lobe where the hero has no response
+std::optional<LobeResponse> SmoothKernel::Prepared::EvalLobe(int lobe, const Vec3 &wo) const {
+    const ScatterQuery &q = q_;
+    const SmoothSurface &surface = k_->surface_;
+    if (q.wi.z == 0 || (lobe != 0 && lobe != 1) || (lobe == 1 && !k_->transmits_)) return std::nullopt;
+    const Wave &hero = w_[0];  // as the listing: no lobe where the hero has no response
     if (!hero.ok) return std::nullopt;
     Vec3 dir = ReflectLocal(q.wi);
     if (lobe == 1 && !RefractLocal(q.wi, hero.eta, &dir)) return std::nullopt;
     if (!SameDirection(wo, dir)) return std::nullopt;
 
-    const bool inside = FromInside(q);
+    const bool inside = k_->FromInside(q);
     const double cosI = std::abs(q.wi.z);
     LobeResponse r;
     // A bare surface has one response, a Jones matrix in both regimes; a coated one in the
     // ray-optics limit answers with the incoherent sum, which has none.
-    const bool coherent = !q.rayOptics || surface_.LayerCount() == 0;
+    const bool coherent = !q.rayOptics || surface.LayerCount() == 0;
     r.hasJones = coherent;
-    r.coherence.any = surface_.LayerCount() > 0;
+    r.coherence.any = surface.LayerCount() > 0;
     for (int i = 0; i < q.wl->Count(); ++i) {
-        const Wave w = Sides(q, i);
+        const Wave w = k_->Sides(q, i);
         if (!w.ok) continue;  // zero response
         const double lambda = q.wl->lambda[i];
-        const StackResponse c = surface_.Response(lambda, q.etaOutside, cosI, inside, q.tex, w.substrate);
+        const StackResponse c = surface.Response(lambda, q.etaOutside, cosI, inside, thickness_, w.substrate);
         // A bare interface has one response: its incoherent matrix is FromJones(j) (set below).
-        const bool layered = surface_.LayerCount() > 0;
+        const bool layered = surface.LayerCount() > 0;
         IncoherentStackResponse n{};
-        if (layered) n = surface_.IncoherentResponse(lambda, q.etaOutside, cosI, inside, q.tex, w.substrate);
+        if (layered) n = surface.IncoherentResponse(lambda, q.etaOutside, cosI, inside, thickness_, w.substrate);
         if (!std::isfinite(c.R() + c.T() + (layered ? n.R() + n.T() : 0.0))) continue;  // as Evaluate: absorbed
         Jones j;
         Mueller incoherent;
@@ -171,7 +192,7 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
         }
         r.coherence.incoherent[i] = incoherent;
         // The deeper reflections exit displaced along the incident wave's tangential travel, −wi.xy.
-        if (r.coherence.any) r.coherence.shear[i] = surface_.ShearVector(lambda, q.etaOutside, q.wi, inside, q.tex);
+        if (r.coherence.any) r.coherence.shear[i] = surface.ShearVector(lambda, q.etaOutside, q.wi, inside, thickness_);
     }
     return r;
 }
@@ -200,14 +221,23 @@ std::shared_ptr<const Coating> ReadCoating(const ParamDict &dict, BuildContext &
     const std::string name = dict.GetValue("coating").text;
     std::shared_ptr<Material> m = ctx.GetRef<Material>(dict, "coating");
     const SceneEntity *e = ctx.EntityOf(m.get());
-    std::shared_ptr<const Coating> c = m->AsCoating();
+    const auto *c = dynamic_cast<const CoatingKernel *>(m.get());
     if (!c)
         throw Error(dict.Loc("coating"), "'coating' must name a thin_film or multilayer definition; '@" + name +
                                              "' is a " + (e ? e->type : std::string("other")) + " material");
     if (e && e->params.Has("substrate_ior"))
         throw Error(dict.Loc("coating"), "coating '@" + name + "' sets its own 'substrate_ior'; as a coating it lies "
                                          "on this kernel's 'ior' (remove 'substrate_ior' from '" + name + "')");
-    return c;
+    return c->Layers();
+}
+
+std::shared_ptr<const SmoothKernel> ReadSubstrate(const ParamDict &dict, BuildContext &ctx) {
+    std::shared_ptr<Material> m = ctx.GetRef<Material>(dict, "substrate");
+    if (auto smooth = std::dynamic_pointer_cast<const SmoothKernel>(m)) return smooth;
+    const SceneEntity *e = ctx.EntityOf(m.get());
+    throw Error(dict.Loc("substrate"), "'substrate' must be a smooth kernel with a Fresnel response (a conductor or a "
+                                       "dielectric); '" + dict.GetValue("substrate").ToString() + "' is a '" +
+                                           (e ? e->type : std::string("?")) + "' material");
 }
 
 void WarnIfBeyondCoherence(const Coating &coating, const ParamDict &dict, const std::string &param,

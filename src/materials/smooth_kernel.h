@@ -28,7 +28,7 @@
 // from above, mirrored on wi's side (the inside of a metal is unreachable; this only matters for
 // thin sheets and flipped normals), and never transmits.
 //
-// Sampling (Material's default SampleLobes): lobe 0 with probability ½·R/(R + T) at the hero plus
+// Sampling (PreparedKernel's default SampleLobes over the listed lobes): lobe 0 with probability ½·R/(R + T) at the hero plus
 // ½·R̄/(R̄ + T̄) over the carried wavelengths (R̄, T̄ their means), lobe 1 likewise with T: a film whose
 // reflectance is dark at the hero and bright at a companion still reflects often (no fireflies),
 // and no weight exceeds twice that of either rule alone. For a surface whose R and T vary little
@@ -53,28 +53,26 @@ class SmoothKernel : public Material {
     /// the substrate must then have κ = 0 (IsTransparent).
     SmoothKernel(SmoothSurface surface, bool transmits);
 
-    unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
-    /// Lobe 0 (reflection: the mirror direction on wi's side, weight R(λ)) and, for a transmitting
-    /// surface, lobe 1 (Snell's law, weight T(λ)·(η_i/η_t)², not listed under total internal
-    /// reflection at the hero). A lobe that carries nothing at every wavelength is not listed.
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override;
-    /// The Jones / Mueller response of lobe 0 or 1 towards its hero direction (see the top of the
-    /// file) and, for a coated surface, its coherence terms.
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override;
-    const SmoothSurface *Surface() const override { return &surface_; }
+    /// Lists lobe 0 (reflection: the mirror direction on wi's side, weight R(λ)) and, for a
+    /// transmitting surface, lobe 1 (Snell's law, weight T(λ)·(η_i/η_t)², not listed under total
+    /// internal reflection at the hero); a lobe that carries nothing at every wavelength is not
+    /// listed. EvalLobe: the Jones / Mueller response of lobe 0 or 1 towards its hero direction (see
+    /// the top of the file) and, for a coated surface, its coherence terms.
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override;
     /// A coated surface reports the coating's coherence terms (EvalLobe).
     bool HasCoherenceTerms() const override { return surface_.LayerCount() > 0; }
+    /// The plane-wave optics, a coating over a substrate (materials/smooth_surface.h): what
+    /// `grating` and `harvey_shack` multiply their lobes by when they name this kernel as their
+    /// `substrate` (ReadSubstrate).
+    const SmoothSurface &Surface() const { return surface_; }
     bool Transmits() const { return transmits_; }
 
   protected:
     /// "Name[ substrate = …, coating = …, transmits|opaque ]" for ToString.
     std::string Describe(const std::string &name) const;
-    /// Picks lobe 0 or 1 ∝ its probability (ListNearDelta's lobes, without building a full list).
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override;
 
   private:
-    /// The (at most two) lobes of a query, as ListNearDelta lists them; returns their count.
-    int Lobes(const ScatterQuery &q, std::array<NearDeltaLobe, 2> &out) const;
+    class Prepared;
     /// One carried wavelength of a query: the indices on wi's side and the far side, and the
     /// unpolarised R and T of the query's regime (coherent, or incoherent for rayOptics).
     struct Wave {
@@ -83,7 +81,8 @@ class SmoothKernel : public Material {
         double nI = 1, nT = 1, eta = 1;
         double R = 0, T = 0;
     };
-    Wave Evaluate(const ScatterQuery &q, int i) const;
+    /// With the layers' thicknesses at the hit (SmoothSurface::Thicknesses).
+    Wave Evaluate(const ScatterQuery &q, int i, const double *thickness) const;
     /// Evaluate without R and T: only the indices (ok: the substrate has index data at λ).
     Wave Sides(const ScatterQuery &q, int i) const;
     /// From the substrate side: a transmitting surface hit from below.
@@ -102,10 +101,13 @@ bool IsTransparent(const ComplexSpectrum &ior);
 /// and rough kernels take one the same way): a reference to a `thin_film` or `multilayer`
 /// definition, whose layers go on the kernel's own substrate. Absent: a bare surface.
 ParamSpec CoatingSpec();
-/// Reads `coating` (nullptr if absent). Throws phasor::Error at the parameter if it names
-/// something that is not a coating definition (naming what it is) or a definition that sets its
-/// own `substrate_ior` (the host's index is the substrate).
+/// Reads `coating` (nullptr if absent): the layers of the CoatingKernel it names. Throws
+/// phasor::Error at the parameter if it names something that is not a coating definition (naming
+/// what it is) or a definition that sets its own `substrate_ior` (the host's index is the substrate).
 std::shared_ptr<const Coating> ReadCoating(const ParamDict &dict, BuildContext &ctx);
+/// Reads `substrate` (required; `grating`, `harvey_shack`): the smooth kernel it names. Throws
+/// phasor::Error at the parameter if it names another kind of kernel (naming what it is).
+std::shared_ptr<const SmoothKernel> ReadSubstrate(const ParamDict &dict, BuildContext &ctx);
 
 /// The thickest a layer stack is taken to be coherent: above it the model is far outside its range
 /// (docs/kernels.md "Layer stacks": thinner than the light's coherence length) and a definition
@@ -116,13 +118,14 @@ void WarnIfBeyondCoherence(const Coating &coating, const ParamDict &dict, const 
                            BuildContext &ctx);
 
 /// A smooth kernel that is a coating definition over its own substrate (`thin_film`,
-/// `multilayer`): usable as a surface on its own and, through AsCoating, as another kernel's
-/// `coating`. Transmits when `substrate_ior` is transparent.
+/// `multilayer`): usable as a surface on its own and, through Layers (ReadCoating), as another
+/// kernel's `coating`. Transmits when `substrate_ior` is transparent.
 class CoatingKernel : public SmoothKernel {
   public:
     CoatingKernel(std::shared_ptr<const ComplexSpectrum> substrate, std::shared_ptr<const Coating> coating)
         : SmoothKernel(SmoothSurface(substrate, 0, coating), IsTransparent(*substrate)), coating_(std::move(coating)) {}
-    std::shared_ptr<const Coating> AsCoating() const override { return coating_; }
+    /// The layers, which `coating = @name` puts on another kernel's substrate.
+    const std::shared_ptr<const Coating> &Layers() const { return coating_; }
 
     /// The `substrate_ior` parameter both definitions share (default 1: a free-standing film).
     static ParamSpec SubstrateSpec();

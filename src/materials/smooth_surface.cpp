@@ -18,8 +18,23 @@ std::string Coating::ToString() const {
     return os.str();
 }
 
+void SmoothSurface::Thicknesses(const TextureEvalContext &tex, double *thickness) const {
+    for (int j = 0; j < LayerCount(); ++j) thickness[j] = coating_->layers[std::size_t(j)].thickness.Eval(tex);
+}
+
 template <typename F>
-auto SmoothSurface::WithLayers(double lambda, bool fromInside, const TextureEvalContext &tex, F &&f) const {
+auto SmoothSurface::WithThicknesses(const TextureEvalContext &tex, F &&f) const {
+    // Short coatings (every film, most stacks) on the stack; long ones on the heap.
+    constexpr int Small = 8;
+    std::array<double, Small> small;
+    std::vector<double> big(LayerCount() > Small ? LayerCount() : 0);
+    double *d = LayerCount() > Small ? big.data() : small.data();
+    Thicknesses(tex, d);
+    return f(d);
+}
+
+template <typename F>
+auto SmoothSurface::WithLayers(double lambda, bool fromInside, const double *thickness, F &&f) const {
     // Short coatings (every film, most stacks) live on the stack; long ones on the heap.
     constexpr int Small = 8;
     const int count = LayerCount();
@@ -27,26 +42,40 @@ auto SmoothSurface::WithLayers(double lambda, bool fromInside, const TextureEval
     std::vector<Layer> big(count > Small ? count : 0);
     Layer *layers = count > Small ? big.data() : small.data();
     for (int j = 0; j < count; ++j) {
-        const CoatingLayer &c = coating_->layers[fromInside ? count - 1 - j : j];
-        layers[j] = Layer{c.ior->Eval(lambda), c.thickness.Eval(tex)};
+        const int k = fromInside ? count - 1 - j : j;
+        layers[j] = Layer{coating_->layers[std::size_t(k)].ior->Eval(lambda), thickness[k]};
     }
     return f(std::span<const Layer>(layers, count));
 }
 
 StackResponse SmoothSurface::Response(double lambda, double etaOutside, double cosI, bool fromInside,
-                                      const TextureEvalContext &tex, Complex substrate) const {
+                                      const TextureEvalContext &tex) const {
+    return WithThicknesses(tex, [&](const double *d) {
+        return Response(lambda, etaOutside, cosI, fromInside, d, SubstrateIndex(lambda));
+    });
+}
+
+StackResponse SmoothSurface::Response(double lambda, double etaOutside, double cosI, bool fromInside,
+                                      const double *thickness, Complex substrate) const {
     const Complex outside(etaOutside, 0);
-    return WithLayers(lambda, fromInside, tex, [&](std::span<const Layer> layers) {
+    return WithLayers(lambda, fromInside, thickness, [&](std::span<const Layer> layers) {
         return LayerStackResponse(lambda, fromInside ? substrate : outside, Complex(cosI, 0), layers,
                                   fromInside ? outside : substrate);
     });
 }
 
 IncoherentStackResponse SmoothSurface::IncoherentResponse(double lambda, double etaOutside, double cosI,
-                                                          bool fromInside, const TextureEvalContext &tex,
+                                                          bool fromInside, const TextureEvalContext &tex) const {
+    return WithThicknesses(tex, [&](const double *d) {
+        return IncoherentResponse(lambda, etaOutside, cosI, fromInside, d, SubstrateIndex(lambda));
+    });
+}
+
+IncoherentStackResponse SmoothSurface::IncoherentResponse(double lambda, double etaOutside, double cosI,
+                                                          bool fromInside, const double *thickness,
                                                           Complex substrate) const {
     const Complex outside(etaOutside, 0);
-    return WithLayers(lambda, fromInside, tex, [&](std::span<const Layer> layers) {
+    return WithLayers(lambda, fromInside, thickness, [&](std::span<const Layer> layers) {
         return LayerStackIncoherent(lambda, fromInside ? substrate : outside, Complex(cosI, 0), layers,
                                     fromInside ? outside : substrate);
     });
@@ -54,16 +83,26 @@ IncoherentStackResponse SmoothSurface::IncoherentResponse(double lambda, double 
 
 Vec2 SmoothSurface::ShearVector(double lambda, double etaOutside, const Vec3 &wi, bool fromInside,
                                 const TextureEvalContext &tex) const {
+    return WithThicknesses(tex, [&](const double *d) { return ShearVector(lambda, etaOutside, wi, fromInside, d); });
+}
+
+Vec2 SmoothSurface::ShearVector(double lambda, double etaOutside, const Vec3 &wi, bool fromInside,
+                                const double *thickness) const {
     const double tangential = std::hypot(wi.x, wi.y);
     if (LayerCount() == 0 || !(tangential > 0)) return Vec2(0, 0);
-    return Vec2(-wi.x, -wi.y) * (Shear(lambda, etaOutside, std::abs(wi.z), fromInside, tex) / tangential);
+    return Vec2(-wi.x, -wi.y) * (Shear(lambda, etaOutside, std::abs(wi.z), fromInside, thickness) / tangential);
 }
 
 double SmoothSurface::Shear(double lambda, double etaOutside, double cosI, bool fromInside,
                             const TextureEvalContext &tex) const {
+    return WithThicknesses(tex, [&](const double *d) { return Shear(lambda, etaOutside, cosI, fromInside, d); });
+}
+
+double SmoothSurface::Shear(double lambda, double etaOutside, double cosI, bool fromInside,
+                            const double *thickness) const {
     if (!coating_) return 0;
     const Complex incident = fromInside ? SubstrateIndex(lambda) : Complex(etaOutside, 0);
-    return WithLayers(lambda, fromInside, tex, [&](std::span<const Layer> layers) {
+    return WithLayers(lambda, fromInside, thickness, [&](std::span<const Layer> layers) {
         return LayerStackShear(incident, Complex(cosI, 0), layers);
     });
 }

@@ -57,6 +57,11 @@ class SmoothSurface {
     const Coating *GetCoating() const { return coating_.get(); }
     int LayerCount() const { return coating_ ? int(coating_->layers.size()) : 0; }
 
+    /// The layers' thicknesses at one hit [m], outer layer first: the `thickness` the responses
+    /// below take. A kernel prepared for a hit evaluates textured thicknesses once this way (a
+    /// bubble's noise-driven film), instead of once per wavelength and response.
+    void Thicknesses(const TextureEvalContext &tex, double *thickness) const;
+
     /// The response to a plane wave of vacuum wavelength lambda [m] that arrives with
     /// cosθ = cosI ∈ (0, 1] from the outside (index etaOutside; then the layers, then the
     /// substrate) or, if fromInside, from the substrate (then the layers in reverse order, then
@@ -64,22 +69,19 @@ class SmoothSurface {
     /// layer_stack.h (fresnel.h's sign conventions, T with the power factor between the incident
     /// and the exit medium, so a lossless stack has R + T = 1 per polarisation).
     StackResponse Response(double lambda, double etaOutside, double cosI, bool fromInside,
-                           const TextureEvalContext &tex) const {
-        return Response(lambda, etaOutside, cosI, fromInside, tex, SubstrateIndex(lambda));
-    }
-    /// The same with the substrate's index at lambda given (SubstrateIndex(lambda): a caller that
-    /// already has it saves a second evaluation of a tabulated or modelled index).
-    StackResponse Response(double lambda, double etaOutside, double cosI, bool fromInside,
-                           const TextureEvalContext &tex, Complex substrate) const;
+                           const TextureEvalContext &tex) const;
+    /// The same with the layers' thicknesses (Thicknesses; nullptr for a bare surface) and the
+    /// substrate's index at lambda (SubstrateIndex(lambda)) given, as a caller that already has them
+    /// passes them.
+    StackResponse Response(double lambda, double etaOutside, double cosI, bool fromInside, const double *thickness,
+                           Complex substrate) const;
     /// The same wave's incoherent response (layer_stack.h's LayerStackIncoherent: multiple
     /// reflections inside every propagating layer summed in power), the ray-optics limit of a
     /// coated surface. Equals Response's R and T for a bare surface.
     IncoherentStackResponse IncoherentResponse(double lambda, double etaOutside, double cosI, bool fromInside,
-                                               const TextureEvalContext &tex) const {
-        return IncoherentResponse(lambda, etaOutside, cosI, fromInside, tex, SubstrateIndex(lambda));
-    }
+                                               const TextureEvalContext &tex) const;
     IncoherentStackResponse IncoherentResponse(double lambda, double etaOutside, double cosI, bool fromInside,
-                                               const TextureEvalContext &tex, Complex substrate) const;
+                                               const double *thickness, Complex substrate) const;
     /// Lateral shear [m] of the coating for that wave (LayerStackShear: 2·d·tanθ_t for one film);
     /// 0 for a bare surface.
     double Shear(double lambda, double etaOutside, double cosI, bool fromInside, const TextureEvalContext &tex) const;
@@ -88,13 +90,19 @@ class SmoothSurface {
     /// zero at normal incidence and for a bare surface.
     Vec2 ShearVector(double lambda, double etaOutside, const Vec3 &wi, bool fromInside,
                      const TextureEvalContext &tex) const;
+    Vec2 ShearVector(double lambda, double etaOutside, const Vec3 &wi, bool fromInside, const double *thickness) const;
 
     std::string ToString() const;
 
   private:
-    /// Calls f(span of the coating's layers at lambda, in the order the wave meets them).
+    /// Calls f(span of the coating's layers at lambda, in the order the wave meets them), their
+    /// thicknesses from `thickness` (outer first).
     template <typename F>
-    auto WithLayers(double lambda, bool fromInside, const TextureEvalContext &tex, F &&f) const;
+    auto WithLayers(double lambda, bool fromInside, const double *thickness, F &&f) const;
+    /// Calls f(thicknesses at tex) (Thicknesses into a buffer of its own).
+    template <typename F>
+    auto WithThicknesses(const TextureEvalContext &tex, F &&f) const;
+    double Shear(double lambda, double etaOutside, double cosI, bool fromInside, const double *thickness) const;
 
     std::shared_ptr<const ComplexSpectrum> substrate_;
     double cauchyB_ = 0;  // [m²]

@@ -70,6 +70,7 @@ std::string FindTransmission(const Material &m) {
     constexpr std::array<double, 6> cosines = {1, 0.6, 0.15, -0.15, -0.6, -1};
     constexpr std::array<double, 2> phis = {0.3, 2.4};
     const std::array<Vec2, 2> uvs = {Vec2(0.13, 0.61), Vec2(0.77, 0.29)};
+    ScratchBuffer scratch;
     for (const double c : cosines)
         for (const double phi : phis)
             for (const Vec2 &uv : uvs) {
@@ -78,20 +79,20 @@ std::string FindTransmission(const Material &m) {
                 q.wi = Vec3(s * std::cos(phi), s * std::sin(phi), c);
                 q.wl = &wl;
                 q.tex.uv = uv;
-                NearDeltaLobes lobes;
-                m.ListNearDelta(q, lobes);
-                for (const NearDeltaLobe &l : lobes)
+                scratch.Reset();
+                const PreparedKernel &k = m.Prepare(q, scratch);
+                for (const NearDeltaLobe &l : k.ListNearDelta())
                     if (l.flags & ScatterTransmission) return "it lists a transmitted lobe";
-                for (int k = 0; k < 16; ++k)
+                for (int i = 0; i < 16; ++i)
                     for (int j = 0; j < 2; ++j) {
-                        auto smp = m.Sample(q, (k + 0.5) / 16, Vec2(0.25 + 0.5 * j, 0.5));
+                        auto smp = k.Sample((i + 0.5) / 16, Vec2(0.25 + 0.5 * j, 0.5));
                         if (smp && ((smp->flags & ScatterTransmission) || smp->wo.z * q.wi.z < 0))
                             return "it samples directions through the surface";
                     }
-                for (int k = 0; k < 8; ++k) {
-                    const double a = 2 * Pi * (k + 0.5) / 8, cz = k % 2 ? 0.3 : 0.9, sz = std::sqrt(1 - cz * cz);
+                for (int i = 0; i < 8; ++i) {
+                    const double a = 2 * Pi * (i + 0.5) / 8, cz = i % 2 ? 0.3 : 0.9, sz = std::sqrt(1 - cz * cz);
                     const Vec3 wo(sz * std::cos(a), sz * std::sin(a), c > 0 ? -cz : cz);
-                    if (!m.Eval(q, wo).IsZero()) return "it scatters into the far side (Eval)";
+                    if (!k.Eval(wo).IsZero()) return "it scatters into the far side (Eval)";
                 }
             }
     return "";
@@ -99,7 +100,7 @@ std::string FindTransmission(const Material &m) {
 
 }  // namespace
 
-class TwoSidedMaterial final : public Material {
+class TwoSidedMaterial final : public Material, public ReferenceDirection {
   public:
     /// The children must have a combined energy sense (CombinedEnergySense; Create checks it).
     TwoSidedMaterial(std::shared_ptr<const Material> front, std::shared_ptr<const Material> back)
@@ -165,39 +166,11 @@ class TwoSidedMaterial final : public Material {
         return p;
     }
 
-    unsigned Capabilities(const ScatterQuery &q) const override {
-        ScatterQuery local;
-        return Side(q, &local).Capabilities(local);
-    }
-
-    /// The child's lobes (same ids, shifts and indices), directions mirrored back for a query from below.
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
-        ScatterQuery local;
-        Side(q, &local).ListNearDelta(local, out);
-        if (!Below(q)) return;
-        for (int k = 0; k < out.count; ++k)
-            for (Vec3 &w : out.lobe[k].wo) w = Mirror(w);
-    }
-
-    /// The child's continuous lobes (same ids).
-    void ContinuousLobes(const ScatterQuery &q, ContinuousLobeIds &out) const override {
-        ScatterQuery local;
-        Side(q, &local).ContinuousLobes(local, out);
-    }
-
-    /// The child's response; from below towards the mirrored wo, in the mirrored s/p basis.
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        ScatterQuery local;
-        const Material &m = Side(q, &local);
-        if (!Below(q)) return m.EvalLobe(local, lobe, wo);
-        std::optional<LobeResponse> r = m.EvalLobe(local, lobe, Mirror(wo));
-        if (!r) return std::nullopt;
-        for (int i = 0; i < q.wl->Count(); ++i) {
-            r->jones[i] = MirrorBasis(r->jones[i]);
-            r->mueller[i] = MirrorBasis(r->mueller[i]);
-            r->coherence.incoherent[i] = MirrorBasis(r->coherence.incoherent[i]);
-        }
-        return r;
+    /// The child of wi's side prepared for the query (mirrored from below): its lobes (same ids,
+    /// shifts and indices; directions mirrored back from below) and continuous lobes (same ids).
+    /// EvalLobe: the child's response; from below towards the mirrored wo, in the mirrored s/p basis.
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(*this, q, scratch);
     }
 
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
@@ -205,7 +178,7 @@ class TwoSidedMaterial final : public Material {
     bool HasCoherenceTerms() const override { return front_->HasCoherenceTerms() || back_->HasCoherenceTerms(); }
     /// The front face's reference direction (the side the shading frame describes).
     std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override {
-        return front_->ReferenceAngle(tex);
+        return ReferenceAngleOf(*front_, tex);
     }
 
     void CheckShape(const Shape &shape) const override {
@@ -221,34 +194,58 @@ class TwoSidedMaterial final : public Material {
     }
 
   private:
-    static bool Below(const ScatterQuery &q) { return q.wi.z < 0; }
+    /// The sheet at one hit: the child of wi's side, prepared for wi mirrored onto its upper side
+    /// when wi is below.
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const TwoSidedMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch)
+            : PreparedKernel(q), below_(q.wi.z < 0) {
+            ScatterQuery local = q;
+            if (below_) local.wi = Mirror(q.wi);
+            child_ = &(below_ ? m.back_ : m.front_)->Prepare(local, scratch);
+            caps_ = child_->Capabilities();
+            continuous_ = child_->ContinuousLobes();
+            const std::span<const NearDeltaLobe> lobes = child_->ListNearDelta();
+            if (!below_ || lobes.empty()) {
+                lobes_ = lobes;
+                return;
+            }
+            LobeList mirrored(scratch, int(lobes.size()));
+            for (const NearDeltaLobe &l : lobes) {
+                NearDeltaLobe &c = mirrored.Add();
+                c = l;
+                for (Vec3 &w : c.wo) w = Mirror(w);
+            }
+            lobes_ = mirrored.Lobes();
+        }
 
-    /// The kernel that answers q, and in `local` the query it is asked (mirrored from below).
-    const Material &Side(const ScatterQuery &q, ScatterQuery *local) const {
-        *local = q;
-        if (!Below(q)) return *front_;
-        local->wi = Mirror(q.wi);
-        return *back_;
-    }
+        std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
+            if (!below_) return child_->EvalLobe(lobe, wo);
+            std::optional<LobeResponse> r = child_->EvalLobe(lobe, Mirror(wo));
+            if (!r) return std::nullopt;
+            for (int i = 0; i < q_.wl->Count(); ++i) {
+                r->jones[i] = MirrorBasis(r->jones[i]);
+                r->mueller[i] = MirrorBasis(r->mueller[i]);
+                r->coherence.incoherent[i] = MirrorBasis(r->coherence.incoherent[i]);
+            }
+            return r;
+        }
 
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
-        ScatterQuery local;
-        std::optional<ScatterSample> s = Side(q, &local).Sample(local, u0, u);
-        if (s && Below(q)) s->wo = Mirror(s->wo);
-        return s;
-    }
+      private:
+        std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override {
+            std::optional<ScatterSample> s = child_->Sample(u0, u);
+            if (s && below_) s->wo = Mirror(s->wo);
+            return s;
+        }
+        SampledSpectrum EvalContinuous(const Vec3 &wo) const override { return child_->Eval(below_ ? Mirror(wo) : wo); }
+        double PdfContinuous(const Vec3 &wo) const override { return child_->Pdf(below_ ? Mirror(wo) : wo); }
+        KernelValue EvalPdfContinuous(const Vec3 &wo, const IncidentWave &w) const override {
+            return child_->EvalPdf(below_ ? Mirror(wo) : wo, w);
+        }
 
-    SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        ScatterQuery local;
-        const Material &m = Side(q, &local);
-        return m.Eval(local, Below(q) ? Mirror(wo) : wo);
-    }
-
-    double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const override {
-        ScatterQuery local;
-        const Material &m = Side(q, &local);
-        return m.Pdf(local, Below(q) ? Mirror(wo) : wo);
-    }
+        bool below_;  // wi below the shading normal: the back, mirrored
+        const PreparedKernel *child_ = nullptr;
+    };
 
     std::shared_ptr<const Material> front_, back_;  // the same object for `material`
     EnergySense sense_ = EnergySense::Reciprocal;  // CombinedEnergySense of front and back

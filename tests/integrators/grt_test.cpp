@@ -39,7 +39,8 @@ double PixelEstimate(const Scene &scene, int x, int y, int index = 0, int count 
     SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
     PathStats stats;
     stats.sample = PixelSampleIndex{index, count, seed};
-    SampledSpectrum L = integrator.EstimatePixel(scene, x, y, wl, *sampler, stats);
+    ScratchBuffer scratch;
+    SampledSpectrum L = integrator.EstimatePixel(scene, x, y, wl, *sampler, scratch, stats);
     const SensorResponse &r = scene.GetDetector().Response();
     double v = 0;
     for (int i = 0; i < wl.Count(); ++i)

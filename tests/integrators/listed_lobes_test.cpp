@@ -32,31 +32,41 @@ class TwoLobeTestMaterial final : public Material {
     static std::unique_ptr<Material> Create(const ParamDict &d, BuildContext &) {
         return std::make_unique<TwoLobeTestMaterial>(d.GetNumber("a0"), d.GetNumber("a1"), d.GetNumber("period"));
     }
-    unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
-        for (int j = 0; j < 2; ++j) {
-            if (a_[j] == 0) continue;
-            const Vec2 shift(j * 2 * Pi / period_, 0);
-            Vec3 wo;
-            if (!NearDeltaDirection(q.wi, 1, 1, shift, q.wl->lambda[0], false, &wo)) continue;
-            NearDeltaLobe &l = out.Add();
-            l.id = j;
-            l.flags = ScatterReflection | ScatterNearDelta;
-            l.shift = shift;
-            l.nIn.fill(1);
-            l.nOut.fill(1);
-            for (int i = 0; i < q.wl->Count(); ++i) {
-                NearDeltaDirection(q.wi, 1, 1, shift, q.wl->lambda[i], false, &l.wo[i]);
-                l.weight[i] = a_[j];
-            }
-            if (j == 1 && q.wl->Count() > 1) l.flags |= ScatterDispersive;
-            l.prob = a_[j] / (a_[0] + a_[1]);
-        }
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(*this, q, scratch);
     }
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &, int, const Vec3 &) const override { return std::nullopt; }
     std::string ToString() const override { return "TwoLobeTestMaterial"; }
 
   private:
+    /// Lists the two lobes (the default Sample picks one of them).
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const TwoLobeTestMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch) : PreparedKernel(q) {
+            caps_ = CapNearDelta;
+            LobeList out(scratch, 2);
+            for (int j = 0; j < 2; ++j) {
+                if (m.a_[j] == 0) continue;
+                const Vec2 shift(j * 2 * Pi / m.period_, 0);
+                Vec3 wo;
+                if (!NearDeltaDirection(q.wi, 1, 1, shift, q.wl->lambda[0], false, &wo)) continue;
+                NearDeltaLobe &l = out.Add();
+                l.id = j;
+                l.flags = ScatterReflection | ScatterNearDelta;
+                l.shift = shift;
+                l.nIn.fill(1);
+                l.nOut.fill(1);
+                for (int i = 0; i < q.wl->Count(); ++i) {
+                    NearDeltaDirection(q.wi, 1, 1, shift, q.wl->lambda[i], false, &l.wo[i]);
+                    l.weight[i] = m.a_[j];
+                }
+                if (j == 1 && q.wl->Count() > 1) l.flags |= ScatterDispersive;
+                l.prob = m.a_[j] / (m.a_[0] + m.a_[1]);
+            }
+            lobes_ = out.Lobes();
+        }
+        std::optional<LobeResponse> EvalLobe(int, const Vec3 &) const override { return std::nullopt; }
+    };
+
     double a_[2], period_;
 };
 
@@ -101,7 +111,8 @@ double OneSample(const Scene &scene, int x, int y) {
     SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
     PathStats stats;
     stats.sample = PixelSampleIndex{0, 1, 1};
-    const SampledSpectrum L = integrator.EstimatePixel(scene, x, y, wl, *sampler, stats);
+    ScratchBuffer scratch;
+    const SampledSpectrum L = integrator.EstimatePixel(scene, x, y, wl, *sampler, scratch, stats);
     double v = 0;
     for (int i = 0; i < wl.Count(); ++i)
         if (wl.pdf[i] > 0) v += scene.GetDetector().Response().Intensity(wl.lambda[i]) * L[i] / wl.pdf[i];
@@ -122,10 +133,9 @@ double Expected(const Scene &scene, int x, int y, bool laser) {
     ScatterQuery q;
     q.wi = si->shading.ToLocal(-ds->ray.d);
     q.wl = &wl;
-    NearDeltaLobes lobes;
-    si->material->ListNearDelta(q, lobes);
+    ScratchBuffer scratch;
     double v = 0;
-    for (const NearDeltaLobe &l : lobes) {
+    for (const NearDeltaLobe &l : si->material->Prepare(q, scratch).ListNearDelta()) {
         const double cosG = -Dot(s, si->shading.ToWorld(l.wo[0])), sin2 = std::max(0.0, 1 - cosG * cosG);
         v += l.weight[0] * E * std::exp(-0.5 * sin2 / var) / (2 * Pi * var);
     }

@@ -59,7 +59,8 @@ std::pair<double, int> PerSampleDifference(const std::string &file, const Define
                     PathStats ps;
                     ps.sample = PixelSampleIndex{s, spp, 5};
                     SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
-                    return in.EstimatePixel(scene, x, y, wl, *sampler, ps);
+                    ScratchBuffer scratch;
+                    return in.EstimatePixel(scene, x, y, wl, *sampler, scratch, ps);
                 };
                 const SampledSpectrum va = run(*a, ia), vb = run(*b, ib);
                 double m = 0;

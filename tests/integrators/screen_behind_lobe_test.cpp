@@ -53,7 +53,8 @@ double OneSample(const Scene &scene, int x, int spp = 1, int index = 0) {
     SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
     PathStats stats;
     stats.sample = PixelSampleIndex{index, spp, 7};
-    const SampledSpectrum L = integrator.EstimatePixel(scene, x, 0, wl, *sampler, stats);
+    ScratchBuffer scratch;
+    const SampledSpectrum L = integrator.EstimatePixel(scene, x, 0, wl, *sampler, scratch, stats);
     double v = 0;
     for (int i = 0; i < wl.Count(); ++i)
         if (wl.pdf[i] > 0) v += scene.GetDetector().Response().Intensity(wl.lambda[i]) * L[i] / wl.pdf[i];

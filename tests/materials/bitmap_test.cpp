@@ -202,7 +202,7 @@ TEST_F(Bitmap, AutoReadsDataRawAndColoursDecoded) {
     q.wi = Vec3(0, 0, 1);
     q.wl = &wl;
     q.tex = TextureEvalContext::AtUV(Vec2(0.5, 0.5));
-    EXPECT_NEAR(paint->Eval(q, Vec3(0, 0, 1))[0] * Pi, decoded, 1.2e-5);
+    EXPECT_NEAR(Prep(*paint, q)->Eval(Vec3(0, 0, 1))[0] * Pi, decoded, 1.2e-5);
 }
 
 // The spectral kind: an RGB image without channel/scale/offset; its value is Smits' uplift of the

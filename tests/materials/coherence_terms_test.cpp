@@ -56,14 +56,14 @@ TEST(CoherenceTerms, RoughAndGratedCoatedSurfacesCarryTheCoatingsTerms) {
             const double th = Radians(thetaDeg);
             q.wi = Vec3(std::sin(th) * std::cos(0.3), std::sin(th) * std::sin(0.3), std::cos(th));
             // The coated conductor's own terms at θ.
-            const auto base = metal->EvalLobe(q, 0, ReflectLocal(q.wi));
+            const auto base = Prep(*metal, q)->EvalLobe(0, ReflectLocal(q.wi));
             ASSERT_TRUE(base);
             EXPECT_EQ(base->coherence.any, coated);
             // harvey_shack: α_spec × the substrate's incoherent response, the same shear.
-            NearDeltaLobes lobes;
-            rough->ListNearDelta(q, lobes);
-            ASSERT_GE(lobes.count, 1);
-            const auto spec = rough->EvalLobe(q, lobes.lobe[0].id, lobes.lobe[0].wo[0]);
+            const Prep kRough(*rough, q);
+            const std::span<const NearDeltaLobe> lobes = kRough->ListNearDelta();
+            ASSERT_GE(lobes.size(), 1u);
+            const auto spec = kRough->EvalLobe(lobes[0].id, lobes[0].wo[0]);
             ASSERT_TRUE(spec);
             EXPECT_EQ(spec->coherence.any, coated);
             if (coated)
@@ -78,11 +78,11 @@ TEST(CoherenceTerms, RoughAndGratedCoatedSurfacesCarryTheCoatingsTerms) {
                 }
             // The grating's reflected orders: the order's share J_j²·scale (= M00 over the substrate's
             // coherent R at the source's angle) × the substrate's incoherent response there.
-            NearDeltaLobes orders;
-            grooves->ListNearDelta(q, orders);
-            ASSERT_GE(orders.count, 3);
+            const Prep kGrooves(*grooves, q);
+            const std::span<const NearDeltaLobe> orders = kGrooves->ListNearDelta();
+            ASSERT_GE(orders.size(), 3u);
             for (const NearDeltaLobe &o : orders) {
-                const auto r = grooves->EvalLobe(q, o.id, o.wo[0]);
+                const auto r = kGrooves->EvalLobe(o.id, o.wo[0]);
                 ASSERT_TRUE(r);
                 EXPECT_EQ(r->coherence.any, coated);
                 if (!coated) continue;
@@ -90,7 +90,7 @@ TEST(CoherenceTerms, RoughAndGratedCoatedSurfacesCarryTheCoatingsTerms) {
                     if (!(o.weight[i] > 0)) continue;
                     ScatterQuery src = q;  // the substrate as the light from the order's source direction meets it
                     src.wi = o.wo[std::size_t(i)];
-                    const auto sub = metal->EvalLobe(src, 0, ReflectLocal(src.wi));
+                    const auto sub = Prep(*metal, src)->EvalLobe(0, ReflectLocal(src.wi));
                     ASSERT_TRUE(sub);
                     const double share = r->mueller[i].m[0][0] / sub->mueller[i].m[0][0];
                     ExpectMuellerNear(r->coherence.incoherent[i], sub->coherence.incoherent[i] * share,

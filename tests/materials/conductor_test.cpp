@@ -27,7 +27,7 @@ TEST(Conductor, WeightIsComplexFresnel) {
         ScatterQuery q;
         q.wi = DirectionFromCosTheta(cosI, 1.1);
         q.wl = &wl;
-        auto s = m->Sample(q, 0.3, Vec2(0.2, 0.7));
+        auto s = Prep(*m, q)->Sample(0.3, Vec2(0.2, 0.7));
         ASSERT_TRUE(s);
         EXPECT_EQ(s->flags, unsigned(ScatterReflection | ScatterNearDelta));
         EXPECT_EQ(s->pdf, 1);
@@ -46,7 +46,7 @@ TEST(Conductor, NkSpectraEqualTheComplexIor) {
     ScatterQuery q;
     q.wi = DirectionFromCosTheta(0.3, 0.0);
     q.wl = &wl;
-    auto sa = a->Sample(q, 0.5, Vec2()), sb = b->Sample(q, 0.5, Vec2());
+    auto sa = Prep(*a, q)->Sample(0.5, Vec2()), sb = Prep(*b, q)->Sample(0.5, Vec2());
     ASSERT_TRUE(sa && sb);
     for (int j = 0; j < NumWavelengths; ++j) EXPECT_EQ(sa->weight[j], sb->weight[j]);
 }
@@ -60,7 +60,7 @@ TEST(Conductor, TabulatedMetalsPerWavelength) {
         ScatterQuery q;
         q.wi = DirectionFromCosTheta(0.8, 0.0);
         q.wl = &wl;
-        auto s = m->Sample(q, 0.5, Vec2());
+        auto s = Prep(*m, q)->Sample(0.5, Vec2());
         ASSERT_TRUE(s);
         for (int j = 0; j < NumWavelengths; ++j)
             EXPECT_NEAR(s->weight[j], FresnelConductor(0.8, MetalIndex(metal, wl.lambda[j])), 1e-15)
@@ -72,9 +72,9 @@ TEST(Conductor, TabulatedMetalsPerWavelength) {
     ScatterQuery q;
     q.wi = Vec3(0, 0, 1);
     q.wl = &blue;
-    const double rBlue = au->Sample(q, 0.5, Vec2())->weight[0];
+    const double rBlue = Prep(*au, q)->Sample(0.5, Vec2())->weight[0];
     q.wl = &red;
-    const double rRed = au->Sample(q, 0.5, Vec2())->weight[0];
+    const double rRed = Prep(*au, q)->Sample(0.5, Vec2())->weight[0];
     EXPECT_GT(rRed, rBlue + 0.4);
 }
 
@@ -85,7 +85,7 @@ TEST(Conductor, DefaultIsAluminium) {
     ScatterQuery q;
     q.wi = DirectionFromCosTheta(0.9, 0.0);
     q.wl = &wl;
-    EXPECT_EQ(def->Sample(q, 0.5, Vec2())->weight[0], al->Sample(q, 0.5, Vec2())->weight[0]);
+    EXPECT_EQ(Prep(*def, q)->Sample(0.5, Vec2())->weight[0], Prep(*al, q)->Sample(0.5, Vec2())->weight[0]);
 }
 
 TEST(Conductor, OutsideMediumEntersTheFresnelTerm) {
@@ -95,7 +95,7 @@ TEST(Conductor, OutsideMediumEntersTheFresnelTerm) {
     q.wi = DirectionFromCosTheta(0.6, 0.0);
     q.wl = &wl;
     q.etaOutside = 1.33;
-    EXPECT_NEAR(m->Sample(q, 0.5, Vec2())->weight[0], FresnelComplex(0.6, 1.33, Complex(0.2, 3.0)), 1e-15);
+    EXPECT_NEAR(Prep(*m, q)->Sample(0.5, Vec2())->weight[0], FresnelComplex(0.6, 1.33, Complex(0.2, 3.0)), 1e-15);
 }
 
 TEST(Conductor, ConflictingOrInvalidParametersAreErrors) {

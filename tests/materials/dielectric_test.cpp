@@ -32,8 +32,8 @@ TEST(Dielectric, LobeChoiceIsFresnelAtTheHero) {
         const ScatterQuery q = Query(DirectionFromCosTheta(cosI, 0.4), wl);
         const double eta = cosI > 0 ? 1.5 : 1 / 1.5;
         const double r = FresnelDielectric(std::abs(cosI), eta);
-        auto below = m->Sample(q, r * (1 - 1e-9), Vec2(0.5, 0.5));
-        auto above = m->Sample(q, r * (1 + 1e-9) + 1e-12, Vec2(0.5, 0.5));
+        auto below = Prep(*m, q)->Sample(r * (1 - 1e-9), Vec2(0.5, 0.5));
+        auto above = Prep(*m, q)->Sample(r * (1 + 1e-9) + 1e-12, Vec2(0.5, 0.5));
         ASSERT_TRUE(below && above);
         EXPECT_EQ(below->lobe, 0);
         EXPECT_TRUE(below->flags & ScatterReflection);
@@ -56,7 +56,7 @@ TEST(Dielectric, TotalInternalReflectionFromInside) {
     const SampledWavelengths wl = TestWavelengths(550e-9);
     const ScatterQuery q = Query(DirectionFromCosTheta(-0.5, 1.0), wl);  // 60° > critical 41.8°
     for (double u0 : {0.0, 0.5, 1 - 1e-12}) {
-        auto s = m->Sample(q, u0, Vec2(0.1, 0.9));
+        auto s = Prep(*m, q)->Sample(u0, Vec2(0.1, 0.9));
         ASSERT_TRUE(s);
         EXPECT_TRUE(s->flags & ScatterReflection);
         EXPECT_EQ(s->pdf, 1);
@@ -69,7 +69,7 @@ TEST(Dielectric, IndexMatchedPassesStraightThrough) {
     auto m = Dielectric(1.0);
     const SampledWavelengths wl = TestWavelengths(400e-9);
     const ScatterQuery q = Query(DirectionFromCosTheta(0.3, 2.0), wl);
-    auto s = m->Sample(q, 0.0, Vec2(0.5, 0.5));
+    auto s = Prep(*m, q)->Sample(0.0, Vec2(0.5, 0.5));
     ASSERT_TRUE(s);
     EXPECT_TRUE(s->flags & ScatterTransmission);
     EXPECT_LT(Length(s->wo + q.wi), 1e-15);
@@ -81,7 +81,7 @@ TEST(Dielectric, OutsideMediumSetsTheRelativeIndex) {
     const SampledWavelengths wl = TestWavelengths(550e-9);
     ScatterQuery q = Query(DirectionFromCosTheta(0.6, 0.0), wl);
     q.etaOutside = 1.33;  // glass under water
-    auto s = m->Sample(q, 0.999999, Vec2(0.5, 0.5));
+    auto s = Prep(*m, q)->Sample(0.999999, Vec2(0.5, 0.5));
     ASSERT_TRUE(s);
     EXPECT_NEAR(s->eta, 1.5 / 1.33, 1e-15);
     EXPECT_NEAR(s->pdf, 1 - FresnelDielectric(0.6, 1.5 / 1.33), 1e-15);
@@ -94,7 +94,7 @@ TEST(Dielectric, CauchyDispersion) {
     for (double lambda : {400e-9, 550e-9, 700e-9}) {
         const SampledWavelengths wl = TestWavelengths(lambda);
         const ScatterQuery q = Query(DirectionFromCosTheta(0.5, 0.3), wl);
-        auto s = m->Sample(q, 0.99, Vec2(0.5, 0.5));
+        auto s = Prep(*m, q)->Sample(0.99, Vec2(0.5, 0.5));
         ASSERT_TRUE(s);
         const double n = 1.5 + b / (lambda * lambda);  // η(λ) = A + B/λ²
         EXPECT_NEAR(s->eta, n, 1e-14) << lambda;
@@ -111,11 +111,11 @@ TEST(Dielectric, CauchyDispersion) {
             EXPECT_NEAR(s->weight[j], expected, 1e-14);
         }
         // Reflection is not dispersive (the mirror direction does not depend on λ).
-        auto r = m->Sample(q, 0.0, Vec2(0.5, 0.5));
+        auto r = Prep(*m, q)->Sample(0.0, Vec2(0.5, 0.5));
         ASSERT_TRUE(r);
         EXPECT_FALSE(r->flags & ScatterDispersive);
         // A constant index never flags dispersion.
-        auto p = plain->Sample(q, 0.99, Vec2(0.5, 0.5));
+        auto p = Prep(*plain, q)->Sample(0.99, Vec2(0.5, 0.5));
         ASSERT_TRUE(p);
         EXPECT_FALSE(p->flags & ScatterDispersive);
     }
@@ -125,9 +125,9 @@ TEST(Dielectric, DeltaOnlyInTheRayLimit) {
     auto m = Dielectric(1.5);
     const SampledWavelengths wl = TestWavelengths(550e-9);
     const ScatterQuery q = Query(DirectionFromCosTheta(0.5, 0.3), wl);
-    EXPECT_TRUE(m->IsDeltaOnly(q));
-    EXPECT_TRUE(m->Eval(q, ReflectLocal(q.wi)).IsZero());
-    EXPECT_EQ(m->Pdf(q, ReflectLocal(q.wi)), 0);
+    EXPECT_TRUE(Prep(*m, q)->IsDeltaOnly());
+    EXPECT_TRUE(Prep(*m, q)->Eval(ReflectLocal(q.wi)).IsZero());
+    EXPECT_EQ(Prep(*m, q)->Pdf(ReflectLocal(q.wi)), 0);
 }
 
 TEST(Dielectric, RejectsNonPositiveOrAbsorbingIndex) {
@@ -159,7 +159,7 @@ TEST(Dielectric, NamedGlassIsDispersive) {
     const SampledWavelengths blue = LineWavelength(486.13e-9), red = LineWavelength(656.27e-9);
     for (const auto &[wl, n] : {std::pair{&blue, 1.5224}, std::pair{&red, 1.5143}}) {
         const ScatterQuery q = Query(Vec3(0, 0, 1), *wl);
-        auto s = m->Sample(q, 1 - 1e-12, Vec2(0.5, 0.5));  // the refracted lobe
+        auto s = Prep(*m, q)->Sample(1 - 1e-12, Vec2(0.5, 0.5));  // the refracted lobe
         ASSERT_TRUE(s);
         EXPECT_NEAR(s->eta, n, 1e-4);  // Schott's n_F, n_C (4 decimals)
     }

@@ -18,16 +18,17 @@ TEST(Diffuse, LambertianValueAndTwoSidedness) {
         q.wl = &wl;
         const Vec3 same = DirectionFromCosTheta(side * 0.3, 2.0),
                    other = DirectionFromCosTheta(-side * 0.3, 2.0);
-        EXPECT_NEAR(m->Eval(q, same)[0], 0.7 / Pi, 1e-15);  // f = R/π
-        EXPECT_NEAR(m->Pdf(q, same), 0.3 / Pi, 1e-15);      // cosine-weighted
-        EXPECT_TRUE(m->Eval(q, other).IsZero());            // never transmits
-        EXPECT_EQ(m->Pdf(q, other), 0);
-        auto s = m->Sample(q, 0.5, Vec2(0.3, 0.8));
+        const Prep k(*m, q);
+        EXPECT_NEAR(k->Eval(same)[0], 0.7 / Pi, 1e-15);  // f = R/π
+        EXPECT_NEAR(k->Pdf(same), 0.3 / Pi, 1e-15);      // cosine-weighted
+        EXPECT_TRUE(k->Eval(other).IsZero());            // never transmits
+        EXPECT_EQ(k->Pdf(other), 0);
+        EXPECT_FALSE(k->IsDeltaOnly());
+        auto s = k->Sample(0.5, Vec2(0.3, 0.8));
         ASSERT_TRUE(s);
         EXPECT_GT(s->wo.z * side, 0);  // reflected on wi's side
         EXPECT_NEAR(s->weight[0], 0.7, 1e-15);
     }
-    EXPECT_FALSE(m->IsDeltaOnly(ScatterQuery{}));
 }
 
 TEST(Diffuse, TextureDrivesTheReflectance) {
@@ -39,10 +40,10 @@ TEST(Diffuse, TextureDrivesTheReflectance) {
     q.wi = Vec3(0, 0, 1);
     q.wl = &wl;
     q.tex.uv = Vec2(0.1, 0.1);  // check (0, 0): color0 = 0.1 (scale 4)
-    EXPECT_NEAR(m->Sample(q, 0.5, Vec2(0.5, 0.5))->weight[0], 0.1, 1e-15);
+    EXPECT_NEAR(Prep(*m, q)->Sample(0.5, Vec2(0.5, 0.5))->weight[0], 0.1, 1e-15);
     q.tex.uv = Vec2(0.3, 0.1);  // check (1, 0): color1 = 0.9
-    EXPECT_NEAR(m->Sample(q, 0.5, Vec2(0.5, 0.5))->weight[0], 0.9, 1e-15);
-    EXPECT_NEAR(m->Eval(q, Vec3(0, 0.6, 0.8))[0], 0.9 / Pi, 1e-15);
+    EXPECT_NEAR(Prep(*m, q)->Sample(0.5, Vec2(0.5, 0.5))->weight[0], 0.9, 1e-15);
+    EXPECT_NEAR(Prep(*m, q)->Eval(Vec3(0, 0.6, 0.8))[0], 0.9 / Pi, 1e-15);
 }
 
 TEST(Diffuse, ReflectanceAboveOneIsAnError) {
@@ -64,7 +65,7 @@ TEST(Diffuse, TextureWinsOverReflectanceWithAWarning) {
     ScatterQuery q;
     q.wi = Vec3(0, 0, 1);
     q.wl = &wl;
-    EXPECT_NEAR(m->Sample(q, 0.5, Vec2(0.5, 0.5))->weight[0], 0.5, 1e-15);
+    EXPECT_NEAR(Prep(*m, q)->Sample(0.5, Vec2(0.5, 0.5))->weight[0], 0.5, 1e-15);
 }
 
 }  // namespace

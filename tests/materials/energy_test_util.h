@@ -66,22 +66,26 @@ SampledSpectrum IntegrateProjectedDisc(const Vec2 &centre, double sign, double c
     return total;
 }
 
-/// What a camera at q.wi gathers through the continuous lobes on its own side: ∫ Eval(q, wo)·
-/// |cosθo| dωo over wi's hemisphere (the backward integral Sample estimates), per carried
-/// wavelength; `core` as for IntegrateProjectedDisc (the lobe is assumed to peak at the mirror
-/// direction).
-inline SampledSpectrum ContinuousAlbedo(const Material &m, const ScatterQuery &q, double core) {
-    return IntegrateProjectedDisc(Vec2(-q.wi.x, -q.wi.y), q.wi.z > 0 ? 1 : -1, core,
-                                  [&](const Vec3 &wo) { return m.Eval(q, wo); });
+/// What a camera at wi gathers through the continuous lobes of the kernel k prepared there, on its
+/// own side: ∫ Eval(wo)·|cosθo| dωo over wi's hemisphere (the backward integral Sample estimates),
+/// per carried wavelength; `core` as for IntegrateProjectedDisc (the lobe is assumed to peak at the
+/// mirror direction).
+inline SampledSpectrum ContinuousAlbedo(const PreparedKernel &k, double core) {
+    const Vec3 &wi = k.Query().wi;
+    return IntegrateProjectedDisc(Vec2(-wi.x, -wi.y), wi.z > 0 ? 1 : -1, core,
+                                  [&](const Vec3 &wo) { return k.Eval(wo); });
 }
 
 /// What the continuous lobes send out of the light arriving from d: ∫ Eval(q(w), d)·|cosθ_w| dω_w
-/// over the directions w on d's side (q(w) = q with wi = w), per carried wavelength.
+/// over the directions w on d's side (q(w) = q with wi = w, the kernel prepared there), per carried
+/// wavelength.
 inline SampledSpectrum ContinuousFrom(const Material &m, const ScatterQuery &q, const Vec3 &d, double core) {
     ScatterQuery qw = q;
+    ScratchBuffer atW;
     return IntegrateProjectedDisc(Vec2(-d.x, -d.y), d.z > 0 ? 1 : -1, core, [&](const Vec3 &w) {
         qw.wi = w;
-        return m.Eval(qw, d);
+        atW.Reset();
+        return m.Prepare(qw, atW).Eval(d);
     });
 }
 
@@ -96,10 +100,9 @@ struct ListedForward {
     int outgoing = 0;  // the number of outgoing candidates
 };
 inline ListedForward ListedEnergyFrom(const Material &m, const ScatterQuery &q, int j) {
-    NearDeltaLobes lobes;
-    m.ListNearDelta(q, lobes);
+    ScratchBuffer scratch;
     std::vector<Vec3> outs;
-    for (const NearDeltaLobe &l : lobes)
+    for (const NearDeltaLobe &l : m.Prepare(q, scratch).ListNearDelta())
         if (l.weight[j] > 0 &&
             std::none_of(outs.begin(), outs.end(), [&](const Vec3 &o) { return SameDirection(o, l.wo[j]); }))
             outs.push_back(l.wo[j]);
@@ -108,9 +111,7 @@ inline ListedForward ListedEnergyFrom(const Material &m, const ScatterQuery &q, 
     for (const Vec3 &o : outs) {
         ScatterQuery back = q;
         back.wi = o;
-        NearDeltaLobes from;
-        m.ListNearDelta(back, from);
-        for (const NearDeltaLobe &l : from)
+        for (const NearDeltaLobe &l : m.Prepare(back, scratch).ListNearDelta())
             if (l.weight[j] > 0 && SameDirection(l.wo[j], q.wi)) f.energy += l.weight[j] * l.Eta(j) * l.Eta(j);
     }
     return f;

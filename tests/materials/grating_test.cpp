@@ -89,7 +89,7 @@ double AngleBetween(const Vec3 &a, const Vec3 &b) { return std::atan2(Length(Cro
 
 double J2(int j, double m) { return std::pow(std::cyl_bessel_j(double(std::abs(j)), std::abs(m)), 2); }
 
-const NearDeltaLobe *Find(const NearDeltaLobes &lobes, int id) {
+const NearDeltaLobe *Find(std::span<const NearDeltaLobe> lobes, int id) {
     for (const NearDeltaLobe &l : lobes)
         if (l.id == id) return &l;
     return nullptr;
@@ -116,13 +116,13 @@ FromSource OrderFrom(const GratingMaterial &grating, const SampledWavelengths &w
     q.etaOutside = 1;
     q.rayOptics = false;
     q.tex.uv = Vec2(0.5, 0.5);
-    NearDeltaLobes lobes;
-    grating.ListNearDelta(q, lobes);
+    const Prep lobesK(grating, q);
+    const std::span<const NearDeltaLobe> lobes = lobesK->ListNearDelta();
     const NearDeltaLobe *l = Find(lobes, (transmitted ? GratingMaterial::TransmittedId : 0) + j);
     if (!l || AngleBetween(l->wo[0], d) > 1e-9) return r;
     r.weight = l->weight[0];
     r.energy = l->weight[0] * l->Eta(0) * l->Eta(0);
-    r.response = grating.EvalLobe(q, l->id, l->wo[0]);
+    r.response = lobesK->EvalLobe(l->id, l->wo[0]);
     return r;
 }
 
@@ -150,8 +150,8 @@ TEST(Grating, OrderDirectionsObeyTheVectorGratingEquation) {
         for (const In in : {In{0, 0}, In{30 * Deg, phiG}, In{30 * Deg, phiG + Pi / 2}, In{55 * Deg, 1.1},
                             In{80 * Deg, 4.0}, In{150 * Deg, 0.4}, In{110 * Deg, phiG}}) {
             const ScatterQuery q = Wave(in.theta, in.phi, wl);
-            NearDeltaLobes lobes;
-            grating->ListNearDelta(q, lobes);
+            const Prep lobesK(*grating, q);
+            const std::span<const NearDeltaLobe> lobes = lobesK->ListNearDelta();
             const bool inside = glass && q.wi.z < 0;
             int checked = 0;
             for (const bool transmitted : {false, true}) {
@@ -464,16 +464,16 @@ TEST(Grating, RayOpticsLimitIsTheSmoothSubstrate) {
         for (double theta : {10 * Deg, 60 * Deg, 170 * Deg}) {
             ScatterQuery ray = Wave(theta, 0.5, wl);
             ray.rayOptics = true;
-            NearDeltaLobes expected;
-            smooth->ListNearDelta(ray, expected);
+            const Prep expectedK(*smooth, ray);
+            const std::span<const NearDeltaLobe> expected = expectedK->ListNearDelta();
             // (renormalize = false: F, not J_0(m)²·F — the grooves are not resolved at all.)
             for (const auto &[name, m, q] : {std::tuple{"ray limit", grating, ray}, std::tuple{"ray limit, plain", plain, ray},
                                              std::tuple{"h = 0", flat, Wave(theta, 0.5, wl)}}) {
-                NearDeltaLobes got;
-                m->ListNearDelta(q, got);
-                ASSERT_EQ(got.count, expected.count) << name << ", " << c.substrate << ", θ = " << theta / Deg;
-                for (int k = 0; k < got.count; ++k) {
-                    const NearDeltaLobe &a = got.lobe[std::size_t(k)], &b = expected.lobe[std::size_t(k)];
+                const Prep gotK(*m, q);
+                const std::span<const NearDeltaLobe> got = gotK->ListNearDelta();
+                ASSERT_EQ(got.size(), expected.size()) << name << ", " << c.substrate << ", θ = " << theta / Deg;
+                for (int k = 0; k < int(got.size()); ++k) {
+                    const NearDeltaLobe &a = got[std::size_t(k)], &b = expected[std::size_t(k)];
                     EXPECT_EQ(a.id, b.id == 0 ? 0 : GratingMaterial::TransmittedId) << name;
                     EXPECT_EQ(a.flags, b.flags) << name << ", lobe " << a.id;
                     // (Probabilities differ by design: the grating picks ∝ radiance weight, the
@@ -524,19 +524,21 @@ TEST(Grating, RayOpticsLimitOfACoatedSubstrateIsTheIncoherentSum) {
             if (theta > 90 * Deg && !c.transmission) continue;
             ScatterQuery ray = Wave(theta, 0.3, wl), wave = ray;
             ray.rayOptics = true;
-            NearDeltaLobes expected, got, coherent;
-            coated->ListNearDelta(ray, expected);
-            grating->ListNearDelta(ray, got);
-            coated->ListNearDelta(wave, coherent);
-            ASSERT_EQ(got.count, expected.count) << c.type << ", θ = " << theta / Deg;
-            for (int k = 0; k < got.count; ++k) {
-                const NearDeltaLobe &a = got.lobe[std::size_t(k)], &b = expected.lobe[std::size_t(k)];
+            const Prep expectedK(*coated, ray);
+            const std::span<const NearDeltaLobe> expected = expectedK->ListNearDelta();
+            const Prep gotK(*grating, ray);
+            const std::span<const NearDeltaLobe> got = gotK->ListNearDelta();
+            const Prep coherentK(*coated, wave);
+            const std::span<const NearDeltaLobe> coherent = coherentK->ListNearDelta();
+            ASSERT_EQ(got.size(), expected.size()) << c.type << ", θ = " << theta / Deg;
+            for (int k = 0; k < int(got.size()); ++k) {
+                const NearDeltaLobe &a = got[std::size_t(k)], &b = expected[std::size_t(k)];
                 for (int i = 0; i < wl.Count(); ++i) {
                     EXPECT_NEAR(a.weight[i], b.weight[i], 1e-12) << c.type << ", θ " << theta / Deg << ", lobe " << a.id;
-                    largest = std::max(largest, std::abs(b.weight[i] - coherent.lobe[std::size_t(k)].weight[i]));
+                    largest = std::max(largest, std::abs(b.weight[i] - coherent[std::size_t(k)].weight[i]));
                 }
-                auto ga = grating->EvalLobe(ray, a.id, a.wo[0]);
-                auto ca = coated->EvalLobe(ray, b.id, b.wo[0]);
+                auto ga = gotK->EvalLobe(a.id, a.wo[0]);
+                auto ca = expectedK->EvalLobe(b.id, b.wo[0]);
                 ASSERT_TRUE(ga && ca);
                 EXPECT_FALSE(ga->hasJones) << "the incoherent sum has no Jones matrix";
                 for (int i = 0; i < wl.Count(); ++i) {
@@ -548,10 +550,10 @@ TEST(Grating, RayOpticsLimitOfACoatedSubstrateIsTheIncoherentSum) {
                 }
             }
             // The wave regime keeps the coherent response (J_j² of it): its Jones matrices exist.
-            NearDeltaLobes orders;
-            grating->ListNearDelta(wave, orders);
-            ASSERT_GT(orders.count, 0);
-            auto w = grating->EvalLobe(wave, orders.lobe[0].id, orders.lobe[0].wo[0]);
+            const Prep ordersK(*grating, wave);
+            const std::span<const NearDeltaLobe> orders = ordersK->ListNearDelta();
+            ASSERT_FALSE(orders.empty());
+            auto w = ordersK->EvalLobe(orders[0].id, orders[0].wo[0]);
             ASSERT_TRUE(w);
             EXPECT_TRUE(w->hasJones);
         }
@@ -576,17 +578,18 @@ TEST(Grating, TexturesDrivePeriodAndGrooveDirection) {
         const double period = (1.2 + 1.2 * u) * Um, alpha = 120 * Deg * v;
         const Vec2 g(-std::sin(alpha), std::cos(alpha));
         const ScatterQuery q = Wave(20 * Deg, 0.4, wl, uv);
-        NearDeltaLobes la, lb;
-        a->ListNearDelta(q, la);
-        b->ListNearDelta(q, lb);
-        ASSERT_EQ(la.count, lb.count);
+        const Prep laK(*a, q);
+        const std::span<const NearDeltaLobe> la = laK->ListNearDelta();
+        const Prep lbK(*b, q);
+        const std::span<const NearDeltaLobe> lb = lbK->ListNearDelta();
+        ASSERT_EQ(la.size(), lb.size());
         int orders = 0;
-        for (int k = 0; k < la.count; ++k) {
-            const NearDeltaLobe &l = la.lobe[std::size_t(k)];
+        for (int k = 0; k < int(la.size()); ++k) {
+            const NearDeltaLobe &l = la[std::size_t(k)];
             const Vec2 shift = g * (2 * Pi * l.id / period);
             EXPECT_LT(Length(l.shift - shift), 1e-9 * 2 * Pi / period) << "uv " << uv.x << ", " << uv.y;
-            EXPECT_EQ(l.id, lb.lobe[std::size_t(k)].id);
-            EXPECT_EQ(l.wo[0], lb.lobe[std::size_t(k)].wo[0]);
+            EXPECT_EQ(l.id, lb[std::size_t(k)].id);
+            EXPECT_EQ(l.wo[0], lb[std::size_t(k)].wo[0]);
             orders += l.id != 0;
         }
         EXPECT_GE(orders, 2);
@@ -609,8 +612,8 @@ TEST(Grating, DispersionFlags) {
                                        .Set("height", Len(0.2 * Um)));
         ASSERT_TRUE(grating);
         const ScatterQuery q = Wave(30 * Deg, 0.1, wl);
-        NearDeltaLobes lobes;
-        grating->ListNearDelta(q, lobes);
+        const Prep lobesK(*grating, q);
+        const std::span<const NearDeltaLobe> lobes = lobesK->ListNearDelta();
         const bool bk7 = std::string(substrate) == "contract_bk7";
         for (const NearDeltaLobe &l : lobes) {
             const bool transmitted = l.id >= GratingMaterial::TransmittedId / 2;
@@ -645,8 +648,8 @@ TEST(Grating, AnOrderEvanescentAtTheHeroIsListedForItsCompanions) {
     const SampledWavelengths wl = TestWavelengths(700 * Nm);
     ASSERT_NEAR(wl.lambda[1], 445 * Nm, 1e-15);
     const ScatterQuery q = Wave(0, 0, wl);
-    NearDeltaLobes lobes;
-    grating->ListNearDelta(q, lobes);
+    const Prep lobesK(*grating, q);
+    const std::span<const NearDeltaLobe> lobes = lobesK->ListNearDelta();
     for (int j : {-1, 1}) {
         const NearDeltaLobe *l = Find(lobes, j);
         ASSERT_NE(l, nullptr) << "order " << j;
@@ -676,9 +679,9 @@ TEST(Grating, FarOutsideTheThinPhaseRegimeStaysFinite) {
     ASSERT_TRUE(grating);
     const SampledWavelengths wl4 = TestWavelengths(400 * Nm), wl = LineWavelength(400 * Nm);
     for (double theta : {0.0, 89.9 * Deg, 90.1 * Deg, 180 * Deg}) {
-        NearDeltaLobes lobes;
-        grating->ListNearDelta(Wave(theta, 0.3, wl4), lobes);
-        ASSERT_GT(lobes.count, 0);
+        const Prep lobesK(*grating, Wave(theta, 0.3, wl4));
+        const std::span<const NearDeltaLobe> lobes = lobesK->ListNearDelta();
+        ASSERT_FALSE(lobes.empty());
         for (const NearDeltaLobe &l : lobes)
             for (int i = 0; i < wl4.Count(); ++i) ASSERT_TRUE(std::isfinite(l.weight[i]) && l.weight[i] >= 0);
         const Vec3 d = Wave(theta, 0.3, wl).wi;

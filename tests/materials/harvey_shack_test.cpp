@@ -94,9 +94,8 @@ ParamDict RoughT(const char *substrate, double sigma, double t, double gamma = 3
 // wavelength slot `slot` — fresnel.h's closed forms, an implementation independent of the layer
 // stack harvey_shack uses.
 double SmoothReflectance(const Material &smooth, const ScatterQuery &q, int slot = 0) {
-    NearDeltaLobes lobes;
-    smooth.ListNearDelta(q, lobes);
-    for (const NearDeltaLobe &l : lobes)
+    const Prep k(smooth, q);
+    for (const NearDeltaLobe &l : k->ListNearDelta())
         if (l.flags & ScatterReflection) return l.weight[slot];
     return 0;
 }
@@ -199,26 +198,27 @@ TEST(HarveyShack, SmoothLimitIsTheSubstrate) {
         for (double theta : {0.0, 30.0, 45.0, 60.0, 85.0})
             for (bool below : {false, true}) {
                 ScatterQuery q = Query(wl, theta, 0.3, below);
-                EXPECT_FALSE(hs->Capabilities(q) & CapContinuous);
-                EXPECT_TRUE(hs->Eval(q, ReflectLocal(q.wi)).IsZero());
-                NearDeltaLobes a, b;
-                hs->ListNearDelta(q, a);
-                smooth->ListNearDelta(q, b);
-                ASSERT_EQ(a.count, 1);
+                const Prep aK(*hs, q);
+                EXPECT_FALSE(aK->Capabilities() & CapContinuous);
+                EXPECT_TRUE(aK->Eval(ReflectLocal(q.wi)).IsZero());
+                const std::span<const NearDeltaLobe> a = aK->ListNearDelta();
+                const Prep bK(*smooth, q);
+                const std::span<const NearDeltaLobe> b = bK->ListNearDelta();
+                ASSERT_EQ(a.size(), 1u);
                 const NearDeltaLobe *ref = nullptr;
                 for (const NearDeltaLobe &l : b)
                     if (l.flags & ScatterReflection) ref = &l;
                 ASSERT_TRUE(ref);
                 for (int i = 0; i < wl.Count(); ++i) {
-                    EXPECT_NEAR(a.lobe[0].weight[i], ref->weight[i], 1e-12) << sub << " θ " << theta << " below " << below;
-                    EXPECT_EQ(a.lobe[0].nIn[i], ref->nIn[i]);
+                    EXPECT_NEAR(a[0].weight[i], ref->weight[i], 1e-12) << sub << " θ " << theta << " below " << below;
+                    EXPECT_EQ(a[0].nIn[i], ref->nIn[i]);
                 }
-                EXPECT_LT(Length(a.lobe[0].wo[0] - ref->wo[0]), 1e-15);
-                auto ja = hs->EvalLobe(q, 0, a.lobe[0].wo[0]), jb = smooth->EvalLobe(q, ref->id, ref->wo[0]);
+                EXPECT_LT(Length(a[0].wo[0] - ref->wo[0]), 1e-15);
+                auto ja = aK->EvalLobe(0, a[0].wo[0]), jb = bK->EvalLobe(ref->id, ref->wo[0]);
                 ASSERT_TRUE(ja && jb);
                 for (int r = 0; r < 2; ++r)
                     for (int c = 0; c < 2; ++c) EXPECT_LT(std::abs(ja->jones[0].m[r][c] - jb->jones[0].m[r][c]), 1e-12);
-                auto s = hs->Sample(q, 0.7, Vec2(0.2, 0.9));
+                auto s = aK->Sample(0.7, Vec2(0.2, 0.9));
                 ASSERT_TRUE(s);
                 EXPECT_NEAR(s->weight[0], ref->weight[0], 1e-12);
             }
@@ -299,13 +299,16 @@ TEST(HarveyShack, SampledLightFromOneDirectionCarriesF) {
                 const double spec = ListedEnergyFrom(*hs, q, 0).energy;
                 ScatterQuery qw = q;
                 std::vector<double> w;
+                const Prep k(*hs, q);
+                ScratchBuffer atW;  // the kernel prepared at each sampled direction
                 for (int i = 0; i < 50000; ++i) {
-                    auto s = hs->Sample(q, rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
+                    auto s = k->Sample(rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
                     double x = 0;
                     if (s && (s->flags & ScatterNearDelta)) x = spec / s->pdf;
                     else if (s) {
                         qw.wi = s->wo;
-                        x = hs->Eval(qw, q.wi)[0] * std::abs(s->wo.z) / s->pdf;
+                        atW.Reset();
+                        x = hs->Prepare(qw, atW).Eval(q.wi)[0] * std::abs(s->wo.z) / s->pdf;
                     }
                     w.push_back(x);
                 }
@@ -338,12 +341,13 @@ TEST(HarveyShack, SampledWeightsAverageTheirIntegral) {
         for (double theta : thetas)
             for (bool below : {false, true}) {
                 const ScatterQuery q = Query(wl, theta, 0.7, below);
-                NearDeltaLobes lobes;
-                hs->ListNearDelta(q, lobes);
-                const double expected = (lobes.count ? lobes.lobe[0].weight[0] : 0.0) + ContinuousAlbedo(*hs, q, c.core)[0];
+                ScratchBuffer scratch;
+                const PreparedKernel &k = hs->Prepare(q, scratch);
+                const std::span<const NearDeltaLobe> lobes = k.ListNearDelta();
+                const double expected = (lobes.empty() ? 0.0 : lobes[0].weight[0]) + ContinuousAlbedo(k, c.core)[0];
                 std::vector<double> w;
                 for (int i = 0; i < 50000; ++i) {
-                    auto s = hs->Sample(q, rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
+                    auto s = k.Sample(rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
                     w.push_back(s ? s->weight[0] : 0.0);
                 }
                 TTestResult t = OneSampleTTest(w, expected);
@@ -396,19 +400,22 @@ TEST(HarveyShack, RayOpticsLimitOfACoatedSubstrateIsTheIncoherentSum) {
         ScatterQuery wave = Query(wl, theta, 0.4), ray = wave;
         wave.rayOptics = false;
         ray.rayOptics = true;
-        NearDeltaLobes sw, sr, hw, hr;
-        coated->ListNearDelta(wave, sw);
-        coated->ListNearDelta(ray, sr);
-        hs->ListNearDelta(wave, hw);
-        hs->ListNearDelta(ray, hr);
-        ASSERT_TRUE(sw.count == 1 && sr.count == 1 && hw.count == 1 && hr.count == 1);
+        const Prep swK(*coated, wave);
+        const std::span<const NearDeltaLobe> sw = swK->ListNearDelta();
+        const Prep srK(*coated, ray);
+        const std::span<const NearDeltaLobe> sr = srK->ListNearDelta();
+        const Prep hwK(*hs, wave);
+        const std::span<const NearDeltaLobe> hw = hwK->ListNearDelta();
+        const Prep hrK(*hs, ray);
+        const std::span<const NearDeltaLobe> hr = hrK->ListNearDelta();
+        ASSERT_TRUE(sw.size() == 1 && sr.size() == 1 && hw.size() == 1 && hr.size() == 1);
         const double alphaSpec = std::exp(-Sqr(2 * 2 * Pi / Lambda * 30e-9 * std::cos(Radians(theta))));
-        largest = std::max(largest, std::abs(sr.lobe[0].weight[0] - sw.lobe[0].weight[0]));
-        EXPECT_NEAR(hr.lobe[0].weight[0], alphaSpec * sr.lobe[0].weight[0], 1e-12) << "θ " << theta;
-        EXPECT_NEAR(hw.lobe[0].weight[0], alphaSpec * sw.lobe[0].weight[0], 1e-12) << "θ " << theta;
+        largest = std::max(largest, std::abs(sr[0].weight[0] - sw[0].weight[0]));
+        EXPECT_NEAR(hr[0].weight[0], alphaSpec * sr[0].weight[0], 1e-12) << "θ " << theta;
+        EXPECT_NEAR(hw[0].weight[0], alphaSpec * sw[0].weight[0], 1e-12) << "θ " << theta;
         // EvalLobe of the specular lobe: α_spec × the smooth kernel's response in each regime.
-        auto er = hs->EvalLobe(ray, 0, hr.lobe[0].wo[0]), cr = coated->EvalLobe(ray, 0, sr.lobe[0].wo[0]);
-        auto ew = hs->EvalLobe(wave, 0, hw.lobe[0].wo[0]), cw = coated->EvalLobe(wave, 0, sw.lobe[0].wo[0]);
+        auto er = hrK->EvalLobe(0, hr[0].wo[0]), cr = srK->EvalLobe(0, sr[0].wo[0]);
+        auto ew = hwK->EvalLobe(0, hw[0].wo[0]), cw = swK->EvalLobe(0, sw[0].wo[0]);
         ASSERT_TRUE(er && cr && ew && cw);
         EXPECT_FALSE(er->hasJones) << "the incoherent sum has no Jones matrix";
         EXPECT_TRUE(ew->hasJones);
@@ -418,17 +425,17 @@ TEST(HarveyShack, RayOpticsLimitOfACoatedSubstrateIsTheIncoherentSum) {
                 EXPECT_NEAR(ew->mueller[0].m[a][b], alphaSpec * cw->mueller[0].m[a][b], 1e-12) << a << b;
             }
         // The scattered lobe's Mueller matrix is the incoherent facet's too (M00 = f·cosθo).
-        const Vec3 off = Normalize(hr.lobe[0].wo[0] + Vec3(0.05, 0.08, 0));
-        auto sc = hs->EvalLobe(ray, 1, off);
+        const Vec3 off = Normalize(hr[0].wo[0] + Vec3(0.05, 0.08, 0));
+        auto sc = hrK->EvalLobe(1, off);
         ASSERT_TRUE(sc);
         EXPECT_FALSE(sc->hasJones);
-        EXPECT_NEAR(sc->mueller[0].m[0][0], hs->Eval(ray, off)[0] * off.z, 1e-12 * sc->mueller[0].m[0][0]);
+        EXPECT_NEAR(sc->mueller[0].m[0][0], hrK->Eval(off)[0] * off.z, 1e-12 * sc->mueller[0].m[0][0]);
         // Energy of the light from this direction: F of the regime.
         const double specR = ListedEnergyFrom(*hs, ray, 0).energy, haloR = ContinuousFrom(*hs, ray, ray.wi, 0.02)[0];
         const double specW = ListedEnergyFrom(*hs, wave, 0).energy, haloW = ContinuousFrom(*hs, wave, wave.wi, 0.02)[0];
-        const double shareR = sr.lobe[0].weight[0] - specR, shareW = sw.lobe[0].weight[0] - specW;
-        EXPECT_NEAR(specR + haloR, sr.lobe[0].weight[0], 3.5e-4 * shareR + 1e-7) << "ray optics, θ " << theta;
-        EXPECT_NEAR(specW + haloW, sw.lobe[0].weight[0], 3.5e-4 * shareW + 1e-7) << "wave regime, θ " << theta;
+        const double shareR = sr[0].weight[0] - specR, shareW = sw[0].weight[0] - specW;
+        EXPECT_NEAR(specR + haloR, sr[0].weight[0], 3.5e-4 * shareR + 1e-7) << "ray optics, θ " << theta;
+        EXPECT_NEAR(specW + haloW, sw[0].weight[0], 3.5e-4 * shareW + 1e-7) << "wave regime, θ " << theta;
     }
     EXPECT_GT(largest, 0.05) << "the film's coherent and incoherent reflectances should differ here";
     RecordProperty("largest_coherent_minus_incoherent", std::to_string(largest));
@@ -450,9 +457,10 @@ TEST(HarveyShack, SamplingMatchesPdfInTheTangentPlane) {
             auto hs = Build("harvey_shack", RoughT("contract_gold", 30e-9, kkT / (k * k)));
             ScatterQuery q = Query(wl, theta, 0.8);
             const double L = 5 / std::sqrt(kkT), cell = 2 * L / G;
+            const Prep k(*hs, q);
             auto pdfXi = [&](double x, double y) {
                 const double ux = x - q.wi.x, uy = y - q.wi.y, z = SafeSqrt(1 - ux * ux - uy * uy);
-                return z > 0 ? hs->Pdf(q, Vec3(ux, uy, z)) / z : 0.0;
+                return z > 0 ? k->Pdf(Vec3(ux, uy, z)) / z : 0.0;
             };
             constexpr double W[Sub + 1] = {1, 4, 2, 4, 1};
             const long long n = 200000;
@@ -467,15 +475,14 @@ TEST(HarveyShack, SamplingMatchesPdfInTheTangentPlane) {
                     ex[std::size_t(a * G + b)] = sum * (h / 3) * (h / 3);
                     inGrid += ex[std::size_t(a * G + b)];
                 }
-            NearDeltaLobes lobes;
-            hs->ListNearDelta(q, lobes);
-            const double pSpec = lobes.count ? lobes.lobe[0].prob : 0;
+            const std::span<const NearDeltaLobe> lobes = k->ListNearDelta();
+            const double pSpec = lobes.empty() ? 0 : lobes[0].prob;
             ex[G * G] = pSpec;
             ex[G * G + 1] = std::max(0.0, 1 - pSpec - inGrid);
             for (double &e : ex) e *= double(n);
             TestRng rng(uint64_t(kkT) + uint64_t(theta));
             for (long long i = 0; i < n; ++i) {
-                auto s = hs->Sample(q, rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
+                auto s = k->Sample(rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
                 if (!s) continue;
                 if (s->flags & ScatterNearDelta) {
                     obs[G * G] += 1;
@@ -500,18 +507,19 @@ TEST(HarveyShack, ScatterPolarisationIsTheFacetsAtTheMirrorDirection) {
     auto hs = Build("harvey_shack", Rough("contract_gold", 40e-9, 0.1));
     ScatterQuery q = Query(wl, 50, 0.4);
     const Vec3 mirror = ReflectLocal(q.wi);
-    auto spec = hs->EvalLobe(q, 0, mirror), scat = hs->EvalLobe(q, 1, mirror);
+    const Prep k(*hs, q);
+    auto spec = k->EvalLobe(0, mirror), scat = k->EvalLobe(1, mirror);
     ASSERT_TRUE(spec && scat);
     for (int a = 0; a < 4; ++a)
         for (int b = 0; b < 4; ++b)
             EXPECT_NEAR(scat->mueller[0].m[a][b] / scat->mueller[0].m[0][0],
                         spec->mueller[0].m[a][b] / spec->mueller[0].m[0][0], 1e-12);
     const Vec3 off = Normalize(mirror + Vec3(0.1, -0.05, 0));
-    auto r = hs->EvalLobe(q, 1, off);
+    auto r = k->EvalLobe(1, off);
     ASSERT_TRUE(r);
-    const SampledSpectrum f = hs->Eval(q, off);
+    const SampledSpectrum f = k->Eval(off);
     for (int i = 0; i < wl.Count(); ++i) EXPECT_NEAR(r->mueller[i].m[0][0], f[i] * off.z, 1e-12 * f[i]);
-    EXPECT_FALSE(hs->EvalLobe(q, 1, Vec3(off.x, off.y, -off.z))) << "reflection only";
+    EXPECT_FALSE(k->EvalLobe(1, Vec3(off.x, off.y, -off.z))) << "reflection only";
 }
 
 TEST(HarveyShack, AlphaRSetsTheCorrelationParameter) {
@@ -522,8 +530,9 @@ TEST(HarveyShack, AlphaRSetsTheCorrelationParameter) {
     ScatterQuery q = Query(wl, 35);
     for (const Vec3 &wo : {Vec3(0.1, 0.2, 0.97), Vec3(-0.5, 0.1, 0.8)}) {
         const Vec3 w = Normalize(wo);
-        EXPECT_NEAR(a->Eval(q, w)[0], b->Eval(q, w)[0], 1e-12 * b->Eval(q, w)[0]);
-        EXPECT_NEAR(a->Pdf(q, w), b->Pdf(q, w), 1e-12 * b->Pdf(q, w));
+        const Prep ka(*a, q), kb(*b, q);
+        EXPECT_NEAR(ka->Eval(w)[0], kb->Eval(w)[0], 1e-12 * kb->Eval(w)[0]);
+        EXPECT_NEAR(ka->Pdf(w), kb->Pdf(w), 1e-12 * kb->Pdf(w));
     }
 }
 

@@ -18,6 +18,8 @@
 // Statistical checks use proper tests (χ², Welch / one-sample t) with fixed seeds and a Šidák
 // correction over the whole instantiation at family-wise level 1 %.
 //
+// Every question is asked of the kernel prepared for its query (Material::Prepare; the answers of
+// a prepared kernel are what integrators see), and EvalPdf must equal (EvalFrom, Pdf).
 // Every kernel is queried as `grt` queries it, in the wave regime (ScatterQuery::rayOptics false)
 // with an incident generalized ray (β = 0.5 µm, ρ = 0.5, along −wi) hitting a planar test plate
 // (z = 0, identity to_world) near its origin; the listing, EvalLobe, Sample's agreement with the
@@ -212,6 +214,9 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
         si_.p = ContractHit;
         AttachFootprint(q_, gr_, si_, plate_);  // the wave regime, as `grt` queries every kernel
         qRay_.si = &si_;
+        k_ = &material_->Prepare(q_, scratch_);
+        kRay_ = &material_->Prepare(qRay_, scratch_);
+        ks_ = k_;
         if (footprint_) {
             ASSERT_NO_THROW(material_->CheckShape(plate_));
             // The statistical tests draw ~10⁵ samples, each evaluating the diffraction integral
@@ -223,6 +228,7 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
             siLine_ = si_;
             AttachFootprint(qLine_, grLine_, siLine_, plate_);
             qs_ = &qLine_;
+            ks_ = &material_->Prepare(qLine_, scratch_);
         }
     }
 
@@ -232,13 +238,15 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
     long long Count(long long n) const { return footprint_ ? n / 10 : n; }
 
     TestRng Rng(const char *test) const { return TestRng(SeedFor(c_.Name() + "/" + test)); }
-    std::optional<ScatterSample> Draw(TestRng &rng) const { return DrawWith(q_, rng); }
-    /// For the statistical tests (χ², importance, furnace, discrete orders): the query `Stat()`.
-    std::optional<ScatterSample> DrawStat(TestRng &rng) const { return DrawWith(*qs_, rng); }
+    std::optional<ScatterSample> Draw(TestRng &rng) const { return DrawWith(*k_, rng); }
+    /// For the statistical tests (χ², importance, furnace, discrete orders): the query `Stat()`,
+    /// prepared as `KStat()`.
+    std::optional<ScatterSample> DrawStat(TestRng &rng) const { return DrawWith(*ks_, rng); }
     const ScatterQuery &Stat() const { return *qs_; }
-    std::optional<ScatterSample> DrawWith(const ScatterQuery &q, TestRng &rng) const {
+    const PreparedKernel &KStat() const { return *ks_; }
+    static std::optional<ScatterSample> DrawWith(const PreparedKernel &k, TestRng &rng, unsigned lobes = LobeAll) {
         const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
-        return material_->Sample(q, u0, Vec2(u1, u2));
+        return k.Sample(u0, Vec2(u1, u2), lobes);
     }
 
     ContractCase c_;
@@ -253,6 +261,8 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
     SampledWavelengths lineWl_;
     ScatterQuery qLine_;
     const ScatterQuery *qs_ = &q_;  // the statistical tests' query
+    ScratchBuffer scratch_;         // holds the prepared kernels below for the whole test
+    const PreparedKernel *k_ = nullptr, *kRay_ = nullptr, *ks_ = nullptr;  // prepared for q_, qRay_, Stat()
 };
 
 // χ² grid: 2N × N cells over (φ, cosθ), N odd.
@@ -274,7 +284,7 @@ struct PdfGrid {
     double total = 0, minPdf = Infinity;
     bool finite = true;
 };
-PdfGrid IntegratePdf(const Material &m, const ScatterQuery &q) {
+PdfGrid IntegratePdf(const PreparedKernel &k) {
     constexpr int Sub = 4;  // Simpson intervals per cell and axis
     const int nc = GridCos * Sub + 1, np = GridPhi * Sub + 1;
     const double dc = 2.0 / (GridCos * Sub), dp = 2 * Pi / (GridPhi * Sub);
@@ -282,7 +292,7 @@ PdfGrid IntegratePdf(const Material &m, const ScatterQuery &q) {
     PdfGrid g;
     for (int i = 0; i < nc; ++i)
         for (int j = 0; j < np; ++j) {
-            const double p = m.Pdf(q, DirectionFromCosTheta(-1 + i * dc, j * dp));
+            const double p = k.Pdf(DirectionFromCosTheta(-1 + i * dc, j * dp));
             if (!std::isfinite(p)) g.finite = false;
             g.minPdf = std::min(g.minPdf, p);
             v[std::size_t(i) * np + j] = p;
@@ -308,7 +318,7 @@ TEST_P(MaterialContract, Chi2SamplingMatchesPdf) {
     // M = 10⁶ at the 550 nm hero, 2.5·10⁵ at 400/700 nm (the continuous kernels' angular shape
     // rarely depends on λ; this halves the suite's run time). Delta-only kernels have nothing to
     // histogram: a short run checks that no continuous sample appears.
-    const long long m = material_->IsDeltaOnly(Stat()) ? 10000 : Count(c_.lambdaIndex == 1 ? 1000000 : 250000);
+    const long long m = KStat().IsDeltaOnly() ? 10000 : Count(c_.lambdaIndex == 1 ? 1000000 : 250000);
     TestRng rng = Rng("chi2");
     std::vector<double> obs(std::size_t(GridCos) * GridPhi + 1, 0);
     for (long long i = 0; i < m; ++i) {
@@ -318,7 +328,7 @@ TEST_P(MaterialContract, Chi2SamplingMatchesPdf) {
         else
             obs[std::size_t(CellOf(s->wo))] += 1;
     }
-    PdfGrid g = IntegratePdf(*material_, Stat());
+    PdfGrid g = IntegratePdf(KStat());
     ASSERT_TRUE(g.finite);
     std::vector<double> ex(obs.size());
     for (std::size_t i = 0; i + 1 < ex.size(); ++i) ex[i] = double(m) * g.cell[i];
@@ -343,7 +353,7 @@ TEST_P(MaterialContract, Chi2SamplingMatchesPdf) {
 }
 
 TEST_P(MaterialContract, PdfIntegratesToAtMostOne) {
-    PdfGrid g = IntegratePdf(*material_, q_);
+    PdfGrid g = IntegratePdf(*k_);
     ASSERT_TRUE(g.finite);
     EXPECT_GE(g.minPdf, 0) << "negative pdf";
     EXPECT_LE(g.total, 1 + 1e-3);
@@ -368,19 +378,19 @@ TEST_P(MaterialContract, SampleWeightMatchesEval) {
         if (s->flags & ScatterNearDelta) {
             EXPECT_GT(s->pdf, 0);
             EXPECT_LE(s->pdf, 1 + 1e-12) << "a discrete lobe's selection probability";
-            if (material_->IsDeltaOnly(q_)) {
+            if (k_->IsDeltaOnly()) {
                 // Ray-optics limit: nothing but deltas, so no finite density anywhere.
-                EXPECT_TRUE(material_->Eval(q_, s->wo).IsZero());
-                EXPECT_EQ(material_->Pdf(q_, s->wo), 0);
+                EXPECT_TRUE(k_->Eval(s->wo).IsZero());
+                EXPECT_EQ(k_->Pdf(s->wo), 0);
             }
             continue;
         }
         ++continuous;
-        ASSERT_FALSE(material_->IsDeltaOnly(q_)) << "IsDeltaOnly() but Sample returned a continuous lobe";
-        const double pdf = material_->Pdf(q_, s->wo);
+        ASSERT_FALSE(k_->IsDeltaOnly()) << "IsDeltaOnly() but Sample returned a continuous lobe";
+        const double pdf = k_->Pdf(s->wo);
         ASSERT_GT(s->pdf, 0);
         EXPECT_NEAR(s->pdf, pdf, 1e-6 * s->pdf) << "pdf reported by Sample differs from Pdf()";
-        const SampledSpectrum f = material_->Eval(q_, s->wo);
+        const SampledSpectrum f = k_->Eval(s->wo);
         for (int j = 0; j < wl_.Count(); ++j) {
             const double expected = f[j] * std::abs(s->wo.z) / pdf;
             EXPECT_NEAR(s->weight[j], expected, 1e-4 * std::abs(s->weight[j]) + 1e-14)
@@ -388,7 +398,7 @@ TEST_P(MaterialContract, SampleWeightMatchesEval) {
         }
         if (HasFailure()) break;
     }
-    if (!material_->IsDeltaOnly(q_)) {
+    if (!k_->IsDeltaOnly()) {
         EXPECT_GT(continuous, 0) << "never sampled a continuous lobe";
     }
 }
@@ -397,7 +407,7 @@ TEST_P(MaterialContract, ImportanceVsUniformEstimate) {
     // ∫ f(wi, wo)|cosθo| dωo over the continuous lobes, by the kernel's own sampling and by uniform
     // sphere sampling; the two estimates must agree (Welch's t-test).
     // A delta-only kernel has nothing to estimate (Eval ≡ 0): a short run confirms it.
-    const int n = material_->IsDeltaOnly(Stat()) ? 10000 : int(Count(100000));
+    const int n = KStat().IsDeltaOnly() ? 10000 : int(Count(100000));
     TestRng rng = Rng("importance");
     Moments imp, uni;
     for (int i = 0; i < n; ++i) {
@@ -406,7 +416,7 @@ TEST_P(MaterialContract, ImportanceVsUniformEstimate) {
     }
     for (int i = 0; i < n; ++i) {
         const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
-        uni.Add(material_->Eval(Stat(), wo)[0] * std::abs(wo.z) * 4 * Pi);
+        uni.Add(KStat().Eval(wo)[0] * std::abs(wo.z) * 4 * Pi);
     }
     TTestResult t =
         WelchTTest(imp.mean, imp.VarianceOfMean(), imp.n - 1, uni.mean, uni.VarianceOfMean(), uni.n - 1);
@@ -479,26 +489,28 @@ TEST_P(MaterialContract, EnergyPerIncidentDirection) {
     if (material_->IsReciprocal() || !material_->ConservesEnergyPerIncidentDirection())
         GTEST_SKIP() << "energy is conserved per query (WhiteFurnace)";
     const ScatterQuery &qd = Stat();
+    const PreparedKernel &kd = KStat();
     const Vec3 d = qd.wi;
-    ScatterQuery cont = qd, qw = qd;
-    cont.lobes = LobeContinuous;
+    ScatterQuery qw = qd;
+    ScratchBuffer atW;  // the kernel prepared at each w
     const int count = qd.wl->Count();
     TestRng rng = Rng("perincident");
     std::vector<Moments> e(static_cast<std::size_t>(count));
     bool through = false;
-    const int n = material_->IsDeltaOnly(qd) ? 2000 : 20000;
+    const int n = kd.IsDeltaOnly() ? 2000 : 20000;
     for (int k = 0; k < n; ++k) {
         // Technique 1: cosine-weighted on a random side; technique 2: the kernel at d.
         const Vec2 c = ConcentricDisc(Vec2(rng.Uniform(), rng.Uniform()));
         const double side = rng.Uniform() < 0.5 ? 1 : -1;
         const Vec3 w1(c.x, c.y, side * SafeSqrt(1 - c.x * c.x - c.y * c.y));
-        const std::optional<ScatterSample> s2 = DrawWith(cont, rng);
+        const std::optional<ScatterSample> s2 = DrawWith(kd, rng, LobeContinuous);
         std::vector<double> y(std::size_t(count), 0.0);
         auto add = [&](const Vec3 &w) {
-            const double density = std::abs(w.z) / (2 * Pi) + material_->Pdf(qd, w);
+            const double density = std::abs(w.z) / (2 * Pi) + kd.Pdf(w);
             if (!(density > 0)) return;
             qw.wi = w;
-            const SampledSpectrum f = material_->Eval(qw, d);
+            atW.Reset();
+            const SampledSpectrum f = material_->Prepare(qw, atW).Eval(d);
             if (w.z * d.z < 0 && !f.IsZero()) through = true;
             for (int j = 0; j < count; ++j) y[std::size_t(j)] += f[j] * std::abs(w.z) / density;
         };
@@ -539,7 +551,8 @@ TEST_P(MaterialContract, Reciprocal) {
         ScatterQuery qa = q_, qb = q_;
         qa.wi = a;
         qb.wi = b;
-        const SampledSpectrum fab = material_->Eval(qa, b), fba = material_->Eval(qb, a);
+        ScratchBuffer pair;
+        const SampledSpectrum fab = material_->Prepare(qa, pair).Eval(b), fba = material_->Prepare(qb, pair).Eval(a);
         for (int j = 0; j < wl_.Count(); ++j)
             ASSERT_NEAR(fab[j], fba[j], 1e-9 * std::max(std::abs(fab[j]), std::abs(fba[j])) + 1e-300)
                 << "wi = " << ToString(a) << ", wo = " << ToString(b) << ", slot " << j;
@@ -548,11 +561,9 @@ TEST_P(MaterialContract, Reciprocal) {
     // each summed over every listed lobe between the two directions (a `mix` of two metals has two
     // mirror lobes, each of which alone need not be reciprocal to either lobe back); and Sample
     // has a lobe that leads back.
-    auto energyTowards = [&](const ScatterQuery &q, const Vec3 &to) {
-        NearDeltaLobes lobes;
-        material_->ListNearDelta(q, lobes);
+    auto energyTowards = [&](const PreparedKernel &k, const Vec3 &to) {
         double e = 0;
-        for (const NearDeltaLobe &l : lobes)
+        for (const NearDeltaLobe &l : k.ListNearDelta())
             if (Length(l.wo[0] - to) <= 1e-8)
                 e += (l.flags & ScatterTransmission) ? l.weight[0] * l.Eta(0) * l.Eta(0) : l.weight[0];
         return e;
@@ -560,18 +571,20 @@ TEST_P(MaterialContract, Reciprocal) {
     for (int i = 0; i < 200; ++i) {
         auto s = Draw(rng);
         if (!s || !(s->flags & ScatterNearDelta)) continue;
-        const double a = energyTowards(q_, s->wo);
+        const double a = energyTowards(*k_, s->wo);
         EXPECT_GE(a, EnergyWeight(*s, 0) * s->pdf * (1 - 1e-12)) << "the sampled lobe " << s->lobe << " is not listed";
         ScatterQuery back = q_;
         back.wi = s->wo;
+        ScratchBuffer atBack;
+        const PreparedKernel &kb = material_->Prepare(back, atBack);
         bool found = false;
         for (int k = -1; k <= 256 && !found; ++k) {
             const double u0 = k < 0 ? 0.0 : (k == 256 ? 1 - 1e-12 : (k + 0.5) / 256);
-            auto r = material_->Sample(back, u0, Vec2(0.5, 0.5));
+            auto r = kb.Sample(u0, Vec2(0.5, 0.5));
             found = r && (r->flags & ScatterNearDelta) && Length(r->wo - q_.wi) <= 1e-8;
         }
         EXPECT_TRUE(found) << "no discrete lobe leads from wo = " << ToString(s->wo) << " back to wi";
-        const double ab = energyTowards(back, q_.wi);
+        const double ab = energyTowards(kb, q_.wi);
         EXPECT_NEAR(a, ab, 1e-9 * std::max(a, ab) + 1e-15)
             << "lobe " << s->lobe << ": wi = " << ToString(q_.wi) << ", wo = " << ToString(s->wo);
         if (HasFailure()) break;
@@ -581,6 +594,7 @@ TEST_P(MaterialContract, Reciprocal) {
 TEST_P(MaterialContract, FiniteEverywhere) {
     TestRng rng = Rng("finite");
     const SampledWavelengths line = LineWavelength(Lambdas[c_.lambdaIndex]);
+    ScratchBuffer each;  // the kernel prepared for each query
     for (int i = 0; i < 4000; ++i) {
         ScatterQuery q = q_;
         SpectralGenRay gr;
@@ -613,14 +627,16 @@ TEST_P(MaterialContract, FiniteEverywhere) {
             q.gr = nullptr;
         }
         const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
-        const SampledSpectrum f = material_->Eval(q, wo);
-        const double pdf = material_->Pdf(q, wo);
+        each.Reset();
+        const PreparedKernel &k = material_->Prepare(q, each);
+        const SampledSpectrum f = k.Eval(wo);
+        const double pdf = k.Pdf(wo);
         ASSERT_TRUE(std::isfinite(pdf) && pdf >= 0) << "Pdf = " << pdf << " for wi = " << ToString(q.wi);
         for (int j = 0; j < q.wl->Count(); ++j)
             ASSERT_TRUE(std::isfinite(f[j]) && f[j] >= 0)
                 << "Eval = " << f[j] << " for wi = " << ToString(q.wi);
         const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
-        auto s = material_->Sample(q, u0, Vec2(u1, u2));
+        auto s = k.Sample(u0, Vec2(u1, u2));
         if (!s) continue;
         ASSERT_TRUE(IsFinite(s->wo)) << "wi = " << ToString(q.wi);
         ASSERT_NEAR(Length(s->wo), 1, 1e-9) << "wi = " << ToString(q.wi);
@@ -644,8 +660,8 @@ TEST_P(MaterialContract, DiscreteOrders) {
     // geometry of every near-delta direction.
     const int n = int(Count(100000));
     TestRng rng = Rng("discrete");
-    NearDeltaLobes listed;  // the listing of Stat() (a fixed query), against which samples are checked
-    material_->ListNearDelta(Stat(), listed);
+    // The listing of Stat() (a fixed query), against which samples are checked.
+    const std::span<const NearDeltaLobe> listed = KStat().ListNearDelta();
     std::map<int, std::pair<double, double>> lobes;  // lobe → (count, stated probability)
     double other = 0;
     int drawn = 0;
@@ -706,11 +722,11 @@ TEST_P(MaterialContract, NearDeltaListing) {
     // the side its flags say, finite non-negative weights; ids unique; Σ a_j ≤ 1 in energy (the
     // radiance factor (n_in/n_out)² undone on transmission); probabilities in (0, 1] summing to ≤ 1;
     // near-delta lobes only where Capabilities says so.
-    for (const ScatterQuery *q : std::initializer_list<const ScatterQuery *>{&q_, &Stat(), &qRay_}) {
-        NearDeltaLobes lobes;
-        material_->ListNearDelta(*q, lobes);
-        if (!(material_->Capabilities(*q) & CapNearDelta)) {
-            EXPECT_EQ(lobes.count, 0) << "lobes listed, but Capabilities() has no CapNearDelta";
+    const std::pair<const ScatterQuery *, const PreparedKernel *> regimes[] = {{&q_, k_}, {&Stat(), ks_}, {&qRay_, kRay_}};
+    for (const auto &[q, k] : regimes) {
+        const std::span<const NearDeltaLobe> lobes = k->ListNearDelta();
+        if (!(k->Capabilities() & CapNearDelta)) {
+            EXPECT_EQ(lobes.size(), 0u) << "lobes listed, but Capabilities() has no CapNearDelta";
             continue;
         }
         std::vector<double> energy(std::size_t(q->wl->Count()), 0.0);
@@ -762,11 +778,10 @@ TEST_P(MaterialContract, NearDeltaListing) {
     }
     // The statistical tests run in the wave regime; in the ray-optics limit Sample must still
     // return the listed lobes (same id, direction, probability and a_j/p_j).
-    NearDeltaLobes ray;
-    material_->ListNearDelta(qRay_, ray);
+    const std::span<const NearDeltaLobe> ray = kRay_->ListNearDelta();
     TestRng rng = Rng("raylimit");
     for (int i = 0; i < 1000; ++i) {
-        auto s = DrawWith(qRay_, rng);
+        auto s = DrawWith(*kRay_, rng);
         if (!s || !(s->flags & ScatterNearDelta)) continue;
         const NearDeltaLobe *l = nullptr;
         for (const NearDeltaLobe &x : ray)
@@ -784,29 +799,27 @@ TEST_P(MaterialContract, LobeMaskSplitsSampleAndEval) {
     // near-delta mask; Sample under a mask returns only lobes in it; and the split is complete:
     // E[weight | all lobes] = E[weight | continuous] + Σ_j a_j(hero) (listed) — Welch t-test between
     // the all-lobe estimate and the continuous estimate plus the exact listed sum.
-    ScatterQuery cont = Stat(), delta = Stat();
-    cont.lobes = LobeContinuous;
-    delta.lobes = LobeNearDelta;
+    const PreparedKernel &k = KStat();
     TestRng rng = Rng("mask");
     for (int i = 0; i < 200; ++i) {
         const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
-        const SampledSpectrum fa = material_->Eval(Stat(), wo), fc = material_->Eval(cont, wo);
-        ASSERT_TRUE(material_->Eval(delta, wo).IsZero()) << "Eval under the near-delta mask";
-        ASSERT_EQ(material_->Pdf(delta, wo), 0) << "Pdf under the near-delta mask";
-        ASSERT_EQ(material_->Pdf(cont, wo), material_->Pdf(Stat(), wo));
+        const SampledSpectrum fa = k.Eval(wo), fc = k.Eval(wo, LobeContinuous);
+        ASSERT_TRUE(k.Eval(wo, LobeNearDelta).IsZero()) << "Eval under the near-delta mask";
+        ASSERT_EQ(k.Pdf(wo, LobeNearDelta), 0) << "Pdf under the near-delta mask";
+        ASSERT_EQ(k.Pdf(wo, LobeContinuous), k.Pdf(wo));
+        const KernelValue vd = k.EvalPdf(wo, IncidentWave{}, LobeNearDelta);
+        ASSERT_TRUE(vd.f.IsZero() && vd.pdf == 0) << "EvalPdf under the near-delta mask";
         for (int j = 0; j < Stat().wl->Count(); ++j) ASSERT_EQ(fa[j], fc[j]) << "slot " << j;
     }
-    NearDeltaLobes lobes;
-    material_->ListNearDelta(Stat(), lobes);
     double listed = 0;
-    for (const NearDeltaLobe &l : lobes) listed += l.weight[0];
+    for (const NearDeltaLobe &l : k.ListNearDelta()) listed += l.weight[0];
     const int n = int(Count(100000));
     Moments all, cpart;
     bool deterministic = true;
     for (int i = 0; i < n; ++i) {
-        auto a = DrawWith(Stat(), rng);
-        auto c = DrawWith(cont, rng);
-        auto d = DrawWith(delta, rng);
+        auto a = DrawWith(k, rng);
+        auto c = DrawWith(k, rng, LobeContinuous);
+        auto d = DrawWith(k, rng, LobeNearDelta);
         if (c) {
             ASSERT_FALSE(c->flags & ScatterNearDelta) << "near-delta sample under the continuous mask";
         }
@@ -848,12 +861,10 @@ TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
                         << "Mueller(" << a << ", " << b << ") vs FromJones, slot " << j;
         }
     };
-    for (const ScatterQuery *q : {&q_, &qRay_}) {
-        NearDeltaLobes lobes;
-        material_->ListNearDelta(*q, lobes);
-        const char *regime = q == &q_ ? "wave regime" : "ray-optics limit";
-        for (const NearDeltaLobe &l : lobes) {
-            auto r = material_->EvalLobe(*q, l.id, l.wo[0]);
+    for (const PreparedKernel *k : {k_, kRay_}) {
+        const char *regime = k == k_ ? "wave regime" : "ray-optics limit";
+        for (const NearDeltaLobe &l : k->ListNearDelta()) {
+            auto r = k->EvalLobe(l.id, l.wo[0]);
             ASSERT_TRUE(r) << regime << ": no response of listed lobe " << l.id;
             EXPECT_TRUE(!r->coherence.any || material_->HasCoherenceTerms())
                 << regime << ": lobe " << l.id << " reports coherence terms but HasCoherenceTerms() is false";
@@ -864,7 +875,8 @@ TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
             }
             checkJones(*r, wl_.Count());
             const Vec3 off = Normalize(l.wo[0] + Vec3(1e-3, -2e-3, 0));
-            EXPECT_FALSE(material_->EvalLobe(*q, l.id, off)) << regime << ": lobe " << l.id << " answers off its direction";
+            EXPECT_FALSE(k->EvalLobe(l.id, off)) << regime << ": lobe " << l.id << " answers off its direction";
+            EXPECT_EQ(k->FindLobe(l.id), &l) << regime << ": FindLobe(" << l.id << ")";
         }
     }
     TestRng rng = Rng("evallobe");
@@ -873,9 +885,9 @@ TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
         auto s = Draw(rng);
         if (!s || (s->flags & ScatterNearDelta)) continue;
         ++continuous;
-        auto r = material_->EvalLobe(q_, s->lobe, s->wo);
+        auto r = k_->EvalLobe(s->lobe, s->wo);
         ASSERT_TRUE(r) << "no response of sampled continuous lobe " << s->lobe;
-        const SampledSpectrum f = material_->Eval(q_, s->wo) * std::abs(s->wo.z);
+        const SampledSpectrum f = k_->Eval(s->wo) * std::abs(s->wo.z);
         for (int j = 0; j < wl_.Count(); ++j) {
             EXPECT_GE(r->mueller[j].m[0][0], 0) << "slot " << j;
             EXPECT_LE(r->mueller[j].m[0][0], f[j] * (1 + 1e-9) + 1e-300) << "slot " << j;
@@ -884,21 +896,47 @@ TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
         checkJones(*r, wl_.Count());
         // The listed continuous lobes add up to Eval·|cosθo| (sample_solve weights a sampled
         // direction by all of them), and the sampled one is among them.
-        ContinuousLobeIds ids;
-        material_->ContinuousLobes(q_, ids);
+        const ContinuousLobeIds &ids = k_->ContinuousLobes();
         EXPECT_NE(std::find(ids.begin(), ids.end(), s->lobe), ids.end())
             << "sampled continuous lobe " << s->lobe << " is not in ContinuousLobes";
-        auto sum = material_->EvalContinuousLobes(q_, s->wo);
+        auto sum = k_->EvalContinuousLobes(s->wo);
         ASSERT_TRUE(sum) << "ContinuousLobes' responses are empty at a sampled direction";
         for (int j = 0; j < wl_.Count(); ++j)
             EXPECT_NEAR(sum->mueller[j].m[0][0], f[j], 1e-9 * f[j] + 1e-300) << "Σ continuous M00 vs Eval·|cos|, slot " << j;
     }
     // A kernel with continuous lobes lists them.
-    if (material_->Capabilities(q_) & CapContinuous) {
-        ContinuousLobeIds ids;
-        material_->ContinuousLobes(q_, ids);
-        EXPECT_GT(ids.count, 0) << "CapContinuous but no ContinuousLobes";
+    if (k_->Capabilities() & CapContinuous) {
+        EXPECT_GT(k_->ContinuousLobes().count, 0) << "CapContinuous but no ContinuousLobes";
     }
+}
+
+TEST_P(MaterialContract, FootprintAwarenessIsDeclared) {
+    // Material::IsFootprintAware (what scene checks and composite kernels ask without a query) is
+    // what the kernel prepared for a generalized ray says; in the ray-optics limit no kernel is.
+    EXPECT_EQ(material_->IsFootprintAware(), (k_->Capabilities() & CapFootprintAware) != 0);
+    EXPECT_FALSE(kRay_->Capabilities() & CapFootprintAware);
+}
+
+TEST_P(MaterialContract, EvalPdfIsEvalAndPdf) {
+    // EvalPdf is a faster way to the same numbers: exactly (EvalFrom, Pdf), for a plane wave, a
+    // spherical wave from 0.1 mm and, for footprint-aware kernels, from 5 µm, in both regimes.
+    TestRng rng = Rng("evalpdf");
+    for (const PreparedKernel *k : {k_, kRay_})
+        for (int i = 0; i < 200; ++i) {
+            const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
+            for (const double dist : {Infinity, 1e-4, 5e-6}) {
+                const IncidentWave w{dist};
+                const KernelValue v = k->EvalPdf(wo, w);
+                const SampledSpectrum f = k->EvalFrom(wo, w);
+                ASSERT_EQ(v.pdf, k->Pdf(wo)) << "wo = " << ToString(wo) << ", dist " << dist;
+                for (int j = 0; j < k->Query().wl->Count(); ++j)
+                    ASSERT_EQ(v.f[j], f[j]) << "slot " << j << ", wo = " << ToString(wo) << ", dist " << dist;
+                if (std::isinf(dist)) {
+                    const SampledSpectrum e = k->Eval(wo);
+                    for (int j = 0; j < k->Query().wl->Count(); ++j) ASSERT_EQ(f[j], e[j]) << "slot " << j;
+                }
+            }
+        }
 }
 
 INSTANTIATE_TEST_SUITE_P(AllKernels, MaterialContract, ::testing::ValuesIn(AllCases()),

@@ -169,6 +169,21 @@ inline std::shared_ptr<Material> BuildMaterial(const std::string &type, const Pa
     return BuildObject<Material>("Material", type, params, diag);
 }
 
+/// A kernel prepared for one query in a scratch buffer of its own, for tests that ask one query a
+/// few questions: Prep(m, q)->Eval(wo), Prep(m, q)->ListNearDelta(), … (the listing and the answers
+/// live as long as the Prep).
+class Prep {
+  public:
+    Prep(const Material &m, const ScatterQuery &q)
+        : scratch_(std::make_unique<ScratchBuffer>(1024)), k_(&m.Prepare(q, *scratch_)) {}
+    const PreparedKernel *operator->() const { return k_; }
+    const PreparedKernel &operator*() const { return *k_; }
+
+  private:
+    std::unique_ptr<ScratchBuffer> scratch_;
+    const PreparedKernel *k_;
+};
+
 /// Hero `lambda` [m] plus three companions spaced by 85 nm and wrapped into 380–720 nm (the
 /// hero-wavelength layout of theory §4.10).
 inline SampledWavelengths TestWavelengths(double lambda) {

@@ -46,15 +46,16 @@ TEST(Mix, EndPointsAreTheChildren) {
             ScatterQuery q;
             q.wi = wi;
             q.wl = &wl;
-            EXPECT_EQ(mix->Capabilities(q), child->Capabilities(q));
+            const Prep km(*mix, q), kc(*child, q);
+            EXPECT_EQ(km->Capabilities(), kc->Capabilities());
             for (int i = 0; i < 100; ++i) {
                 const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
-                const SampledSpectrum fm = mix->Eval(q, wo), fc = child->Eval(q, wo);
+                const SampledSpectrum fm = km->Eval(wo), fc = kc->Eval(wo);
                 for (int j = 0; j < NumWavelengths; ++j) ASSERT_EQ(fm[j], fc[j]);
-                ASSERT_EQ(mix->Pdf(q, wo), child->Pdf(q, wo));
+                ASSERT_EQ(km->Pdf(wo), kc->Pdf(wo));
                 const double u0 = rng.Uniform();
                 const Vec2 u(rng.Uniform(), rng.Uniform());
-                auto sm = mix->Sample(q, u0, u), sc = child->Sample(q, u0, u);
+                auto sm = km->Sample(u0, u), sc = kc->Sample(u0, u);
                 ASSERT_EQ(bool(sm), bool(sc));
                 if (!sm) continue;
                 EXPECT_EQ(sm->wo, sc->wo);
@@ -64,16 +65,14 @@ TEST(Mix, EndPointsAreTheChildren) {
                 for (int j = 0; j < NumWavelengths; ++j)
                     EXPECT_NEAR(sm->weight[j], sc->weight[j], 1e-14 * sc->weight[j]);
             }
-            NearDeltaLobes lm, lc;
-            mix->ListNearDelta(q, lm);
-            child->ListNearDelta(q, lc);
-            ASSERT_EQ(lm.count, lc.count);
-            for (int k = 0; k < lc.count; ++k) {
-                EXPECT_EQ(lm.lobe[k].id, 2 * lc.lobe[k].id + int(isB));
-                EXPECT_EQ(lm.lobe[k].prob, lc.lobe[k].prob);
-                for (int j = 0; j < NumWavelengths; ++j) EXPECT_EQ(lm.lobe[k].weight[j], lc.lobe[k].weight[j]);
-                auto rm = mix->EvalLobe(q, lm.lobe[k].id, lm.lobe[k].wo[0]);
-                auto rc = child->EvalLobe(q, lc.lobe[k].id, lc.lobe[k].wo[0]);
+            const std::span<const NearDeltaLobe> lm = km->ListNearDelta(), lc = kc->ListNearDelta();
+            ASSERT_EQ(lm.size(), lc.size());
+            for (std::size_t k = 0; k < lc.size(); ++k) {
+                EXPECT_EQ(lm[k].id, 2 * lc[k].id + int(isB));
+                EXPECT_EQ(lm[k].prob, lc[k].prob);
+                for (int j = 0; j < NumWavelengths; ++j) EXPECT_EQ(lm[k].weight[j], lc[k].weight[j]);
+                auto rm = km->EvalLobe(lm[k].id, lm[k].wo[0]);
+                auto rc = kc->EvalLobe(lc[k].id, lc[k].wo[0]);
                 ASSERT_TRUE(rm && rc);
                 EXPECT_EQ(rm->mueller[0].m[0][0], rc->mueller[0].m[0][0]);
             }
@@ -99,16 +98,17 @@ TEST(Mix, EvalAndPdfAreTheWeightedSums) {
         q.wl = &wl;
         q.tex.uv = Vec2(u, 0.4);
         const double w = u;  // the ramp
+        const Prep k(*m, q);
         for (double c : {0.95, 0.4, 0.05}) {
             const Vec3 wo = DirectionFromCosTheta(c, 2.5);
             const double expected = ((1 - w) * 0.2 + w * 0.8) / Pi;
-            EXPECT_NEAR(m->Eval(q, wo)[0], expected, 1e-15) << "u = " << u;
-            EXPECT_NEAR(m->Pdf(q, wo), c / Pi, 1e-15);
-            EXPECT_EQ(m->Eval(q, DirectionFromCosTheta(-c, 2.5))[0], 0);  // no transmission
+            EXPECT_NEAR(k->Eval(wo)[0], expected, 1e-15) << "u = " << u;
+            EXPECT_NEAR(k->Pdf(wo), c / Pi, 1e-15);
+            EXPECT_EQ(k->Eval(DirectionFromCosTheta(-c, 2.5))[0], 0);  // no transmission
         }
         // Every sample's weight is the mixture's albedo (1 − w)·0.2 + w·0.8, whichever child drew it.
         for (double u0 : {0.05, 0.5, 0.95}) {
-            auto smp = m->Sample(q, u0, Vec2(0.3, 0.6));
+            auto smp = k->Sample(u0, Vec2(0.3, 0.6));
             ASSERT_TRUE(smp);
             EXPECT_NEAR(smp->weight[0], (1 - w) * 0.2 + w * 0.8, 1e-14);
         }
@@ -131,30 +131,30 @@ TEST(Mix, ListsTheLobesOfTwoConductors) {
         ScatterQuery q;
         q.wi = wi;
         q.wl = &wl;
-        EXPECT_EQ(m->Capabilities(q), unsigned(CapNearDelta));
-        NearDeltaLobes lobes;
-        m->ListNearDelta(q, lobes);
-        ASSERT_EQ(lobes.count, 2);
+        const Prep k(*m, q);
+        EXPECT_EQ(k->Capabilities(), unsigned(CapNearDelta));
+        const std::span<const NearDeltaLobe> lobes = k->ListNearDelta();
+        ASSERT_EQ(lobes.size(), 2u);
         const double cosI = std::abs(wi.z);
         const double share[2] = {0.75, 0.25};
         const Complex n[2] = {na, nb};
-        for (int k = 0; k < 2; ++k) {
-            const NearDeltaLobe &l = lobes.lobe[k];
-            EXPECT_EQ(l.id, k);
+        for (int id = 0; id < 2; ++id) {
+            const NearDeltaLobe &l = lobes[std::size_t(id)];
+            EXPECT_EQ(l.id, id);
             EXPECT_EQ(l.flags, unsigned(ScatterReflection | ScatterNearDelta));
             EXPECT_LT(Length(l.wo[0] - ReflectLocal(wi)), 1e-15);
-            EXPECT_NEAR(l.prob, share[k], 1e-15);
+            EXPECT_NEAR(l.prob, share[id], 1e-15);
             for (int j = 0; j < NumWavelengths; ++j)
-                EXPECT_NEAR(l.weight[j], share[k] * FresnelConductor(cosI, n[k]), 1e-14);
-            auto r = m->EvalLobe(q, l.id, l.wo[0]);
+                EXPECT_NEAR(l.weight[j], share[id] * FresnelConductor(cosI, n[id]), 1e-14);
+            auto r = k->EvalLobe(l.id, l.wo[0]);
             ASSERT_TRUE(r && r->hasJones);
-            const FresnelCoefficients c = FresnelAmplitudes(cosI, 1.0, n[k]);
-            EXPECT_LT(std::abs(r->jones[0].m[0][0] - std::sqrt(share[k]) * c.rs), 1e-14);
-            EXPECT_LT(std::abs(r->jones[0].m[1][1] - std::sqrt(share[k]) * c.rp), 1e-14);
+            const FresnelCoefficients c = FresnelAmplitudes(cosI, 1.0, n[id]);
+            EXPECT_LT(std::abs(r->jones[0].m[0][0] - std::sqrt(share[id]) * c.rs), 1e-14);
+            EXPECT_LT(std::abs(r->jones[0].m[1][1] - std::sqrt(share[id]) * c.rp), 1e-14);
             EXPECT_NEAR(r->mueller[0].m[0][0], l.weight[0], 1e-14);
         }
-        EXPECT_FALSE(m->EvalLobe(q, 2, ReflectLocal(wi))) << "a's lobe 1 does not exist";
-        EXPECT_FALSE(m->EvalLobe(q, -1, ReflectLocal(wi))) << "b's lobe −1 does not exist";
+        EXPECT_FALSE(k->EvalLobe(2, ReflectLocal(wi))) << "a's lobe 1 does not exist";
+        EXPECT_FALSE(k->EvalLobe(-1, ReflectLocal(wi))) << "b's lobe −1 does not exist";
     }
 }
 
@@ -171,11 +171,12 @@ TEST(Mix, RemapsNegativeIdsAndKeepsTheirOrder) {
     ScatterQuery q;
     q.wi = DirectionFromCosTheta(0.8, 0.2);
     q.wl = &wl;
-    NearDeltaLobes lm, lg;
-    m->ListNearDelta(q, lm);
-    g->ListNearDelta(q, lg);
-    ASSERT_EQ(lm.count, lg.count + 1);
-    for (int k = 1; k < lm.count; ++k) EXPECT_LT(lm.lobe[k - 1].id, lm.lobe[k].id);
+    const Prep lmK(*m, q);
+    const std::span<const NearDeltaLobe> lm = lmK->ListNearDelta();
+    const Prep lgK(*g, q);
+    const std::span<const NearDeltaLobe> lg = lgK->ListNearDelta();
+    ASSERT_EQ(lm.size(), lg.size() + 1);
+    for (std::size_t k = 1; k < lm.size(); ++k) EXPECT_LT(lm[k - 1].id, lm[k].id);
     int fromGrating = 0;
     for (const NearDeltaLobe &l : lm) {
         if (l.id == 1) continue;  // gold's mirror lobe
@@ -187,16 +188,16 @@ TEST(Mix, RemapsNegativeIdsAndKeepsTheirOrder) {
         ++fromGrating;
         EXPECT_NEAR(l.weight[0], 0.6 * src->weight[0], 1e-15);
         EXPECT_NEAR(l.prob, 0.6 * src->prob, 1e-15);
-        auto rm = m->EvalLobe(q, l.id, l.wo[0]);
-        auto rg = g->EvalLobe(q, src->id, src->wo[0]);
+        auto rm = lmK->EvalLobe(l.id, l.wo[0]);
+        auto rg = lgK->EvalLobe(src->id, src->wo[0]);
         ASSERT_TRUE(rm && rg);
         EXPECT_NEAR(rm->mueller[0].m[0][0], 0.6 * rg->mueller[0].m[0][0], 1e-15);
     }
-    EXPECT_EQ(fromGrating, lg.count);
-    EXPECT_LT(lg.lobe[0].id, 0) << "the test needs negative child ids";
+    EXPECT_EQ(fromGrating, int(lg.size()));
+    EXPECT_LT(lg[0].id, 0) << "the test needs negative child ids";
     // Sample across u0: every sample is a listed lobe of the mix.
     for (int k = 0; k < 64; ++k) {
-        auto smp = m->Sample(q, (k + 0.5) / 64, Vec2(0.5, 0.5));
+        auto smp = lmK->Sample((k + 0.5) / 64, Vec2(0.5, 0.5));
         ASSERT_TRUE(smp);
         bool listed = false;
         for (const NearDeltaLobe &l : lm) listed = listed || (l.id == smp->lobe && Length(l.wo[0] - smp->wo) < 1e-12);
@@ -243,12 +244,12 @@ TEST(Mix, GratingAndRoughSurfaceReflectFOfTheLightFromEachDirection) {
         q.wi = d;
         q.wl = &wl;
         q.rayOptics = false;
-        NearDeltaLobes ref;
-        gold->ListNearDelta(q, ref);
-        ASSERT_EQ(ref.count, 1);
+        const Prep refK(*gold, q);
+        const std::span<const NearDeltaLobe> ref = refK->ListNearDelta();
+        ASSERT_EQ(ref.size(), 1u);
         const SampledSpectrum halo = ContinuousFrom(*m, q, d, 0.02);
         for (int i = 0; i < wl.Count(); ++i) {
-            const double listed = ListedEnergyFrom(*m, q, i).energy, F = ref.lobe[0].weight[i];
+            const double listed = ListedEnergyFrom(*m, q, i).energy, F = ref[0].weight[i];
             EXPECT_NEAR(listed + halo[i], F, 3.5e-4 * F + 1e-7)
                 << "light from " << ToString(d) << ", slot " << i << ": listed " << listed << " + halo " << halo[i];
         }

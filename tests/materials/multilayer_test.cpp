@@ -80,7 +80,7 @@ TEST(Multilayer, PairsEqualTheWrittenOutList) {
     list.Set("layers", Value::List(layers)).Set("substrate_ior", Value::String("BK7"));
     auto written = Kernel("multilayer", list);
     ASSERT_TRUE(pairs && written);
-    ASSERT_EQ(pairs->AsCoating()->layers.size(), 6u);
+    ASSERT_EQ(LayersOf(*pairs)->layers.size(), 6u);
     for (double c : {0.9, 0.3, -0.7}) {
         const OneWave w(480e-9, c);
         EXPECT_EQ(List(*pairs, w).R, List(*written, w).R);

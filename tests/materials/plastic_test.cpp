@@ -57,16 +57,15 @@ std::shared_ptr<Material> Plastic(double rho, double ior) {
 // 2π∫₀¹ f(μ) μ dμ, composite Simpson), at the hero wavelength.
 double TotalReflectance(const Material &m, const ScatterQuery &q) {
     double total = 0;
-    NearDeltaLobes lobes;
-    m.ListNearDelta(q, lobes);
-    for (const NearDeltaLobe &l : lobes) total += l.weight[0];
+    const Prep k(m, q);
+    for (const NearDeltaLobe &l : k->ListNearDelta()) total += l.weight[0];
     const int n = 20000;
     const double h = 1.0 / n, side = q.wi.z > 0 ? 1 : -1;
     double s = 0;
     for (int i = 0; i <= n; ++i) {
         const double mu = i * h;
         const Vec3 wo(SafeSqrt(1 - mu * mu), 0, side * mu);
-        s += (i == 0 || i == n ? 1 : i % 2 ? 4 : 2) * m.Eval(q, wo)[0] * mu;
+        s += (i == 0 || i == n ? 1 : i % 2 ? 4 : 2) * k->Eval(wo)[0] * mu;
     }
     return total + 2 * Pi * s * h / 3;
 }
@@ -113,12 +112,12 @@ TEST(Plastic, BlackBaseIsTheBareCoat) {
     ScatterQuery q;
     q.wi = Vec3(0, 0, 1);
     q.wl = &wl;
-    NearDeltaLobes lobes;
-    m->ListNearDelta(q, lobes);
-    ASSERT_EQ(lobes.count, 1);
-    EXPECT_NEAR(lobes.lobe[0].weight[0], 0.04, 1e-15);
-    EXPECT_EQ(lobes.lobe[0].prob, 1);
-    EXPECT_EQ(m->Eval(q, DirectionFromCosTheta(0.5, 1))[0], 0);
+    const Prep k(*m, q);
+    const std::span<const NearDeltaLobe> lobes = k->ListNearDelta();
+    ASSERT_EQ(lobes.size(), 1u);
+    EXPECT_NEAR(lobes[0].weight[0], 0.04, 1e-15);
+    EXPECT_EQ(lobes[0].prob, 1);
+    EXPECT_EQ(k->Eval(DirectionFromCosTheta(0.5, 1))[0], 0);
 }
 
 // What Sample delivers, E[weight] over all lobes, is the total reflectance (t-test at fixed seed;
@@ -131,9 +130,10 @@ TEST(Plastic, SampledReflectanceMatchesSaunderson) {
     q.wl = &wl;
     TestRng rng(12);
     std::vector<double> w;
+    const Prep k(*m, q);
     for (int i = 0; i < 200000; ++i) {
         const double u0 = rng.Uniform(), u1 = rng.Uniform(), u2 = rng.Uniform();
-        auto s = m->Sample(q, u0, Vec2(u1, u2));
+        auto s = k->Sample(u0, Vec2(u1, u2));
         w.push_back(s ? s->weight[0] : 0.0);
     }
     const TTestResult t = OneSampleTTest(w, RefTotalReflectance(std::cos(Radians(40)), 1.5, 0.7));

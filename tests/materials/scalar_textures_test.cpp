@@ -162,8 +162,8 @@ TEST(ScalarTextures, NoiseAndScaleDriveAMixWeight) {
         q.tex.uv = Vec2(0.37 * i, 0.11 * i);
         // Eval towards the normal: the matte child's share only (the gold mirror has no density).
         const double w = n->EvalScalar(q.tex), factor = 0.5;
-        EXPECT_NEAR(m1->Eval(q, Vec3(0, 0, 1))[0], w * 0.6 / Pi, 1e-15);
-        EXPECT_NEAR(m2->Eval(q, Vec3(0, 0, 1))[0], factor * w * 0.6 / Pi, 1e-15);
+        EXPECT_NEAR(Prep(*m1, q)->Eval(Vec3(0, 0, 1))[0], w * 0.6 / Pi, 1e-15);
+        EXPECT_NEAR(Prep(*m2, q)->Eval(Vec3(0, 0, 1))[0], factor * w * 0.6 / Pi, 1e-15);
     }
 }
 
@@ -444,7 +444,7 @@ TEST(ScalarTextures, DiffuseReflectanceFromNoise) {
     double lo = 1, hi = 0;
     for (int i = 0; i < 50; ++i) {
         q.tex.uv = Vec2(0.37 * i, 0.11 * i);
-        const double w = m->Sample(q, 0.5, Vec2(0.5, 0.5))->weight[0];
+        const double w = Prep(*m, q)->Sample(0.5, Vec2(0.5, 0.5))->weight[0];
         EXPECT_EQ(w, n->EvalScalar(q.tex));
         lo = std::min(lo, w), hi = std::max(hi, w);
     }

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "materials/fresnel.h"
+#include "materials/smooth_kernel.h"
 #include "material_test_util.h"
 
 namespace phasor {
@@ -48,17 +49,26 @@ TEST(SmoothSurface, CoatingLayersInOrderFromOutsideAndReversedFromInside) {
 }
 
 TEST(SmoothSurface, ConductorAndDielectricExposeTheirSurface) {
+    // The facets the kernels built on a substrate or a coating ask for (smooth_kernel.h).
     Diagnostics diag;
-    auto gold = test::BuildMaterial("conductor", ParamDict().Set("ior", Value::String("Au")), diag);
-    ASSERT_TRUE(gold && gold->Surface());
-    EXPECT_TRUE(gold->Surface()->Absorbing(550e-9));
-    auto glass = test::BuildMaterial("dielectric", ParamDict().Set("ior", Value::Number(1.5)), diag);
-    ASSERT_TRUE(glass && glass->Surface());
-    EXPECT_DOUBLE_EQ(glass->Surface()->SubstrateIndex(550e-9).real(), 1.5);
+    auto gold = std::dynamic_pointer_cast<const SmoothKernel>(
+        test::BuildMaterial("conductor", ParamDict().Set("ior", Value::String("Au")), diag));
+    ASSERT_TRUE(gold);
+    EXPECT_TRUE(gold->Surface().Absorbing(550e-9));
+    auto glass = std::dynamic_pointer_cast<const SmoothKernel>(
+        test::BuildMaterial("dielectric", ParamDict().Set("ior", Value::Number(1.5)), diag));
+    ASSERT_TRUE(glass);
+    EXPECT_DOUBLE_EQ(glass->Surface().SubstrateIndex(550e-9).real(), 1.5);
+    EXPECT_FALSE(dynamic_cast<const CoatingKernel *>(glass.get()));
+    auto film = test::BuildMaterial(
+        "thin_film", ParamDict().Set("ior", Value::Number(1.33)).Set("thickness", Value::Number(300e-9, Dim::Length())), diag);
+    const auto *coating = dynamic_cast<const CoatingKernel *>(film.get());
+    ASSERT_TRUE(coating);
+    ASSERT_TRUE(coating->Layers());
+    EXPECT_EQ(coating->Layers()->layers.size(), 1u);
     auto diffuse = test::BuildMaterial("diffuse", ParamDict(), diag);
     ASSERT_TRUE(diffuse);
-    EXPECT_EQ(diffuse->Surface(), nullptr);
-    EXPECT_EQ(diffuse->AsCoating(), nullptr);
+    EXPECT_FALSE(dynamic_cast<const SmoothKernel *>(diffuse.get()));
 }
 
 }  // namespace

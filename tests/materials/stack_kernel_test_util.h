@@ -10,7 +10,7 @@
 #include <string>
 
 #include "material_test_util.h"
-#include "materials/smooth_surface.h"
+#include "materials/smooth_kernel.h"
 
 namespace phasor::test {
 
@@ -23,6 +23,20 @@ inline std::shared_ptr<Material> Kernel(const std::string &type, const ParamDict
     diag.Print(os);
     EXPECT_TRUE(m && diag.All().empty()) << type << ":\n" << os.str();
     return m;
+}
+
+/// The plane-wave optics of a smooth kernel (conductor, dielectric, thin_film, multilayer); fails the
+/// test for another kernel.
+inline const SmoothSurface &SurfaceOf(const Material &m) {
+    const auto *k = dynamic_cast<const SmoothKernel *>(&m);
+    EXPECT_TRUE(k) << m.ToString() << " is not a smooth kernel";
+    static const SmoothSurface none(nullptr, 0, nullptr);
+    return k ? k->Surface() : none;
+}
+/// The layers of a coating definition (thin_film, multilayer), or nullptr.
+inline const Coating *LayersOf(const Material &m) {
+    const auto *k = dynamic_cast<const CoatingKernel *>(&m);
+    return k ? k->Layers().get() : nullptr;
 }
 
 inline Value Nm(double v) { return Value::Number(v * 1e-9, Dim::Length()); }
@@ -50,11 +64,10 @@ struct OneWave {
 };
 
 inline Listed List(const Material &m, const OneWave &w) {
-    NearDeltaLobes lobes;
-    m.ListNearDelta(w.q, lobes);
+    const Prep k(m, w.q);
     Listed out;
-    out.count = lobes.count;
-    for (const NearDeltaLobe &l : lobes) {
+    out.count = int(k->ListNearDelta().size());
+    for (const NearDeltaLobe &l : k->ListNearDelta()) {
         if (l.id == 0) out.R = l.weight[0];
         if (l.id == 1) out.T = l.weight[0] * Sqr(l.Eta(0));
     }
@@ -63,11 +76,9 @@ inline Listed List(const Material &m, const OneWave &w) {
 
 /// EvalLobe of lobe `id` towards its listed hero direction (nullopt if it is not listed).
 inline std::optional<LobeResponse> Response(const Material &m, const OneWave &w, int id) {
-    NearDeltaLobes lobes;
-    m.ListNearDelta(w.q, lobes);
-    for (const NearDeltaLobe &l : lobes)
-        if (l.id == id) return m.EvalLobe(w.q, id, l.wo[0]);
-    return std::nullopt;
+    const Prep k(m, w.q);
+    const NearDeltaLobe *l = k->FindLobe(id);
+    return l ? k->EvalLobe(id, l->wo[0]) : std::nullopt;
 }
 
 }  // namespace phasor::test

@@ -99,7 +99,7 @@ TEST(ThinFilm, ZeroThicknessIsTheBareInterface) {
             for (double c : {1.0, 0.7, 0.3, 0.05})
                 for (bool ray : {false, true}) {
                     const Listed l = List(*film, OneWave(lambda, c, 0.4, ray));
-                    const Complex n = film->Surface()->SubstrateIndex(lambda);
+                    const Complex n = SurfaceOf(*film).SubstrateIndex(lambda);
                     const double bare = FresnelComplex(c, 1.0, n);
                     // 1e-14: the same Fresnel equations evaluated through the stack recursion.
                     EXPECT_NEAR(l.R, bare, 1e-14) << sub.ToString() << " λ " << lambda << " cos " << c;
@@ -167,14 +167,14 @@ TEST(ThinFilm, LobeChoiceSeesTheCompanions) {
     }
     EXPECT_LT(r[0], 1e-15) << "the hero is the film's zero";
     for (int i = 1; i < NumWavelengths; ++i) EXPECT_GT(r[i], 1e-3) << "companion " << i;
-    NearDeltaLobes lobes;
-    film->ListNearDelta(q, lobes);
-    ASSERT_EQ(lobes.count, 2);
+    const Prep k(*film, q);
+    const std::span<const NearDeltaLobe> lobes = k->ListNearDelta();
+    ASSERT_EQ(lobes.size(), 2u);
     const double pR = 0.5 * meanR / (meanR + meanT);
-    EXPECT_NEAR(lobes.lobe[0].prob, pR, 1e-12);
-    EXPECT_NEAR(lobes.lobe[1].prob, 1 - pR, 1e-12);
+    EXPECT_NEAR(lobes[0].prob, pR, 1e-12);
+    EXPECT_NEAR(lobes[1].prob, 1 - pR, 1e-12);
     // Sample with u0 below / above pR: each lobe's weights are its listed weights over its probability.
-    auto refl = film->Sample(q, 0.5 * pR, Vec2(0.5, 0.5)), tran = film->Sample(q, 0.5 + 0.5 * pR, Vec2(0.5, 0.5));
+    auto refl = k->Sample(0.5 * pR, Vec2(0.5, 0.5)), tran = k->Sample(0.5 + 0.5 * pR, Vec2(0.5, 0.5));
     ASSERT_TRUE(refl && tran);
     EXPECT_TRUE(refl->flags & ScatterReflection);
     EXPECT_TRUE(tran->flags & ScatterTransmission);
@@ -325,11 +325,11 @@ TEST(ThinFilm, TexturedThicknessIsEvaluatedAtTheHit) {
 
 TEST(ThinFilm, IsACoatingOfOneLayer) {
     auto film = Kernel("thin_film", Film(Value::String("Cu2O"), 150));
-    ASSERT_TRUE(film && film->AsCoating());
-    ASSERT_EQ(film->AsCoating()->layers.size(), 1u);
-    EXPECT_DOUBLE_EQ(film->AsCoating()->layers[0].thickness.Eval(TextureEvalContext()), 150e-9);
-    EXPECT_LT(std::abs(film->AsCoating()->layers[0].ior->Eval(551.05e-9) - Complex(3.09867, 0.187747)), 1e-9);
-    EXPECT_TRUE(film->Surface());
+    ASSERT_TRUE(film && LayersOf(*film));
+    ASSERT_EQ(LayersOf(*film)->layers.size(), 1u);
+    EXPECT_DOUBLE_EQ(LayersOf(*film)->layers[0].thickness.Eval(TextureEvalContext()), 150e-9);
+    EXPECT_LT(std::abs(LayersOf(*film)->layers[0].ior->Eval(551.05e-9) - Complex(3.09867, 0.187747)), 1e-9);
+    EXPECT_EQ(SurfaceOf(*film).LayerCount(), 1);
 }
 
 std::string BuildError(const std::string &type, const ParamDict &p) {

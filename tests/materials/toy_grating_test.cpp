@@ -49,57 +49,11 @@ class ToyGratingMaterial final : public Material {
         return p;
     }
 
-    unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(*this, q, scratch);
+    }
     // m = k·h·cosθ_i and the renormalisation depend on the incident direction only.
     bool IsReciprocal() const override { return false; }
-
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override {
-        if (q.wi.z == 0) return;
-        const int count = q.wl->Count();
-        std::array<double, NumWavelengths> total{};  // Σ_j J_j² over the propagating orders, per λ
-        for (int j = -maxOrder_; j <= maxOrder_; ++j) {
-            const Vec2 shift(j * 2 * Pi / period_, 0);
-            Vec3 wo0;
-            if (!NearDeltaDirection(q.wi, q.etaOutside, q.etaOutside, shift, q.wl->lambda[0], false, &wo0))
-                continue;  // evanescent at the hero: not listed
-            NearDeltaLobe &l = out.Add();
-            l.id = j;
-            l.flags = ScatterReflection | ScatterNearDelta | (j != 0 ? ScatterDispersive : 0u);
-            l.shift = shift;
-            l.nIn.fill(q.etaOutside);
-            l.nOut.fill(q.etaOutside);
-            for (int i = 0; i < count; ++i) {
-                l.wo[i] = wo0;
-                const double lambda = q.wl->lambda[i];
-                if (!NearDeltaDirection(q.wi, q.etaOutside, q.etaOutside, shift, lambda, false, &l.wo[i])) continue;
-                const double a = std::pow(std::cyl_bessel_j(double(std::abs(j)), Modulation(q, lambda)), 2);
-                l.weight[i] = a;
-                total[i] += a;
-            }
-        }
-        // Renormalised over the propagating orders; lobes are picked ∝ their hero weight.
-        for (int k = 0; k < out.count; ++k) {
-            NearDeltaLobe &l = out.lobe[k];
-            for (int i = 0; i < count; ++i) l.weight[i] = total[i] > 0 ? reflectance_ * l.weight[i] / total[i] : 0;
-            l.prob = reflectance_ > 0 ? l.weight[0] / reflectance_ : 1.0 / out.count;
-        }
-    }
-
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        NearDeltaLobes lobes;
-        ListNearDelta(q, lobes);
-        for (const NearDeltaLobe &l : lobes) {
-            if (l.id != lobe || !SameDirection(wo, l.wo[0])) continue;
-            LobeResponse r;
-            r.hasJones = true;
-            for (int i = 0; i < q.wl->Count(); ++i) {
-                r.jones[i] = Jones::Identity() * Complex(std::sqrt(l.weight[i]), 0);
-                r.mueller[i] = Mueller::Identity() * l.weight[i];
-            }
-            return r;
-        }
-        return std::nullopt;
-    }
 
     std::string ToString() const override {
         std::ostringstream os;
@@ -109,6 +63,57 @@ class ToyGratingMaterial final : public Material {
     }
 
   private:
+    /// The orders of one query, listed once; the default Sample picks one ∝ its probability.
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const ToyGratingMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch) : PreparedKernel(q) {
+            caps_ = CapNearDelta;
+            if (q.wi.z == 0) return;
+            const int count = q.wl->Count();
+            LobeList out(scratch, 2 * m.maxOrder_ + 1);
+            std::array<double, NumWavelengths> total{};  // Σ_j J_j² over the propagating orders, per λ
+            for (int j = -m.maxOrder_; j <= m.maxOrder_; ++j) {
+                const Vec2 shift(j * 2 * Pi / m.period_, 0);
+                Vec3 wo0;
+                if (!NearDeltaDirection(q.wi, q.etaOutside, q.etaOutside, shift, q.wl->lambda[0], false, &wo0))
+                    continue;  // evanescent at the hero: not listed
+                NearDeltaLobe &l = out.Add();
+                l.id = j;
+                l.flags = ScatterReflection | ScatterNearDelta | (j != 0 ? ScatterDispersive : 0u);
+                l.shift = shift;
+                l.nIn.fill(q.etaOutside);
+                l.nOut.fill(q.etaOutside);
+                for (int i = 0; i < count; ++i) {
+                    l.wo[i] = wo0;
+                    const double lambda = q.wl->lambda[i];
+                    if (!NearDeltaDirection(q.wi, q.etaOutside, q.etaOutside, shift, lambda, false, &l.wo[i])) continue;
+                    const double a = std::pow(std::cyl_bessel_j(double(std::abs(j)), m.Modulation(q, lambda)), 2);
+                    l.weight[i] = a;
+                    total[i] += a;
+                }
+            }
+            // Renormalised over the propagating orders; lobes are picked ∝ their hero weight.
+            for (int k = 0; k < out.Count(); ++k) {
+                NearDeltaLobe &l = out[k];
+                for (int i = 0; i < count; ++i) l.weight[i] = total[i] > 0 ? m.reflectance_ * l.weight[i] / total[i] : 0;
+                l.prob = m.reflectance_ > 0 ? l.weight[0] / m.reflectance_ : 1.0 / out.Count();
+            }
+            lobes_ = out.Lobes();
+        }
+
+        std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
+            const NearDeltaLobe *l = FindLobe(lobe);
+            if (!l || !SameDirection(wo, l->wo[0])) return std::nullopt;
+            LobeResponse r;
+            r.hasJones = true;
+            for (int i = 0; i < q_.wl->Count(); ++i) {
+                r.jones[i] = Jones::Identity() * Complex(std::sqrt(l->weight[i]), 0);
+                r.mueller[i] = Mueller::Identity() * l->weight[i];
+            }
+            return r;
+        }
+    };
+
     // m = k·h·cosθ_i (theory §4.2, D6); h is peak-to-peak, the phase amplitude is k·h·cosθ_i.
     double Modulation(const ScatterQuery &q, double lambda) const {
         return 2 * Pi * q.etaOutside / lambda * height_ * std::abs(q.wi.z);

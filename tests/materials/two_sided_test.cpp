@@ -38,20 +38,8 @@ class RotatorMaterial final : public Material {
         p[1].Set("material", Value::Ref("contract_aluminium")).Set("angle", Value::Number(1.2, Dim::Angle()));
         return p;
     }
-    unsigned Capabilities(const ScatterQuery &q) const override { return child_->Capabilities(q); }
-    void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override { child_->ListNearDelta(q, out); }
-    std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override {
-        std::optional<LobeResponse> r = child_->EvalLobe(q, lobe, wo);
-        if (!r || !r->hasJones) return r;
-        Jones rot;
-        rot.m[0][0] = rot.m[1][1] = std::cos(angle_);
-        rot.m[0][1] = -std::sin(angle_);
-        rot.m[1][0] = std::sin(angle_);
-        for (int i = 0; i < q.wl->Count(); ++i) {
-            r->jones[i] = rot * r->jones[i];
-            r->mueller[i] = Mueller::FromJones(r->jones[i]);
-        }
-        return r;
+    const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override {
+        return *scratch.New<Prepared>(*this, q, scratch);
     }
     std::string ToString() const override {
         std::ostringstream os;
@@ -60,9 +48,37 @@ class RotatorMaterial final : public Material {
     }
 
   private:
-    std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const override {
-        return child_->Sample(q, u0, u);
-    }
+    /// The child prepared for the query: its lobes and samples, its Jones matrices rotated.
+    class Prepared final : public PreparedKernel {
+      public:
+        Prepared(const RotatorMaterial &m, const ScatterQuery &q, ScratchBuffer &scratch)
+            : PreparedKernel(q), child_(&m.child_->Prepare(q, scratch)), angle_(m.angle_) {
+            caps_ = child_->Capabilities();
+            lobes_ = child_->ListNearDelta();
+            continuous_ = child_->ContinuousLobes();
+        }
+        std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
+            std::optional<LobeResponse> r = child_->EvalLobe(lobe, wo);
+            if (!r || !r->hasJones) return r;
+            Jones rot;
+            rot.m[0][0] = rot.m[1][1] = std::cos(angle_);
+            rot.m[0][1] = -std::sin(angle_);
+            rot.m[1][0] = std::sin(angle_);
+            for (int i = 0; i < q_.wl->Count(); ++i) {
+                r->jones[i] = rot * r->jones[i];
+                r->mueller[i] = Mueller::FromJones(r->jones[i]);
+            }
+            return r;
+        }
+
+      private:
+        std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override {
+            return child_->Sample(u0, u);
+        }
+        const PreparedKernel *child_;
+        double angle_;
+    };
+
     std::shared_ptr<const Material> child_;
     double angle_;
 };
@@ -97,14 +113,13 @@ TEST(TwoSided, FromBelowIsTheKernelMirrored) {
             qg.wi = up;
             qt.wi = below ? Mirror(up) : up;
             auto map = [&](const Vec3 &w) { return below ? Mirror(w) : w; };
-            EXPECT_EQ(t->Capabilities(qt), g->Capabilities(qg));
-            NearDeltaLobes lt, lg;
-            t->ListNearDelta(qt, lt);
-            g->ListNearDelta(qg, lg);
-            ASSERT_EQ(lt.count, lg.count);
-            ASSERT_GT(lt.count, 3);
-            for (int k = 0; k < lt.count; ++k) {
-                const NearDeltaLobe &a = lt.lobe[k], &b = lg.lobe[k];
+            const Prep kt(*t, qt), kg(*g, qg);
+            EXPECT_EQ(kt->Capabilities(), kg->Capabilities());
+            const std::span<const NearDeltaLobe> lt = kt->ListNearDelta(), lg = kg->ListNearDelta();
+            ASSERT_EQ(lt.size(), lg.size());
+            ASSERT_GT(lt.size(), 3u);
+            for (std::size_t k = 0; k < lt.size(); ++k) {
+                const NearDeltaLobe &a = lt[k], &b = lg[k];
                 EXPECT_EQ(a.id, b.id);
                 EXPECT_EQ(a.flags, b.flags);
                 EXPECT_EQ(a.prob, b.prob);
@@ -116,15 +131,15 @@ TEST(TwoSided, FromBelowIsTheKernelMirrored) {
                 }
                 // Below, the lobe leaves on wi's (lower) side.
                 EXPECT_GT(a.wo[0].z * qt.wi.z, 0) << "lobe " << a.id << " on the wrong side";
-                auto ra = t->EvalLobe(qt, a.id, a.wo[0]);
-                auto rb = g->EvalLobe(qg, b.id, b.wo[0]);
+                auto ra = kt->EvalLobe(a.id, a.wo[0]);
+                auto rb = kg->EvalLobe(b.id, b.wo[0]);
                 ASSERT_TRUE(ra && rb);
                 EXPECT_EQ(ra->mueller[0].m[0][0], rb->mueller[0].m[0][0]);
-                EXPECT_FALSE(t->EvalLobe(qt, a.id, b.wo[0]) && below) << "answers towards the unmirrored direction";
+                EXPECT_FALSE(kt->EvalLobe(a.id, b.wo[0]) && below) << "answers towards the unmirrored direction";
             }
             for (int k = 0; k < 32; ++k) {
                 const double u0 = (k + 0.5) / 32;
-                auto st = t->Sample(qt, u0, Vec2(0.3, 0.7)), sg = g->Sample(qg, u0, Vec2(0.3, 0.7));
+                auto st = kt->Sample(u0, Vec2(0.3, 0.7)), sg = kg->Sample(u0, Vec2(0.3, 0.7));
                 ASSERT_EQ(bool(st), bool(sg));
                 if (!st) continue;
                 EXPECT_EQ(st->wo, map(sg->wo));
@@ -151,24 +166,23 @@ TEST(TwoSided, FrontAndBackAreDifferentKernels) {
     ScatterQuery below = above;
     below.wi = Mirror(above.wi);
 
-    EXPECT_EQ(t->Capabilities(above), unsigned(CapNearDelta));
-    EXPECT_EQ(t->Capabilities(below), unsigned(CapContinuous));
-    NearDeltaLobes la, lgold, lb;
-    t->ListNearDelta(above, la);
-    gold->ListNearDelta(above, lgold);
-    t->ListNearDelta(below, lb);
-    ASSERT_EQ(la.count, 1);
-    EXPECT_EQ(la.lobe[0].weight[0], lgold.lobe[0].weight[0]);
-    EXPECT_EQ(lb.count, 0);
+    const Prep kAbove(*t, above), kBelow(*t, below), kGold(*gold, above);
+    EXPECT_EQ(kAbove->Capabilities(), unsigned(CapNearDelta));
+    EXPECT_EQ(kBelow->Capabilities(), unsigned(CapContinuous));
+    const std::span<const NearDeltaLobe> la = kAbove->ListNearDelta(), lgold = kGold->ListNearDelta(),
+                                         lb = kBelow->ListNearDelta();
+    ASSERT_EQ(la.size(), 1u);
+    EXPECT_EQ(la[0].weight[0], lgold[0].weight[0]);
+    EXPECT_EQ(lb.size(), 0u);
 
     TestRng rng(3);
     for (int i = 0; i < 200; ++i) {
         const Vec3 wo = UniformSphere(rng.Uniform(), rng.Uniform());
-        EXPECT_TRUE(t->Eval(above, wo).IsZero());
+        EXPECT_TRUE(kAbove->Eval(wo).IsZero());
         const double expected = wo.z < 0 ? 0.6 / Pi : 0.0;  // the diffuser, on the lower side only
-        EXPECT_NEAR(t->Eval(below, wo)[0], expected, 1e-15) << ToString(wo);
-        EXPECT_NEAR(t->Pdf(below, wo), wo.z < 0 ? -wo.z / Pi : 0.0, 1e-15);
-        auto smp = t->Sample(below, rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
+        EXPECT_NEAR(kBelow->Eval(wo)[0], expected, 1e-15) << ToString(wo);
+        EXPECT_NEAR(kBelow->Pdf(wo), wo.z < 0 ? -wo.z / Pi : 0.0, 1e-15);
+        auto smp = kBelow->Sample(rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
         ASSERT_TRUE(smp);
         EXPECT_LT(smp->wo.z, 0);
         EXPECT_NEAR(smp->weight[0], 0.6, 1e-15);
@@ -192,7 +206,7 @@ TEST(TwoSided, MirrorChangesTheSignOfOffDiagonalJonesTerms) {
     const double c = std::cos(0.4), sn = std::sin(0.4);
     for (const bool below : {false, true}) {
         q.wi = DirectionFromCosTheta(below ? -0.7 : 0.7, 0.9);
-        auto r = t->EvalLobe(q, 0, ReflectLocal(q.wi));
+        auto r = Prep(*t, q)->EvalLobe(0, ReflectLocal(q.wi));
         ASSERT_TRUE(r && r->hasJones);
         const FresnelCoefficients f = FresnelAmplitudes(0.7, 1.0, Complex(0.2, 3.0));
         const double sign = below ? -1 : 1;  // rotation by ±α
@@ -240,15 +254,15 @@ TEST(TwoSided, FacesKeepTheirEnergySense) {
             q.wi = below ? Mirror(up) : up;
             q.wl = &wl;
             q.rayOptics = false;
-            NearDeltaLobes ref;
-            gold->ListNearDelta(q, ref);
-            ASSERT_EQ(ref.count, 1);
+            const Prep refK(*gold, q);
+            const std::span<const NearDeltaLobe> ref = refK->ListNearDelta();
+            ASSERT_EQ(ref.size(), 1u);
             const SampledSpectrum halo = ContinuousFrom(*t, q, q.wi, 0.02);
             if (below) {
                 EXPECT_TRUE(halo.IsZero()) << "the grating face has no halo";
             }
             for (int i = 0; i < wl.Count(); ++i) {
-                const double listed = ListedEnergyFrom(*t, q, i).energy, F = ref.lobe[0].weight[i];
+                const double listed = ListedEnergyFrom(*t, q, i).energy, F = ref[0].weight[i];
                 EXPECT_NEAR(listed + halo[i], F, 3.5e-4 * F + 1e-7)
                     << "light from " << ToString(q.wi) << ", slot " << i << ": listed " << listed << " + halo " << halo[i];
             }

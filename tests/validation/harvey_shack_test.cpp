@@ -82,17 +82,18 @@ TEST(HarveyShackPlate, CameraSeesGlintPlusNarrowHaloCarryTheTotalReflectedFlux) 
                         ScatterQuery q;
                         q.wl = &wl;
                         q.wi = si0->shading.ToLocal(-d);
-                        const double f = m.Eval(q, si0->shading.ToLocal(toSun))[0];
+                        ScratchBuffer scratch;
+                        const double f = m.Prepare(q, scratch).Eval(si0->shading.ToLocal(toSun))[0];
                         field += f * cosT * E * std::max(0.0, -d.z) * scale * scale * Sqr(cosAxis) * cosAxis / 16;
                     }
         ScatterQuery q;
         q.wl = &wl;
         q.wi = si0->shading.ToLocal(toSun);
-        NearDeltaLobes lobes;
-        m.ListNearDelta(q, lobes);
-        ASSERT_EQ(lobes.count, 1);
-        const double glint = lobes.lobe[0].weight[0] * E * cosT;
-        RecordProperty("alpha_spec", std::to_string(lobes.lobe[0].weight[0] / F));
+        ScratchBuffer scratch;
+        const std::span<const NearDeltaLobe> lobes = m.Prepare(q, scratch).ListNearDelta();
+        ASSERT_EQ(lobes.size(), 1u);
+        const double glint = lobes[0].weight[0] * E * cosT;
+        RecordProperty("alpha_spec", std::to_string(lobes[0].weight[0] / F));
         std::printf("harvey_shack plate: predicted glint %.6f + halo in field %.6f = %.6f (F·E·cosθ %.6f, %+.1e)\n",
                     glint, field, glint + field, expected, (glint + field) / expected - 1);
         EXPECT_NEAR(glint + field, expected, 3e-4 * expected)

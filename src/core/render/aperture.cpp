@@ -9,6 +9,7 @@
 
 #include "core/diagnostics.h"
 #include "core/image/image_io.h"
+#include "core/render/material.h"
 
 namespace phasor {
 
@@ -271,6 +272,11 @@ PlateFrame PlateFrame::FromTransform(const Transform &toWorld) {
     f.e2 = a2;
     f.n = a3;
     return f;
+}
+
+const ApertureMask *OpeningsOf(const Material &m) {
+    const auto *p = dynamic_cast<const PlateOpenings *>(&m);
+    return p ? &p->Openings() : nullptr;
 }
 
 }  // namespace phasor

@@ -102,4 +102,19 @@ struct PlateFrame {
     Vec3 ToWorld(const Vec2 &uv) const { return origin + e1 * uv.x + e2 * uv.y; }
 };
 
+class Material;
+
+/// The facet of a kernel that is an opaque plate with openings (the `aperture` material): what
+/// field-based integrators (`rs`) and the scene checks read of it, beside the kernel interface.
+class PlateOpenings {
+  public:
+    /// The openings in plate coordinates.
+    virtual const ApertureMask &Openings() const = 0;
+
+  protected:
+    ~PlateOpenings() = default;
+};
+/// m's openings (PlateOpenings), or nullptr for a kernel that is not a plate with openings.
+const ApertureMask *OpeningsOf(const Material &m);
+
 }  // namespace phasor

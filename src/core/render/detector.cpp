@@ -173,7 +173,7 @@ SensorResponse CameraResponse(const ParamDict &d, BuildContext &ctx) {
 
 std::vector<Vec3> AimCorners(const Shape &aim) {
     std::vector<Vec3> out;
-    const ApertureMask *open = aim.material ? aim.material->Openings() : nullptr;
+    const ApertureMask *open = aim.material ? OpeningsOf(*aim.material) : nullptr;
     if (open && !open->Empty()) {
         // Through the transform itself: a plate that is not a rigid motion is the shape's error
         // (Material::CheckShape reports it at its definition), not the sensor's.

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — the non-virtual part of the kernel interface (core/render/material.h): the lobe mask is
-// applied here, once, for every kernel.
+// applied here (PreparedKernel::Sample and the inline Eval, EvalFrom, Pdf, EvalPdf), once, for every
+// kernel.
 #include "core/render/material.h"
 
 #include "core/diagnostics.h"
@@ -10,13 +11,6 @@ namespace phasor {
 
 double ScatterQuery::Beta2(int i) const { return gr ? gr->beta2[i] : 0; }
 double ScatterQuery::Rho(int i) const { return gr ? gr->rho[i] : 0; }
-
-NearDeltaLobe &NearDeltaLobes::Add() {
-    if (count >= Capacity)
-        throw Error("a kernel listed more than " + std::to_string(Capacity) + " near-delta lobes");
-    lobe[count] = NearDeltaLobe{};
-    return lobe[count++];
-}
 
 void ContinuousLobeIds::Add(int lobeId) {
     if (count >= Capacity)
@@ -34,23 +28,10 @@ Vec3 LobeSAxis(const Vec3 &wi, const Vec3 &wo) {
     return Vec3(0, 1, 0);
 }
 
-std::optional<LobeResponse> Material::EvalContinuousLobes(const ScatterQuery &q, const Vec3 &wo) const {
-    ContinuousLobeIds ids;
-    ContinuousLobes(q, ids);
-    std::optional<LobeResponse> sum;
-    for (int id : ids) {
-        auto r = EvalLobe(q, id, wo);
-        if (!r) continue;
-        if (!sum) {
-            sum = *r;
-            continue;
-        }
-        sum->hasJones = false;
-        for (int i = 0; i < q.wl->Count(); ++i) sum->mueller[i] = sum->mueller[i] + r->mueller[i];
-    }
-    // Continuous lobes have no interference terms (LobeCoherence is for near-delta lobes).
-    if (sum) sum->coherence = LobeCoherence{};
-    return sum;
+NearDeltaLobe &LobeList::Add() {
+    if (count_ >= capacity_)
+        throw Error("a kernel listed more than the " + std::to_string(capacity_) + " near-delta lobes it made room for");
+    return *::new (lobe_ + count_++) NearDeltaLobe{};
 }
 
 namespace {
@@ -59,41 +40,37 @@ unsigned MaskOf(unsigned scatterFlags) {
 }
 }  // namespace
 
-std::optional<ScatterSample> Material::Sample(const ScatterQuery &q, double u0, const Vec2 &u) const {
-    auto s = SampleLobes(q, u0, u);
-    if (s && !(q.lobes & MaskOf(s->flags))) return std::nullopt;  // outside the mask: unbiased for the rest
+const NearDeltaLobe *PreparedKernel::FindLobe(int id) const {
+    for (const NearDeltaLobe &l : lobes_)
+        if (l.id == id) return &l;
+    return nullptr;
+}
+
+std::optional<ScatterSample> PreparedKernel::Sample(double u0, const Vec2 &u, unsigned lobes) const {
+    auto s = SampleLobes(u0, u);
+    if (s && !(lobes & MaskOf(s->flags))) return std::nullopt;  // outside the mask: unbiased for the rest
     return s;
 }
 
-SampledSpectrum Material::Eval(const ScatterQuery &q, const Vec3 &wo) const {
-    return (q.lobes & LobeContinuous) ? EvalContinuous(q, wo) : SampledSpectrum(0.0);
+std::optional<ScatterSample> PreparedKernel::SampleLobes(double u0, const Vec2 &) const {
+    return SampleListedLobe(lobes_, u0);
 }
 
-SampledSpectrum Material::EvalFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const {
-    return (q.lobes & LobeContinuous) ? EvalContinuousFrom(q, wo, w) : SampledSpectrum(0.0);
-}
-
-double Material::Pdf(const ScatterQuery &q, const Vec3 &wo) const {
-    return (q.lobes & LobeContinuous) ? PdfContinuous(q, wo) : 0;
-}
-
-bool Material::IsFootprintAware() const {
-    static const SpectralGenRay gr;  // a generalized-ray query (Capabilities reads no geometry)
-    ScatterQuery q;
-    q.wi = Vec3(0, 0, 1);
-    q.rayOptics = false;
-    q.gr = &gr;
-    return (Capabilities(q) & CapFootprintAware) != 0;
-}
-
-std::optional<ScatterSample> Material::SampleLobes(const ScatterQuery &q, double u0, const Vec2 &) const {
-    NearDeltaLobes lobes;
-    ListNearDelta(q, lobes);
-    return SampleListedLobe(lobes, u0);
-}
-
-std::optional<ScatterSample> SampleListedLobe(const NearDeltaLobes &lobes, double u0) {
-    return SampleListedLobe(std::span<const NearDeltaLobe>(lobes.begin(), lobes.end()), u0);
+std::optional<LobeResponse> PreparedKernel::EvalContinuousLobes(const Vec3 &wo) const {
+    std::optional<LobeResponse> sum;
+    for (int id : continuous_) {
+        auto r = EvalLobe(id, wo);
+        if (!r) continue;
+        if (!sum) {
+            sum = *r;
+            continue;
+        }
+        sum->hasJones = false;
+        for (int i = 0; i < q_.wl->Count(); ++i) sum->mueller[i] = sum->mueller[i] + r->mueller[i];
+    }
+    // Continuous lobes have no interference terms (LobeCoherence is for near-delta lobes).
+    if (sum) sum->coherence = LobeCoherence{};
+    return sum;
 }
 
 std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0) {
@@ -112,6 +89,11 @@ std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lob
         return s;
     }
     return std::nullopt;
+}
+
+std::optional<double> ReferenceAngleOf(const Material &m, const TextureEvalContext &tex) {
+    const auto *r = dynamic_cast<const ReferenceDirection *>(&m);
+    return r ? r->ReferenceAngle(tex) : std::nullopt;
 }
 
 EnergySense EnergySenseOf(const Material &m) {
@@ -142,18 +124,30 @@ const char *Describe(EnergySense s) {
     return "";
 }
 
+namespace {
+/// The tangential part of a near-delta lobe's direction: theory §4.2 (vector grating equation), the
+/// tangential wave vector of the incident wave (travelling along −wi) plus the lobe's shift is the
+/// outgoing one.
+Vec2 NearDeltaTangential(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda) {
+    const double s = lambda / (2 * Pi);
+    return Vec2((-nIn * wi.x + shift.x * s) / nOut, (-nIn * wi.y + shift.y * s) / nOut);
+}
+}  // namespace
+
 bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda,
                         bool transmission, Vec3 *wo) {
-    // theory §4.2 (vector grating equation): the tangential wave vector of the incident wave
-    // (travelling along −wi) plus the lobe's shift is the outgoing one.
-    const double s = lambda / (2 * Pi);
-    const double tx = (-nIn * wi.x + shift.x * s) / nOut, ty = (-nIn * wi.y + shift.y * s) / nOut;
-    const double t2 = tx * tx + ty * ty;
+    const Vec2 t = NearDeltaTangential(wi, nIn, nOut, shift, lambda);
+    const double t2 = t.x * t.x + t.y * t.y;
     if (!(t2 < 1)) return false;  // evanescent
     const double z = std::sqrt(1 - t2);
     const double side = wi.z >= 0 ? 1.0 : -1.0;  // wi's side
-    *wo = Vec3(tx, ty, transmission ? -side * z : side * z);
+    *wo = Vec3(t.x, t.y, transmission ? -side * z : side * z);
     return true;
+}
+
+bool NearDeltaPropagates(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda) {
+    const Vec2 t = NearDeltaTangential(wi, nIn, nOut, shift, lambda);
+    return t.x * t.x + t.y * t.y < 1;
 }
 
 }  // namespace phasor

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/scratch_buffer.h"
 #include "core/polarization.h"
 #include "core/spectrum/spectrum.h"
 #include "core/render/texture.h"
@@ -23,18 +24,15 @@ struct SpectralGenRay;
 struct SurfaceInteraction;
 struct GaussianBeamGeometry;
 class Shape;
-class ApertureMask;
-class SmoothSurface;
-struct Coating;
 
-/// Lobe flags returned by Sample() and ListNearDelta().
+/// Lobe flags returned by PreparedKernel::Sample and ListNearDelta.
 enum ScatterFlags : unsigned {
     ScatterReflection = 1u << 0,
     ScatterTransmission = 1u << 1,
     ScatterDiffuse = 1u << 2,     // a continuous lobe with a finite pdf
     /// A near-delta lobe (smooth reflection/refraction, grating order): in the ray-optics limit a
     /// Dirac delta; for a generalized ray its true angular width is the ray's own spread σ_k/k.
-    /// Listed by Material::ListNearDelta; never part of Eval (see LobeMask).
+    /// Listed by PreparedKernel::ListNearDelta; never part of Eval (see LobeMask).
     ScatterNearDelta = 1u << 3,
     ScatterDispersive = 1u << 4,  // direction depends on wavelength (collapse to the hero)
     /// Footprint-aware kernels (theory §9 item 5): the lobe already holds the GR's angular spread,
@@ -42,21 +40,15 @@ enum ScatterFlags : unsigned {
     ScatterSpreadFree = 1u << 5,
 };
 
-/// Which lobes a query is about — the one rule for what Sample, Eval and Pdf contain, enforced in
-/// Material's non-virtual wrappers (so no kernel can get it wrong):
-///   * Eval and Pdf report continuous lobes only, and only when the mask has LobeContinuous.
-///     Near-delta lobes have no density in Eval, not even for a generalized ray: integrators
-///     measure delta and small sources through them in closed form from ListNearDelta (D14).
-///   * Sample returns nullopt for a lobe outside the mask. Since Sample picks lobe j with
-///     probability p_j and weights it by 1/p_j, the masked estimator is an unbiased estimate of
-///     the masked part alone (e.g. LobeContinuous: the continuous lobes' ∫ f·|cosθ| dω).
+/// Which lobes a question to a prepared kernel is about (the last argument of PreparedKernel's
+/// Sample, Eval, EvalFrom, Pdf and EvalPdf; the rule is stated there).
 enum LobeMask : unsigned {
     LobeContinuous = 1u << 0,
     LobeNearDelta = 1u << 1,
     LobeAll = LobeContinuous | LobeNearDelta,
 };
 
-/// What a kernel can do for a query (Material::Capabilities). May depend on the query: the
+/// What a kernel can do for a query (PreparedKernel::Capabilities). May depend on the query: the
 /// `aperture` is a straight near-delta transmission in the ray-optics limit and a footprint-aware
 /// continuous lobe for a generalized ray.
 enum KernelCaps : unsigned {
@@ -77,13 +69,12 @@ struct ScatterQuery {
     /// Ray-optics limit requested (the `ray` integrator, spread-free GRs): near-delta lobes are
     /// true deltas and wave effects collapse to their geometric limit.
     bool rayOptics = true;
-    /// The lobes Sample, Eval and Pdf are about (LobeMask). `grt`'s NEE asks for LobeContinuous.
-    unsigned lobes = LobeAll;
     TextureEvalContext tex;                // where textures are evaluated (uv, p, dp/du, β …)
     /// The incident generalized ray and the hit, for kernels that depend on the GR's footprint:
     /// `gr` is the traced GR at the hit point in world space (gr->d points into the surface,
     /// per-wavelength k, β², ρ; traced convention, ρ > 0 diverging along d), `si` the interaction
-    /// (world shading frame, shape and its to_world). Both null for classical rays.
+    /// (world shading frame, shape and its to_world). Both null for classical rays. Read while the
+    /// kernel is prepared only (Material::Prepare).
     const SpectralGenRay *gr = nullptr;
     const SurfaceInteraction *si = nullptr;
 
@@ -122,7 +113,7 @@ struct ScatterSample {
     double eta = 1;           // relative index η_t/η_i crossed at the hero wavelength (1 for reflection)
 };
 
-/// One near-delta lobe of a kernel for a query (Material::ListNearDelta). Per carried wavelength
+/// One near-delta lobe of a kernel for a query (PreparedKernel::ListNearDelta). Per carried wavelength
 /// i < wl->Count(): the outgoing direction, the weight and the indices, obeying the vector grating
 /// equation in the local tangent plane (z = normal; k = 2π/λ):
 ///     nOut[i]·wo[i].xy = −nIn[i]·wi.xy + shift·λ_i/(2π)
@@ -142,19 +133,25 @@ struct NearDeltaLobe {
     double prob = 0;     // the probability with which Sample picks this lobe for this query
     double Eta(int i) const { return nOut[i] / nIn[i]; }  // relative index crossed
 };
-/// The near-delta lobes of one query: a fixed-capacity list (a grating lists ≤ 2·max_order+1
-/// orders per side); kernels Add() lobes, integrators iterate.
-struct NearDeltaLobes {
-    static constexpr int Capacity = 64;
-    std::array<NearDeltaLobe, Capacity> lobe;
-    int count = 0;
-    /// Appends a lobe; throws phasor::Error past Capacity (a kernel bug, not user input).
+/// The near-delta lobes a kernel lists while it is prepared (Material::Prepare), in the scratch
+/// buffer: room for at most `capacity` lobes, which the kernel knows (a smooth surface 2, a grating
+/// 2·(2·max_order + 1)). The prepared kernel keeps Lobes() (PreparedKernel::ListNearDelta).
+class LobeList {
+  public:
+    LobeList(ScratchBuffer &scratch, int capacity)
+        : lobe_(scratch.Room<NearDeltaLobe>(std::size_t(capacity))), capacity_(capacity) {}
+    /// Appends a lobe (value-initialised); throws phasor::Error past the capacity (a kernel bug).
     NearDeltaLobe &Add();
-    const NearDeltaLobe *begin() const { return lobe.data(); }
-    const NearDeltaLobe *end() const { return lobe.data() + count; }
+    int Count() const { return count_; }
+    NearDeltaLobe &operator[](int k) { return lobe_[k]; }
+    std::span<const NearDeltaLobe> Lobes() const { return {lobe_, std::size_t(count_)}; }
+
+  private:
+    NearDeltaLobe *lobe_;
+    int capacity_, count_ = 0;
 };
 
-/// The ids of a query's continuous lobes (Material::ContinuousLobes); fixed capacity.
+/// The ids of a query's continuous lobes (PreparedKernel::ContinuousLobes); fixed capacity.
 struct ContinuousLobeIds {
     static constexpr int Capacity = 8;
     std::array<int, Capacity> id{};
@@ -187,7 +184,7 @@ struct LobeCoherence {
     bool any = false;  // false: no coherence-dependent term (incoherent == mueller, shear 0)
 };
 
-/// The response of one given lobe towards one given direction (Material::EvalLobe), per carried
+/// The response of one given lobe towards one given direction (PreparedKernel::EvalLobe), per carried
 /// wavelength, in the s/p frame of LobeSAxis(wi, wo) — for interface lobes the plane of incidence
 /// (core/polarization.h: s = the normal × propagation direction, p completing a right-handed frame
 /// with the propagation direction; for normal incidence the local x axis is p's reference). The
@@ -204,68 +201,144 @@ struct LobeResponse {
     LobeCoherence coherence;
 };
 
-class Material {
-  public:
-    virtual ~Material() = default;
+/// The continuous lobes' value and density towards one direction (PreparedKernel::EvalPdf).
+struct KernelValue {
+    SampledSpectrum f;  // [1/sr] as PreparedKernel::Eval / EvalFrom (no cosine)
+    double pdf = 0;     // [1/sr] as PreparedKernel::Pdf
+};
 
-    // --- What integrators call (non-virtual: the lobe mask is enforced here, once) ----------
+/// A kernel prepared for one query (Material::Prepare; pbrt-v4's BSDF from GetBSDF, Mitsuba 3's
+/// BSDF with its SurfaceInteraction): what depends on the query alone — textures, the smooth
+/// surface's optics at θ_i, a grating's orders, a mixture's weight, the plate a generalized ray
+/// meets — is evaluated once, the near-delta lobes are listed once, and every question about the
+/// query (Sample, Eval, Pdf, EvalPdf, ListNearDelta, EvalLobe, …) is a method of this object. It
+/// lives in the ScratchBuffer it was prepared in, until that buffer is reset.
+///
+/// The query it keeps (Query()) has `gr` and `si` cleared: a kernel reads what it needs of the
+/// incident generalized ray and the hit while it is prepared (the integrator moves both on).
+///
+/// The lobe mask (`lobes`, LobeMask) is the one rule for what Sample, Eval and Pdf contain, enforced
+/// here in the non-virtual methods, so no kernel can get it wrong:
+///   * Eval and Pdf report continuous lobes only, and only when the mask has LobeContinuous.
+///     Near-delta lobes have no density in Eval, not even for a generalized ray: integrators
+///     measure delta and small sources through them in closed form from ListNearDelta (D14).
+///   * Sample returns nullopt for a lobe outside the mask. Since Sample picks lobe j with
+///     probability p_j and weights it by 1/p_j, the masked estimator is an unbiased estimate of
+///     the masked part alone (e.g. LobeContinuous: the continuous lobes' ∫ f·|cosθ| dω).
+class PreparedKernel {
+  public:
+    PreparedKernel(const PreparedKernel &) = delete;
+    PreparedKernel &operator=(const PreparedKernel &) = delete;
+
+    /// The query, with `gr` and `si` cleared (see above).
+    const ScatterQuery &Query() const { return q_; }
+    /// KernelCaps for the query.
+    unsigned Capabilities() const { return caps_; }
+    /// True if the query has no continuous lobe (no point in light sampling).
+    bool IsDeltaOnly() const { return !(caps_ & CapContinuous); }
+    /// Every near-delta lobe of the query, in the order of their ids (none for a kernel without
+    /// near-delta lobes).
+    std::span<const NearDeltaLobe> ListNearDelta() const { return lobes_; }
+    /// The listed lobe of id `id`, or nullptr.
+    const NearDeltaLobe *FindLobe(int id) const;
+    /// The ids of the continuous lobes: those Sample returns with a finite pdf. Their EvalLobe
+    /// responses add up to Eval·|cosθo| at every wo (checked by the contract suite), so a polarised
+    /// integrator can weight a sampled direction by all of them, as Eval does.
+    const ContinuousLobeIds &ContinuousLobes() const { return continuous_; }
 
     /// Picks one term of the scattering mixture with probability p_j (u0) and a direction in it
     /// (u). Returns nullopt if the path is absorbed / no valid direction, or the picked lobe is
-    /// outside q.lobes (LobeMask).
-    std::optional<ScatterSample> Sample(const ScatterQuery &q, double u0, const Vec2 &u) const;
+    /// outside `lobes` (LobeMask).
+    std::optional<ScatterSample> Sample(double u0, const Vec2 &u, unsigned lobes = LobeAll) const;
     /// Scattered density towards wo per unit solid angle per unit incident irradiance [1/sr]
-    /// (no cosine) of the continuous lobes; 0 unless q.lobes has LobeContinuous.
-    SampledSpectrum Eval(const ScatterQuery &q, const Vec3 &wo) const;
+    /// (no cosine) of the continuous lobes; 0 unless `lobes` has LobeContinuous.
+    SampledSpectrum Eval(const Vec3 &wo, unsigned lobes = LobeAll) const {
+        return (lobes & LobeContinuous) ? EvalContinuous(wo) : SampledSpectrum(0.0);
+    }
     /// Like Eval, for the wave `w` arriving along −wo: a spherical wave from a source at distance
     /// w.dist [m] (its curvature over the GR's footprint matters to footprint-aware kernels;
     /// Infinity gives Eval) or a Gaussian beam (w.beam; the value is then per unit on-axis
     /// irradiance, see IncidentWave). Kernels that are not footprint-aware ignore w.
-    SampledSpectrum EvalFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const;
+    SampledSpectrum EvalFrom(const Vec3 &wo, const IncidentWave &w, unsigned lobes = LobeAll) const {
+        return (lobes & LobeContinuous) ? EvalContinuousFrom(wo, w) : SampledSpectrum(0.0);
+    }
     /// Solid-angle density with which Sample() produces wo (continuous lobes, including their
-    /// selection probability); 0 unless q.lobes has LobeContinuous.
-    double Pdf(const ScatterQuery &q, const Vec3 &wo) const;
-    /// True if the query has no continuous lobe (no point in light sampling).
-    bool IsDeltaOnly(const ScatterQuery &q) const { return !(Capabilities(q) & CapContinuous); }
-    /// Footprint-awareness for a generalized-ray query (scene checks ask without a query).
-    bool IsFootprintAware() const;
-
-    // --- What a kernel implements -------------------------------------------------------------
-
-    /// KernelCaps for the query.
-    virtual unsigned Capabilities(const ScatterQuery &q) const = 0;
-    /// Lists every near-delta lobe for the query into `out` (which arrives empty), in the order of
-    /// their ids. Kernels without near-delta lobes list none.
-    virtual void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const {
-        (void)q;
-        (void)out;
+    /// selection probability); 0 unless `lobes` has LobeContinuous.
+    double Pdf(const Vec3 &wo, unsigned lobes = LobeAll) const {
+        return (lobes & LobeContinuous) ? PdfContinuous(wo) : 0;
+    }
+    /// EvalFrom and Pdf towards one direction together (what light sampling with MIS needs; a
+    /// kernel shares the work of the two where it can). Equal to (EvalFrom(wo, w), Pdf(wo)).
+    KernelValue EvalPdf(const Vec3 &wo, const IncidentWave &w = {}, unsigned lobes = LobeAll) const {
+        return (lobes & LobeContinuous) ? EvalPdfContinuous(wo, w) : KernelValue{};
     }
     /// The response (Jones / Mueller, coherence terms) of lobe `lobe` (an id Sample or
     /// ListNearDelta gave for this query) towards wo; nullopt if the lobe does not reach wo (for a
     /// near-delta lobe: wo is not its direction at the hero wavelength, to 1e-9). See LobeResponse.
-    virtual std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const = 0;
-    /// The ids of the continuous lobes for the query: those Sample returns with a finite pdf. Their
-    /// EvalLobe responses add up to Eval·|cosθo| at every wo (checked by the contract suite), so a
-    /// polarised integrator can weight a sampled direction by all of them, as Eval does. Kernels
-    /// without continuous lobes list none.
-    virtual void ContinuousLobes(const ScatterQuery &q, ContinuousLobeIds &out) const {
-        (void)q;
-        (void)out;
-    }
+    virtual std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const = 0;
     /// Σ over ContinuousLobes of EvalLobe towards wo (the Mueller sum; a Jones matrix only when
     /// exactly one lobe answers; no coherence terms); nullopt if none answers.
-    std::optional<LobeResponse> EvalContinuousLobes(const ScatterQuery &q, const Vec3 &wo) const;
+    std::optional<LobeResponse> EvalContinuousLobes(const Vec3 &wo) const;
+
+  protected:
+    /// Keeps q without its `gr` and `si` (see above). Kernels set caps_, lobes_ and continuous_.
+    explicit PreparedKernel(const ScatterQuery &q) : q_(q) {
+        q_.gr = nullptr;
+        q_.si = nullptr;
+    }
+    /// Not virtual: prepared kernels live in a ScratchBuffer, which runs no destructors (every
+    /// prepared kernel is trivially destructible).
+    ~PreparedKernel() = default;
+
+    /// Sample over all lobes (Sample applies the mask). The default serves kernels whose lobes are
+    /// all listed: it picks one of lobes_ with its `prob` (SampleListedLobe).
+    virtual std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const;
+    /// The continuous lobes' value [1/sr] (Eval without the mask); 0 for delta-only kernels.
+    virtual SampledSpectrum EvalContinuous(const Vec3 &wo) const {
+        (void)wo;
+        return SampledSpectrum(0.0);
+    }
+    /// Footprint-aware kernels: the continuous lobes' value for the incident wave w.
+    virtual SampledSpectrum EvalContinuousFrom(const Vec3 &wo, const IncidentWave &w) const {
+        (void)w;
+        return EvalContinuous(wo);
+    }
+    /// The continuous lobes' density [1/sr] (Pdf without the mask).
+    virtual double PdfContinuous(const Vec3 &wo) const {
+        (void)wo;
+        return 0;
+    }
+    /// EvalContinuousFrom and PdfContinuous together; a kernel overrides it where the two share work.
+    virtual KernelValue EvalPdfContinuous(const Vec3 &wo, const IncidentWave &w) const {
+        return KernelValue{EvalContinuousFrom(wo, w), PdfContinuous(wo)};
+    }
+
+    ScatterQuery q_;
+    unsigned caps_ = 0;
+    std::span<const NearDeltaLobe> lobes_;
+    ContinuousLobeIds continuous_;
+};
+
+/// A diffraction kernel (a plug-in of family `material`): its parameters and what holds for every
+/// query. Everything a query asks goes through Prepare (PreparedKernel). Properties that one client
+/// alone reads are not here but facets that client asks for (the `aperture`'s openings for `rs`:
+/// core/render/aperture.h; a smooth kernel's optics and a coating's layers for the kernels built on
+/// them: materials/smooth_kernel.h; a grating's reference direction for `probe`:
+/// ReferenceDirection below).
+class Material {
+  public:
+    virtual ~Material() = default;
+
+    /// The kernel prepared for query q, in `scratch`: valid until `scratch` is reset. Reads *q.gr
+    /// and *q.si (when given) only here (see PreparedKernel).
+    virtual const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const = 0;
+    /// True if the kernel is footprint-aware for a generalized ray (CapFootprintAware for every
+    /// wave-regime query; checked by the contract suite). Scene checks and `mix` ask without a query.
+    virtual bool IsFootprintAware() const { return false; }
     /// True if some lobe's EvalLobe may report coherence terms (LobeCoherence::any: a coated
     /// surface, thin_film, multilayer); false promises that none does (checked by the contract
     /// suite), which lets a polarised integrator skip evaluating lobes whose response cannot matter.
     virtual bool HasCoherenceTerms() const { return false; }
-    /// The kernel's reference direction in the tangent plane at `tex`, as an angle [rad]
-    /// counter-clockwise from the shading frame's x axis (dp/du) — a grating's grating vector — or
-    /// nullopt for a kernel without one (isotropic). `phasor probe` measures azimuths from it.
-    virtual std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const {
-        (void)tex;
-        return std::nullopt;
-    }
     /// How `phasor probe` names near-delta lobe `id` in its "order" column: the kernel's own
     /// numbering of its lobes (a grating's diffraction order j on either side); by default the id.
     /// A composite that renumbers its children's lobes names the child and the child's own name
@@ -285,40 +358,22 @@ class Material {
     /// Called by the scene builder for every shape that uses this kernel; throws phasor::Error
     /// (e.g. a planar kernel on a non-planar shape).
     virtual void CheckShape(const Shape &shape) const { (void)shape; }
-    /// Aperture kernels: the plate's openings in plate coordinates (core/render/aperture.h); nullptr for
-    /// every other kernel. The forward `rs` integrator reads them.
-    virtual const ApertureMask *Openings() const { return nullptr; }
-    /// Smooth kernels (conductor, dielectric, thin_film, multilayer): their plane-wave optics, a
-    /// coating over a substrate (materials/smooth_surface.h) — what `grating` and `harvey_shack`
-    /// multiply their lobes by when they name this kernel as `substrate`; nullptr otherwise.
-    virtual const SmoothSurface *Surface() const { return nullptr; }
-    /// Coating definitions (thin_film, multilayer): their layers, which `coating = @name` puts on
-    /// another kernel's substrate; nullptr for kernels that cannot serve as a coating.
-    virtual std::shared_ptr<const Coating> AsCoating() const { return nullptr; }
     virtual std::string ToString() const = 0;
+};
+
+/// The facet of a kernel with a reference direction in the tangent plane (a grating's grating
+/// vector), from which `phasor probe` measures azimuths; composite kernels forward their children's.
+class ReferenceDirection {
+  public:
+    /// The direction at `tex` as an angle [rad] counter-clockwise from the shading frame's x axis
+    /// (dp/du), or nullopt where the kernel has none (a mix of two isotropic kernels).
+    virtual std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const = 0;
 
   protected:
-    /// Sample over all lobes (the wrapper applies the mask). The default serves kernels whose lobes
-    /// are all listed: it picks one of ListNearDelta's lobes with its `prob` (SampleListedLobe).
-    virtual std::optional<ScatterSample> SampleLobes(const ScatterQuery &q, double u0, const Vec2 &u) const;
-    /// The continuous lobes' value [1/sr] (Eval without the mask); 0 for delta-only kernels.
-    virtual SampledSpectrum EvalContinuous(const ScatterQuery &q, const Vec3 &wo) const {
-        (void)q;
-        (void)wo;
-        return SampledSpectrum(0.0);
-    }
-    /// Footprint-aware kernels: the continuous lobes' value for the incident wave w.
-    virtual SampledSpectrum EvalContinuousFrom(const ScatterQuery &q, const Vec3 &wo, const IncidentWave &w) const {
-        (void)w;
-        return EvalContinuous(q, wo);
-    }
-    /// The continuous lobes' density [1/sr] (Pdf without the mask).
-    virtual double PdfContinuous(const ScatterQuery &q, const Vec3 &wo) const {
-        (void)q;
-        (void)wo;
-        return 0;
-    }
+    ~ReferenceDirection() = default;
 };
+/// m's reference angle at tex (ReferenceDirection), or nullopt for a kernel without one (isotropic).
+std::optional<double> ReferenceAngleOf(const Material &m, const TextureEvalContext &tex);
 
 /// In which sense a kernel conserves energy: the two declarations IsReciprocal and
 /// ConservesEnergyPerIncidentDirection as one value (the contract suite checks the declared sense).
@@ -346,13 +401,12 @@ const char *Describe(EnergySense s);
 /// the lobe is evanescent (|wo.xy| ≥ 1) at this wavelength.
 bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda,
                         bool transmission, Vec3 *wo);
+/// Whether that lobe propagates (NearDeltaDirection's answer, without the direction).
+bool NearDeltaPropagates(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda);
 
 /// A kernel's SampleLobes for lobes it has listed: picks lobe j with probability `prob` (u0) and
 /// returns its hero direction with weight a_j/p_j, pdf p_j, its id, flags and η. Nullopt if no
 /// lobe is listed or the pick has p = 0.
-std::optional<ScatterSample> SampleListedLobe(const NearDeltaLobes &lobes, double u0);
-/// The same for lobes a kernel keeps in its own small array (NearDeltaLobes is 64 lobes large:
-/// constructing one per Sample costs more than a smooth surface's optics).
 std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0);
 
 /// True if unit directions a and b agree to `tol` [rad] (EvalLobe's test for a near-delta lobe).

@@ -5,8 +5,6 @@
 // (camera-normalised; theory §2.4 item 4).
 #pragma once
 
-#include <functional>
-
 #include "core/render/pixel_integrator.h"
 #include "core/render/scene.h"
 
@@ -41,14 +39,13 @@ struct DirectLightInfo {
 };
 
 /// Next-event estimation at a surface vertex (pbrt-style): one light chosen uniformly with
-/// uLight, sampled with uPos; the kernel is evaluated with the query as given (so the caller
-/// decides which lobes Eval reports). Delta lights get f·|cosθ|·E; area and infinite lights are
+/// uLight, sampled with uPos; the kernel k prepared at si answers for its continuous lobes
+/// (near-delta lobes have no density). Delta lights get f·|cosθ|·E; area and infinite lights are
 /// MIS-weighted (power heuristic) against kernel sampling. Returns the contribution without the
 /// path throughput; counts the shadow ray in stats; fills `info` (if given) with the light sample.
-inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceInteraction &si,
-                                         const Material &mat, const ScatterQuery &q, double uLight,
-                                         const Vec2 &uPos, const SampledWavelengths &wl, PathStats &stats,
-                                         DirectLightInfo *info = nullptr) {
+inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceInteraction &si, const PreparedKernel &k,
+                                         double uLight, const Vec2 &uPos, const SampledWavelengths &wl,
+                                         PathStats &stats, DirectLightInfo *info = nullptr) {
     const auto &lights = scene.Lights();
     if (lights.empty()) return SampledSpectrum(0.0);
     const double selectPdf = LightSelectPdf(scene);
@@ -62,10 +59,12 @@ inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceIntera
     // A footprint-aware kernel integrates a Gaussian beam's own field over the GR's footprint and
     // answers per unit on-axis irradiance (IncidentWave); every other kernel sees the local
     // irradiance at the hit.
-    const bool beamField = ls->beam && (mat.Capabilities(q) & CapFootprintAware) && q.gr && !q.rayOptics;
+    const bool beamField = ls->beam && (k.Capabilities() & CapFootprintAware);
     const IncidentWave wave{ls->dist, beamField ? &*ls->beam : nullptr};
     const SampledSpectrum &incident = beamField ? ls->beamAxisIrradiance : ls->L;
-    const SampledSpectrum f = mat.EvalFrom(q, wo, wave) * std::abs(wo.z);
+    // A delta light needs no density; for the others the kernel's value and density together.
+    const KernelValue v = ls->delta ? KernelValue{k.EvalFrom(wo, wave), 0} : k.EvalPdf(wo, wave);
+    const SampledSpectrum f = v.f * std::abs(wo.z);
     if (f.IsZero() || incident.IsZero()) return SampledSpectrum(0.0);
     ++stats.rays;
     const bool blocked = std::isinf(ls->dist) ? scene.OccludedDirection(si, ls->wi)
@@ -73,7 +72,7 @@ inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceIntera
     if (blocked) return SampledSpectrum(0.0);
     if (ls->delta) return f * incident / selectPdf;
     const double pl = ls->pdf * selectPdf;
-    return f * incident * (PowerHeuristic(pl, mat.Pdf(q, wo)) / pl);
+    return f * incident * (PowerHeuristic(pl, v.pdf) / pl);
 }
 
 /// Radiance emitted by the area light at si towards the path (direction of travel rayDir),
@@ -88,14 +87,13 @@ inline SampledSpectrum HitEmission(const Scene &scene, const SurfaceInteraction 
 }
 
 /// Radiance of the infinite lights along an escaping direction d, MIS-weighted against NEE unless
-/// the path arrived through a delta lobe. Lights for which skip(light) is true are left out (the
-/// `grt` integrator has measured them in closed form already).
+/// the path arrived through a delta lobe. With skipClosedForm, the lights measured in closed form
+/// are left out (`grt` has measured them already after a near-delta lobe).
 inline SampledSpectrum EscapedEmission(const Scene &scene, const Vec3 &d, const SampledWavelengths &wl,
-                                       const MisState &mis,
-                                       const std::function<bool(const Light *)> &skip = {}) {
+                                       const MisState &mis, bool skipClosedForm = false) {
     SampledSpectrum sum(0.0);
     for (const Light *l : scene.InfiniteLights()) {
-        if (skip && skip(l)) continue;
+        if (skipClosedForm && l->MeasuredInClosedForm()) continue;
         const SampledSpectrum le = l->Le(d, wl);
         if (le.IsZero()) continue;
         if (mis.deltaBounce)

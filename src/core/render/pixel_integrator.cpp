@@ -25,6 +25,7 @@ double PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Ren
     // extrapolated to every pixel and sample on all threads; the film is not touched.
     std::unique_ptr<Sampler> sampler = prototype.Clone();
     PathStats ps;
+    ScratchBuffer buffer;  // what a sample prepares (kernels), reset after each
     auto sample = [&](int n) {
         const double fx = n * 0.7548776662466927, fy = n * 0.5698402909980532;  // R2 (plastic number)
         const int x = std::min(w - 1, int((fx - std::floor(fx)) * w)), y = std::min(h - 1, int((fy - std::floor(fy)) * h));
@@ -33,7 +34,8 @@ double PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Ren
         sampler->StartPixelSample(x, y, index);
         ps.sample = PixelSampleIndex{index, opt.spp, opt.seed};
         SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
-        EstimatePixel(scene, x, y, wl, *sampler, ps);
+        EstimatePixel(scene, x, y, wl, *sampler, buffer, ps);
+        buffer.Reset();
     };
     constexpr int WarmUp = 8;
     for (int n = 0; n < WarmUp; ++n) sample(n);
@@ -71,7 +73,7 @@ double PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Ren
 }
 
 std::array<SampledSpectrum, 4> PixelIntegrator::EstimatePixelStokes(const Scene &, int, int, SampledWavelengths &,
-                                                                    Sampler &, PathStats &) const {
+                                                                    Sampler &, ScratchBuffer &, PathStats &) const {
     throw Error("integrator '" + name + "' carries no polarisation and cannot write Stokes channels");
 }
 
@@ -86,7 +88,8 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
     auto cancelled = [&] { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); };
     // Renders one tile: each pixel from its own sample count to the task's end, into a scratch film
     // holding the tile's accumulators (the film itself changes only when TilePasses takes it back).
-    auto renderTile = [&](TileTask &task, Film &scratch, Sampler &sampler) {
+    // `buffer` is the thread's own, for what a sample prepares (kernels: Material::Prepare).
+    auto renderTile = [&](TileTask &task, Film &scratch, Sampler &sampler, ScratchBuffer &buffer) {
         const int tw = task.x1 - task.x0, th = task.y1 - task.y0;
         scratch.SetPixels(0, 0, tw, th, task.pixels.data());
         PathStats ps;
@@ -105,11 +108,12 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                     // Wavelengths first, so they are stratified across the pixel's samples.
                     SampledWavelengths wl = scene.Wavelengths().Sample(sampler.Get1D());
                     if (scratch.HasStokes()) {
-                        scratch.AddStokesSample(lx, ly, EstimatePixelStokes(scene, x, y, wl, sampler, ps), wl);
+                        scratch.AddStokesSample(lx, ly, EstimatePixelStokes(scene, x, y, wl, sampler, buffer, ps), wl);
                     } else {
-                        SampledSpectrum L = EstimatePixel(scene, x, y, wl, sampler, ps);
+                        SampledSpectrum L = EstimatePixel(scene, x, y, wl, sampler, buffer, ps);
                         scratch.AddSample(lx, ly, L, wl);
                     }
+                    buffer.Reset();
                 }
             }
         scratch.GetPixels(0, 0, tw, th, task.pixels.data());
@@ -125,9 +129,10 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                 Film scratch(TilePasses::TileSize, TilePasses::TileSize, film.Response());
                 if (film.HasStokes()) scratch.EnableStokes();
                 std::unique_ptr<Sampler> sampler = prototype->Clone();
+                ScratchBuffer buffer;
                 TileTask task;
                 while (source.Next(task)) {
-                    renderTile(task, scratch, *sampler);
+                    renderTile(task, scratch, *sampler, buffer);
                     source.Done(task);
                 }
             },

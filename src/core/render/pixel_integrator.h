@@ -11,6 +11,7 @@
 #pragma once
 
 #include "core/render/detector.h"
+#include "core/scratch_buffer.h"
 #include "core/render/integrator.h"
 #include "core/render/scene.h"
 
@@ -29,23 +30,26 @@ class PixelIntegrator : public Integrator {
   public:
     RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override;
 
-    /// One estimate for pixel (x, y), sample `index`: the per-wavelength value the pixel reports
-    /// (radiance for cameras), not divided by the wavelength pdfs (the film does that).
-    /// The sampler is positioned after the wavelength dimension. May drop companion wavelengths
-    /// (wl.TerminateSecondary()) when a dispersive lobe is taken.
     /// Times a pilot of samples before the first pass (after a few untimed ones that warm caches)
     /// and reports through opt.warn when the whole render would take far longer than usual
     /// (WorkWarning), with advice that fits the scene. Returns the estimate [s] (the render records
     /// it as phasor:work_estimate_seconds).
     double EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt, const Sampler &prototype) const;
+
+    /// One estimate for pixel (x, y), sample `index`: the per-wavelength value the pixel reports
+    /// (radiance for cameras), not divided by the wavelength pdfs (the film does that).
+    /// The sampler is positioned after the wavelength dimension. May drop companion wavelengths
+    /// (wl.TerminateSecondary()) when a dispersive lobe is taken. `scratch` is the calling
+    /// thread's buffer for what the estimate prepares (kernels: Material::Prepare); the caller
+    /// resets it after each estimate.
     virtual SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl,
-                                          Sampler &sampler, PathStats &stats) const = 0;
+                                          Sampler &sampler, ScratchBuffer &scratch, PathStats &stats) const = 0;
     /// The same estimate as a Stokes vector per carried wavelength (S[0] = EstimatePixel's value),
     /// for a film with Stokes output (Film::EnableStokes). Integrators that carry no polarisation
     /// throw phasor::Error (the scene check refuses such pairs before rendering).
     virtual std::array<SampledSpectrum, 4> EstimatePixelStokes(const Scene &scene, int x, int y,
                                                                SampledWavelengths &wl, Sampler &sampler,
-                                                               PathStats &stats) const;
+                                                               ScratchBuffer &scratch, PathStats &stats) const;
 };
 
 }  // namespace phasor

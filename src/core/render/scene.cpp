@@ -173,6 +173,8 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
         l->Preprocess(scene->accel_->Bounds());
         scene->lights_.push_back(l.get());
         if (l->IsInfinite()) scene->infiniteLights_.push_back(l.get());
+        (l->IsDelta() ? scene->deltaLights_ : scene->hittableEmitters_).push_back(l.get());
+        if (l->MeasuredInClosedForm()) scene->closedFormLights_.push_back(l.get());
         emitters.emplace_back(&l->EmissionSpectrum(), l->PowerScale());
     }
     if (scene->lights_.empty()) diag.Warning(sceneLoc, "the scene has no light; the image will be black");

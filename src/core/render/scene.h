@@ -47,6 +47,13 @@ class Scene {
     /// time; unknown for objects the scene did not create from a description.
     FileLoc Where(const void *object) const;
     const std::vector<const Light *> &InfiniteLights() const { return infiniteLights_; }
+    /// The lights by how integrators reach them, each in the order of Lights() (computed once by
+    /// Build): delta lights (Light::IsDelta: a path cannot hit them; light sampling or a closed form
+    /// reaches them), the others (a path may hit or escape to them: area and wide infinite lights),
+    /// and those `grt` measures in closed form (Light::MeasuredInClosedForm).
+    const std::vector<const Light *> &DeltaLights() const { return deltaLights_; }
+    const std::vector<const Light *> &HittableEmitters() const { return hittableEmitters_; }
+    const std::vector<const Light *> &ClosedFormLights() const { return closedFormLights_; }
     const Detector &GetDetector() const { return *detector_; }
     const Integrator &GetIntegrator() const { return *integrator_; }
     const WavelengthSampler &Wavelengths() const { return *wavelengths_; }
@@ -77,7 +84,7 @@ class Scene {
     std::unique_ptr<BuildContext> ctx_;  // owns every plug-in object
     std::unique_ptr<Accel> accel_;
     std::vector<std::shared_ptr<Shape>> shapes_;
-    std::vector<const Light *> lights_, infiniteLights_;
+    std::vector<const Light *> lights_, infiniteLights_, deltaLights_, hittableEmitters_, closedFormLights_;
     std::shared_ptr<Detector> detector_;
     std::shared_ptr<Integrator> integrator_;
     std::unique_ptr<WavelengthSampler> wavelengths_;

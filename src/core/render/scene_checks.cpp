@@ -23,7 +23,7 @@ struct Plate {
 std::vector<Plate> Plates(const std::vector<std::shared_ptr<Shape>> &shapes) {
     std::vector<Plate> out;
     for (const auto &s : shapes)
-        if (s->material && s->material->Openings() && s->IsPlanar()) {
+        if (s->material && OpeningsOf(*s->material) && s->IsPlanar()) {
             const Transform &m = s->objectToWorld;
             const Vec3 n = Cross(m.Vector(Vec3(1, 0, 0)), m.Vector(Vec3(0, 1, 0)));
             if (LengthSquared(n) > 0) out.push_back(Plate{s, m.Point(Vec3(0, 0, 0)), Normalize(n)});
@@ -177,7 +177,7 @@ std::string Scene::DarkImageCause() const {
 
     // Aperture plates that transmit nothing.
     for (const Plate &pl : Plates(shapes_))
-        if (!(pl.shape->material->Openings()->OpenArea() > 0))
+        if (!(OpeningsOf(*pl.shape->material)->OpenArea() > 0))
             return "the aperture plate '" + pl.shape->name +
                    "' has no open area (no openings, or every opening has transmission 0): open one";
 

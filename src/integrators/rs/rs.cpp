@@ -3,7 +3,7 @@
 // monochromatic sources (`plane_wave` with a line spectrum at any incidence, isotropic `point`
 // with a line spectrum, `gaussian_beam` with a line spectrum: its exact paraxial TEM₀₀ field,
 // GaussianBeamGeometry, with the waist anywhere) shine on ONE planar aperture plate — the scene's only shape, whose
-// material has openings (Material::Openings, e.g. `aperture`) — and the scalar field behind it is
+// material has openings (PlateOpenings, core/render/aperture.h: the `aperture`) — and the scalar field behind it is
 // computed in double precision on the `virtual_plane` sensor:
 //   Kirchhoff boundary values U₀ = t·U_inc on the openings (the plate is infinite and opaque
 //   elsewhere), RS of the first kind
@@ -132,7 +132,7 @@ class RsIntegrator final : public Integrator {
                 std::to_string(shapes.size()) + " shapes (" + names + (shapes.size() > 6 ? ", …" : "") + ")");
         }
         const Shape &shape = *shapes[0];
-        const ApertureMask *mask = shape.material ? shape.material->Openings() : nullptr;
+        const ApertureMask *mask = shape.material ? OpeningsOf(*shape.material) : nullptr;
         if (!mask)
             throw Error(scene.Where(&shape), "integrator 'rs' needs an aperture plate: shape '" + shape.name +
                         "' has no material with openings (use the 'aperture' material)");
