@@ -199,6 +199,7 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
         g.beta2[i] = ds->beta2[i];
         g.rho[i] = ds->rho[i];
     }
+    g.pixel = ds->pixel;
     SampledSpectrum T(ds->weight), L(0.0);
     bool measured = false;  // a measurement (NEE or closed form) happened: RR may start
     // The recorded path (only with a recording sink), in a per-thread buffer reused across samples.
@@ -317,6 +318,9 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
     for (int depth = 0;; ++depth) {
         ++stats.rays;
         auto si = scene.Intersect(g.MeanRay());
+        // A pixel state labelled outside the propagating disc has no direction of its own: its
+        // ray only aims it at an aperture plate, and only a footprint-aware kernel measures it.
+        if (g.pixel.Evanescent() && !(si && si->material && si->material->IsFootprintAware())) break;
         if (!si) {
             const SampledSpectrum le = closedFormDone ? path::EscapedEmission(scene, g.d, wl, mis, skipClosedForm)
                                                       : path::EscapedEmission(scene, g.d, wl, mis);
