@@ -23,8 +23,15 @@
 // direction misses the openings); `auto_aim = false` keeps the full cone. In radiance units the weight
 // is the sampled region's area in direction cosines, so the pixel mean is ∫L cosθ dω = irradiance.
 // Closed-form sources (plane wave, point, distant, Gaussian beam) are integrated over the directions
-// analytically (D4a): E·cosθ_s·(1 − e^{−β²k²})·[fraction of the GR's directions inside the region],
-// exact to ~1e-9 where sampling would need ~1e10 samples.
+// analytically (D4a): E·cosθ_s·[fraction of the GR's directions inside the region], exact to
+// ~1e-9 where sampling would need ~1e10 samples.
+//
+// Each GR also carries the pixel state it stands for (genray.h PixelState; docs/narrow_pixels.md):
+// the sampled point of the region is that state's label u, and the aperture kernel measures a
+// narrow pixel's state exactly through it rather than through the paraxial GR. Aimed at an
+// aperture plate with the full acceptance, the region may extend beyond the unit disc (pixels
+// narrower than about a wavelength): a label there has no direction, so its GR is aimed at the
+// nearest direction of the openings' box and counts only through the aperture kernel.
 #include <cmath>
 
 #include "core/render/aperture.h"
@@ -255,14 +262,17 @@ class VirtualPlane final : public Detector {
         s.pixel.beta2 = beta2_;
         s.pixel.label = u;
         s.weight = (hi.x - lo.x) * (hi.y - lo.y) / c_.referenceIrradiance;
-        if (auto d = Direction(uDir, lo, hi)) {
+        auto d = Direction(uDir, lo, hi);
+        if (d && !(LabelsLeaveTheDisc() && !c_.aim->Intersect(Ray{s.ray.o, *d}, 0, Infinity))) {
             s.ray.d = *d;
         } else if (LabelsLeaveTheDisc()) {
-            // A label outside the propagating disc: aim the GR at the nearest direction of the
-            // openings' box (the aperture kernel measures the state by its label).
+            // A label outside the propagating disc, or whose ray misses the plate (a pixel this
+            // narrow still sees the openings from there): aim the GR at the nearest direction of
+            // the openings' box; the aperture kernel measures the state by its label.
             Vec2 a(std::clamp(u.x, alo.x, ahi.x), std::clamp(u.y, alo.y, ahi.y));
             if (LengthSquared(a) > 0.998) a = a * (0.999 / Length(a));
             s.ray.d = frame_.ToWorld(Vec3(a.x, a.y, std::sqrt(1 - LengthSquared(a))));
+            s.pixel.labelOnly = true;
         } else {
             // Outside the cone the sample still carries the analytic part (D4a): weight 0.
             s.ray.d = frame_.n;

@@ -318,9 +318,9 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
     for (int depth = 0;; ++depth) {
         ++stats.rays;
         auto si = scene.Intersect(g.MeanRay());
-        // A pixel state labelled outside the propagating disc has no direction of its own: its
-        // ray only aims it at an aperture plate, and only a footprint-aware kernel measures it.
-        if (g.pixel.Evanescent() && !(si && si->material && si->material->IsFootprintAware())) break;
+        // A pixel state whose ray only aims it at an aperture plate (PixelState::labelOnly) is
+        // measured by a footprint-aware kernel alone.
+        if (g.pixel.LabelOnly() && !(si && si->material && si->material->IsFootprintAware())) break;
         if (!si) {
             const SampledSpectrum le = closedFormDone ? path::EscapedEmission(scene, g.d, wl, mis, skipClosedForm)
                                                       : path::EscapedEmission(scene, g.d, wl, mis);

@@ -827,6 +827,7 @@ PixelWavelet PixelWavelet::Make(const PixelState &p, const Vec3 &hit, const Vec3
     w.k = k;
     w.beta2 = p.beta2;
     w.label = p.label;
+    w.labelOnly = p.labelOnly;
     return w;
 }
 
@@ -841,7 +842,7 @@ bool PixelWavelet::Preferred() const {
     // The paraxial GR's error ≈ 2/(kβ)² of the pixel (measured on the issue-20 and issue-10
     // scenes: 8e-5, 3e-4, 1.3e-3, 5e-3 at kβ = 157, 81, 41, 21); 63 keeps it ≤ 5e-4.
     constexpr double WaveletBelowKBeta = 63;
-    if (LengthSquared(label) >= 1) return true;
+    if (labelOnly || LengthSquared(label) >= 1) return true;
     return k * k * beta2 < WaveletBelowKBeta * WaveletBelowKBeta && ExpansionError() <= 0.1;
 }
 

@@ -114,6 +114,7 @@ struct PixelWavelet {
     double k = 0;       // wavenumber [rad/m]
     double beta2 = 0;   // β_D² [m²]
     Vec2 label;         // u
+    bool labelOnly = false;  // PixelState::labelOnly: the GR's ray is not along the label
     double ref = 0;     // subtracted from the log-integrand (keeps |integrand| ≲ 1; IntegrateWavelet)
     /// From the pixel state, the hit point and the plate axes.
     static PixelWavelet Make(const PixelState &p, const Vec3 &hit, const Vec3 &e1, const Vec3 &e2,
@@ -124,9 +125,9 @@ struct PixelWavelet {
     /// Whether the aperture kernel evaluates the pixel's state this way rather than through the
     /// paraxial GR it was traced as: for pixels with kβ < 63 (σ_pix < 7.1 λ), where the paraxial GR
     /// errs by more than ≈ 2/(kβ)² = 5e-4 of the pixel (docs/narrow_pixels.md), as long as
-    /// ExpansionError() ≤ 0.1 rad; and always for a label outside the propagating disc (the
-    /// paraxial GR has no such state). Wider pixels keep the paraxial GR, which is as accurate
-    /// there and ~100× cheaper (one closed form per slit instead of tiles).
+    /// ExpansionError() ≤ 0.1 rad; and always for a GR whose ray is not along its label
+    /// (labelOnly: the paraxial GR has no such state). Wider pixels keep the paraxial GR, which
+    /// is as accurate there and ~100× cheaper (one closed form per slit instead of tiles).
     bool Preferred() const;
 };
 

@@ -121,9 +121,11 @@ struct PixelState {
     Frame frame;       // s, t span the sensor plane; n = its front normal (towards the scene)
     double beta2 = 0;  // β_D² = 2σ_pix² [m²], the same for every wavelength
     Vec2 label;        // u (dimensionless); the transverse wavevector of the light it detects is −k·u
-    /// True if the label lies outside the propagating disc (|u| ≥ 1): the GR's mean ray was aimed
-    /// elsewhere, so only a footprint-aware kernel may evaluate it.
-    bool Evanescent() const { return valid && LengthSquared(label) >= 1; }
+    /// The GR's mean ray is not along the label (a label outside the propagating disc, or one
+    /// whose own ray misses the aperture plate the sensor aims at): it only aims the state at the
+    /// plate, and only a footprint-aware kernel may measure it.
+    bool labelOnly = false;
+    bool LabelOnly() const { return valid && labelOnly; }
 };
 
 /// The wavelengths a path carries share one mean ray; each has its own footprint (for a camera
