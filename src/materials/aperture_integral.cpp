@@ -10,6 +10,7 @@
 
 #include "core/numerics/faddeeva.h"
 #include "core/numerics/gauss_legendre.h"
+#include "core/render/narrow_pixels.h"
 
 namespace phasor {
 
@@ -832,18 +833,14 @@ PixelWavelet PixelWavelet::Make(const PixelState &p, const Vec3 &hit, const Vec3
 }
 
 double PixelWavelet::ExpansionError() const {
-    // The third- and fourth-order terms of R − r in the offset δ on the sensor (|δ| ≤ 3β):
-    // (w⊥·δ)(|δ|² − (w⊥·δ)²)/(2r²) and |δ|⁴/(8r³).
-    const double d = 3 * std::sqrt(beta2), wt = std::sqrt(std::max(0.0, 1 - Sqr(Dot(dRef, sensor.n) / rRef)));
-    return k * (wt * d * d * d / (2 * rRef * rRef) + d * d * d * d / (8 * rRef * rRef * rRef));
+    const double wt = std::sqrt(std::max(0.0, 1 - Sqr(Dot(dRef, sensor.n) / rRef)));
+    return narrow_pixels::ExpansionPhase(k, beta2, rRef, wt);
 }
 
 bool PixelWavelet::Preferred() const {
-    // The paraxial GR's error ≈ 2/(kβ)² of the pixel (measured on the issue-20 and issue-10
-    // scenes: 8e-5, 3e-4, 1.3e-3, 5e-3 at kβ = 157, 81, 41, 21); 63 keeps it ≤ 5e-4.
-    constexpr double WaveletBelowKBeta = 63;
     if (labelOnly || LengthSquared(label) >= 1) return true;
-    return k * k * beta2 < WaveletBelowKBeta * WaveletBelowKBeta && ExpansionError() <= 0.1;
+    constexpr double KBeta = narrow_pixels::NonParaxialBelowKBeta;
+    return k * k * beta2 < KBeta * KBeta && ExpansionError() <= narrow_pixels::MaxExpansionPhase;
 }
 
 namespace {

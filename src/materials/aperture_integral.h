@@ -125,8 +125,8 @@ struct PixelWavelet {
     /// Whether the aperture kernel evaluates the pixel's state this way rather than through the
     /// paraxial GR it was traced as: for pixels with kβ < 63 (σ_pix < 7.1 λ), where the paraxial GR
     /// errs by more than ≈ 2/(kβ)² = 5e-4 of the pixel (docs/narrow_pixels.md), as long as
-    /// ExpansionError() ≤ 0.1 rad; and always for a GR whose ray is not along its label
-    /// (labelOnly: the paraxial GR has no such state). Wider pixels keep the paraxial GR, which
+    /// ExpansionError() ≤ narrow_pixels::MaxExpansionPhase (0.02 rad); and always for a GR whose
+    /// ray is not along its label (labelOnly: the paraxial GR has no such state). Wider pixels keep the paraxial GR, which
     /// is as accurate there and ~100× cheaper (one closed form per slit instead of tiles).
     bool Preferred() const;
 };
