@@ -23,8 +23,15 @@
 // direction misses the openings); `auto_aim = false` keeps the full cone. In radiance units the weight
 // is the sampled region's area in direction cosines, so the pixel mean is ∫L cosθ dω = irradiance.
 // Closed-form sources (plane wave, point, distant, Gaussian beam) are integrated over the directions
-// analytically (D4a): E·cosθ_s·(1 − e^{−β²k²})·[fraction of the GR's directions inside the region],
-// exact to ~1e-9 where sampling would need ~1e10 samples.
+// analytically (D4a): E·cosθ_s·[fraction of the GR's directions inside the region], exact to
+// ~1e-9 where sampling would need ~1e10 samples.
+//
+// Each GR also carries the pixel state it stands for (genray.h PixelState; docs/narrow_pixels.md):
+// the sampled point of the region is that state's label u, and the aperture kernel measures a
+// narrow pixel's state exactly through it rather than through the paraxial GR. Aimed at an
+// aperture plate with the full acceptance, the region may extend beyond the unit disc (pixels
+// narrower than about a wavelength): a label there has no direction, so its GR is aimed at the
+// nearest direction of the openings' box and counts only through the aperture kernel.
 #include <cmath>
 
 #include "core/render/aperture.h"
@@ -66,7 +73,7 @@ class VirtualPlane final : public Detector {
         geom_.ny = ny;
         geom_.gaussianPixel = c_.gaussianPixel;
         geom_.referenceIrradiance = c_.referenceIrradiance;
-        if (c_.aim) aimCorners_ = AimCorners(*c_.aim);
+        AimAt(c_.aim);
     }
 
     static const Schema &GetSchema() {
@@ -169,8 +176,13 @@ class VirtualPlane final : public Detector {
     }
 
     /// The sampled region in direction cosines (u = (d·s, d·t)) for a GR at p: [lo, hi].
-    /// maxLambda: the longest wavelength the GR carries (sets the 6σ_θ margin).
-    void Region(const Vec3 &p, double maxLambda, Vec2 *lo, Vec2 *hi) const {
+    /// maxLambda: the longest wavelength the GR carries (sets the 6σ_θ margin). With `aim`, the
+    /// box of the aim's corners before the margin goes to aimLo, aimHi (if given). Aimed at an
+    /// aperture plate with the full acceptance, the region is not clipped to the unit square: a
+    /// pixel state (PixelState) whose label lies outside the propagating disc still detects light
+    /// through the openings (pixels a fraction of a wavelength wide, docs/narrow_pixels.md).
+    void Region(const Vec3 &p, double maxLambda, Vec2 *lo, Vec2 *hi, Vec2 *aimLo = nullptr,
+                Vec2 *aimHi = nullptr) const {
         *lo = Vec2(-sinAcc_, -sinAcc_);
         *hi = Vec2(sinAcc_, sinAcc_);
         if (!c_.aim) return;
@@ -188,11 +200,16 @@ class VirtualPlane final : public Detector {
         // Widen by 5β (seen from the nearest corner) and 6σ_θ at the longest wavelength carried
         // (σ_θ = 1/(2σ_pix k) grows with λ).
         const double margin = 5 * std::sqrt(beta2_) / minDist + 6 * AngularSigma(maxLambda);
+        if (aimLo) *aimLo = alo;
+        if (aimHi) *aimHi = ahi;
+        if (LabelsLeaveTheDisc()) *lo = Vec2(-Infinity, -Infinity), *hi = Vec2(Infinity, Infinity);
         lo->x = std::max(lo->x, alo.x - margin);
         lo->y = std::max(lo->y, alo.y - margin);
         hi->x = std::min(hi->x, ahi.x + margin);
         hi->y = std::min(hi->y, ahi.y + margin);
     }
+    /// See Region.
+    bool LabelsLeaveTheDisc() const { return aimAperture_ && c_.acceptance >= Pi / 2; }
     double AngularSigma(double lambda) const { return 1 / (2 * c_.sigma * (2 * Pi / lambda)); }
     /// Classical rays carry no wavelength here: 2 µm covers the bands phasor samples in practice.
     static constexpr double ClassicalMaxLambda = 2e-6;
@@ -231,12 +248,37 @@ class VirtualPlane final : public Detector {
             s.rho[i] = 0;
             s.maxLambda = std::max(s.maxLambda, wl.lambda[i]);
         }
-        Vec2 lo, hi;
-        Region(s.ray.o, s.maxLambda, &lo, &hi);
-        auto d = hi.x > lo.x && hi.y > lo.y ? Direction(uDir, lo, hi) : std::nullopt;
-        // Outside the cone the sample still carries the analytic part (D4a): weight 0, any direction.
-        s.ray.d = d ? *d : frame_.n;
-        s.weight = d ? (hi.x - lo.x) * (hi.y - lo.y) / c_.referenceIrradiance : 0;
+        Vec2 lo, hi, alo, ahi;
+        Region(s.ray.o, s.maxLambda, &lo, &hi, &alo, &ahi);
+        if (!(hi.x > lo.x && hi.y > lo.y)) {
+            // Nothing to sample: the sample still carries the analytic part (D4a), weight 0.
+            s.ray.d = frame_.n;
+            s.weight = 0;
+            return s;
+        }
+        const Vec2 u(lo.x + uDir.x * (hi.x - lo.x), lo.y + uDir.y * (hi.y - lo.y));
+        s.pixel.valid = true;
+        s.pixel.centre = s.ray.o;
+        s.pixel.frame = frame_;
+        s.pixel.beta2 = beta2_;
+        s.pixel.label = u;
+        s.weight = (hi.x - lo.x) * (hi.y - lo.y) / c_.referenceIrradiance;
+        auto d = Direction(uDir, lo, hi);
+        if (d && !(LabelsLeaveTheDisc() && !c_.aim->Intersect(Ray{s.ray.o, *d}, 0, Infinity))) {
+            s.ray.d = *d;
+        } else if (LabelsLeaveTheDisc()) {
+            // A label outside the propagating disc, or whose ray misses the plate (a pixel this
+            // narrow still sees the openings from there): aim the GR at the nearest direction of
+            // the openings' box; the aperture kernel measures the state by its label.
+            Vec2 a(std::clamp(u.x, alo.x, ahi.x), std::clamp(u.y, alo.y, ahi.y));
+            if (LengthSquared(a) > 0.998) a = a * (0.999 / Length(a));
+            s.ray.d = frame_.ToWorld(Vec3(a.x, a.y, std::sqrt(1 - LengthSquared(a))));
+            s.pixel.labelOnly = true;
+        } else {
+            // Outside the cone the sample still carries the analytic part (D4a): weight 0.
+            s.ray.d = frame_.n;
+            s.weight = 0;
+        }
         return s;
     }
 
@@ -262,6 +304,7 @@ class VirtualPlane final : public Detector {
     void AimAt(std::shared_ptr<Shape> shape) override {
         c_.aim = std::move(shape);
         aimCorners_ = c_.aim ? AimCorners(*c_.aim) : std::vector<Vec3>{};
+        aimAperture_ = c_.aim && c_.aim->material && c_.aim->material->IsFootprintAware();
     }
 
     std::string ToString() const override {
@@ -278,6 +321,7 @@ class VirtualPlane final : public Detector {
     double pitchX_, pitchY_, sinAcc_, beta2_;
     SensorPlaneGeometry geom_;
     std::vector<Vec3> aimCorners_;  // AimCorners(*c_.aim), empty without `aim`
+    bool aimAperture_ = false;      // `aim` is a footprint-aware plate (an aperture)
 };
 
 PHASOR_EXPORT_PLUGIN(Detector, VirtualPlane)

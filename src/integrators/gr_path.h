@@ -254,6 +254,7 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
         g_.beta2[i] = ds_->beta2[i];
         g_.rho[i] = ds_->rho[i];
     }
+    g_.pixel = ds_->pixel;
     T_ = SampledSpectrum(ds_->weight);
     MeasureAtDetector();
     measured_ = true;
@@ -263,6 +264,9 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
     for (int depth = 0;; ++depth) {
         ++stats_.rays;
         auto si = scene_.Intersect(g_.MeanRay());
+        // A pixel state whose ray only aims it at an aperture plate (PixelState::labelOnly) is
+        // measured by a footprint-aware kernel alone.
+        if (g_.pixel.LabelOnly() && !(si && si->material && si->material->IsFootprintAware())) break;
         if (!si) {
             const SampledSpectrum le = path::EscapedEmission(scene_, g_.d, wl_, mis_, closedFormDone_);
             FoundEmission(EventKind::Escape, le, depth, nullptr, Infinity);

@@ -48,17 +48,17 @@ inline std::optional<GrMeasurement> MeasureDistantGR(const SpectralGenRay &g, co
     return m;
 }
 
-/// D4a for a light at infinity: the exact own-frame integral of the plane-wave measurement over the
-/// hemisphere about s, E·(1 − e^{−β²k²}) (theory §0 D4); a distant source's angular profile only
-/// widens the arrival directions (angularVariance += Ω).
+/// D4a for a light at infinity: E, the plane wave's irradiance (normal to s), which a sensor turns
+/// into the flux E·cosθ_s. The pixel's states summed over every label u ∈ ℝ² measure the flux
+/// weighted by the pixel's Gaussian exactly (genray.h PixelState; docs/narrow_pixels.md) — the
+/// own-frame integral of the plane-wave measurement over the propagating hemisphere alone,
+/// E·(1 − e^{−β²k²}), leaves out the states labelled beyond it (19 % of E for a pixel of pitch
+/// λ/2). A distant source's angular profile only widens the arrival directions
+/// (angularVariance += Ω), which the sensor's acceptance and aim fractions use.
 inline GrIncidence DistantIncidence(const SpectralGenRay &g, const Vec3 &s, const SampledSpectrum &e,
                                     double omega) {
     GrIncidence inc;
-    inc.irradiance = SampledSpectrum(0.0);
-    for (int i = 0; i < g.count; ++i) {
-        const GenRay gi = g.At(i);
-        inc.irradiance[i] = e[i] * -std::expm1(-gi.beta2 * gi.k * gi.k);
-    }
+    inc.irradiance = e;
     const GenRay g0 = g.At(0);
     inc.wi = -s;
     inc.dist = Infinity;

@@ -345,6 +345,17 @@ class ApertureMaterial final : public Material, public PlateOpenings {
             PlateGaussian g = MakePlateGaussian(geo.d, s, geo.f.e1, geo.f.e2, geo.f.n, gr.k[i], gr.beta2[i],
                                                 gr.rho[i], w.beam ? Infinity : w.dist, window_);
             if (w.beam) AddIncidentBeam(&g, *w.beam, p, geo.f.e1, geo.f.e2);
+            if (gr.pixel.valid) {
+                // A narrow sensor pixel's own state, non-paraxially (PixelWavelet): |A|² per unit
+                // label area is already the flux through the sensor, so no cosθ_i.
+                const PixelWavelet pw = PixelWavelet::Make(gr.pixel, p, geo.f.e1, geo.f.e2, geo.f.n, gr.k[i]);
+                if (pw.Preferred()) {
+                    const Complex a = IntegrateWavelet(g, pw, mask_, geo.hit, window_);
+                    const double lambda = 2 * Pi / gr.k[i];
+                    f[i] = std::norm(a) / (lambda * lambda * std::abs(woZ));
+                    continue;
+                }
+            }
             Complex a = 0;
             mask_.ForEachPiece(PieceBox(g, geo.hit), [&](const MaskPiece &piece) {
                 a += piece.t * IntegratePiece(g, piece, geo.hit);

@@ -38,6 +38,8 @@ Complex GaussianSegmentIntegral(Complex alpha, Complex beta, double x0, double x
 /// (piece ∩ window), so the closed forms get per-piece complex coefficients. At oblique
 /// incidence the axial offset a reaches ±β·window·tanθ and changes the curvature radius by a
 /// relative a/|q|: a phase error odd in the offset (a fringe shift) if ignored.
+struct PixelWavelet;
+
 struct PlateGaussian {
     Complex axx, axy, ayy;                // [1/m²]
     double bx = 0, by = 0;                // [rad/m]
@@ -61,6 +63,12 @@ struct PlateGaussian {
     /// amplitude is < e^{−2·window²} (e^{−32} for window = 4), so a slit longer than the
     /// footprint costs one closed form. far = 1 gives the plain box (used by tests).
     double far = 2;
+    /// A sensor pixel's state in place of the traced GR (PixelWavelet, IntegrateWavelet): the
+    /// quadratic form above is then zero and the whole integrand — the incident wave and the
+    /// state's non-paraxial field — is expanded about each piece of a tile whose centre lies at
+    /// `shift` from the hit point (the piece's coordinates are relative to that centre).
+    const PixelWavelet *wavelet = nullptr;
+    Vec2 shift;
 };
 
 /// The coefficients of theory §9 for the traced GR at the hit point — unit mean direction d
@@ -80,6 +88,62 @@ PlateGaussian MakePlateGaussian(const Vec3 &d, const Vec3 &s, const Vec3 &e1, co
 /// integral is then per unit on-axis amplitude of the beam at the hit's axial position.
 void AddIncidentBeam(PlateGaussian *g, const GaussianBeamGeometry &b, const Vec3 &hit, const Vec3 &e1,
                      const Vec3 &e2);
+
+/// A sensor pixel's detection state (core/render/genray.h PixelState) meeting the plate, for one
+/// wavenumber k (docs/narrow_pixels.md). Its exchange with the field U₀ = t·U_inc just behind the
+/// plate is, exactly for the Kirchhoff boundary values (theory §6.2) and to second order in the
+/// pixel's extent over its distance (the error is k·|w⊥|·(3β)³/(2r²) + k(3β)⁴/(8r³) rad),
+///     A = ∫ t·U_inc(x')·K(x')·H(x')·√(w_n) d²x',
+/// where, with D = x' − x_p (x_p the pixel centre), r = |D|, w = D/r and w⊥ = (w·s, w·t) its
+/// sensor-plane direction cosines:
+///   * K = (c_p/(2π))·(1/r − ik)·e^{ikr}/r is the Rayleigh–Sommerfeld kernel from x' to the pixel
+///     centre (c_p = |D·n_plate|/r);
+///   * H = ∫ g(δ)·e^{ik u·δ}·e^{ik(R − r)} d²δ = (πβ²)^{−1/2}·(π/√det Q)·exp(−bᵀQ⁻¹b/4) is the
+///     pixel's Gaussian g (β² = 2σ²) against the wavelet from x' expanded to second order in the
+///     offset δ on the sensor, R − r = −w⊥·δ + (|δ|² − (w⊥·δ)²)/(2r): b = k(w⊥ − u),
+///     Q = I/(2β²) − (ik/(2r))(I − w⊥w⊥ᵀ) — the state's field on the plate at any angle, with
+///     no paraxial approximation (in the near zone of a wide pixel it is the Gaussian beam);
+///   * √w_n (w_n = w·n_sensor) makes |A|² integrated over the labels the flux through the
+///     sensor plane rather than |U|² (see IntegrateWavelet).
+/// Summed over labels, ∫|A|² d²u/λ² is the flux weighted by the pixel's Gaussian N(0, σ²).
+struct PixelWavelet {
+    Vec3 dRef;          // hit point − pixel centre (world) [m]
+    double rRef = 0;    // |dRef|
+    Vec3 e1, e2, np;    // the plate's axes (world)
+    Frame sensor;       // s, t span the sensor plane, n its front normal
+    double k = 0;       // wavenumber [rad/m]
+    double beta2 = 0;   // β_D² [m²]
+    Vec2 label;         // u
+    bool labelOnly = false;  // PixelState::labelOnly: the GR's ray is not along the label
+    double ref = 0;     // subtracted from the log-integrand (keeps |integrand| ≲ 1; IntegrateWavelet)
+    /// From the pixel state, the hit point and the plate axes.
+    static PixelWavelet Make(const PixelState &p, const Vec3 &hit, const Vec3 &e1, const Vec3 &e2,
+                             const Vec3 &np, double k);
+    /// Whether the second-order expansion in the pixel's extent holds at this distance: the
+    /// neglected phase k·|w⊥|·(3β)³/(2r²) + k(3β)⁴/(8r³) at the hit, in radians.
+    double ExpansionError() const;
+    /// Whether the aperture kernel evaluates the pixel's state this way rather than through the
+    /// paraxial GR it was traced as: for pixels with kβ < 63 (σ_pix < 7.1 λ), where the paraxial GR
+    /// errs by more than ≈ 2/(kβ)² = 5e-4 of the pixel (docs/narrow_pixels.md), as long as
+    /// ExpansionError() ≤ narrow_pixels::MaxExpansionPhase (0.02 rad); and always for a GR whose
+    /// ray is not along its label (labelOnly: the paraxial GR has no such state). Wider pixels keep the paraxial GR, which
+    /// is as accurate there and ~100× cheaper (one closed form per slit instead of tiles).
+    bool Preferred() const;
+};
+
+/// A = ∫ t·U_inc·K·H·√w_n d²x' of PixelWavelet over the openings of `mask`, for the incident wave
+/// of `g` (MakePlateGaussian's s, dist, and AddIncidentBeam; its quadratic form and window are
+/// not used) and the pixel state `w`; `hit` is the hit point in plate coordinates. The window is
+/// the region of the plate whose directions from the pixel lie within 2·window·√(1 + F²)/(kβ) of
+/// the label u (F = kβ²/r, the pixel's Fresnel number: where |H| falls to e^{−2·window²}), or
+/// the openings' bounds where that region reaches the horizon (and, for an incident Gaussian beam,
+/// the oblique cut of the beam within 12 radii of its axis). It is cut into tiles, halved until
+/// the integrand's second-order expansion about each tile's centre errs by ≤ 1e-4 rad (weighted
+/// by the integrand's magnitude along the segments from the centre to the corners and edge
+/// midpoints); each tile's pieces are then done by IntegratePiece with the expansion about the
+/// piece. Returns A [m].
+Complex IntegrateWavelet(const PlateGaussian &g, const PixelWavelet &w, const ApertureMask &mask, const Vec2 &hit,
+                         double window);
 
 /// ∫∫ over (piece ∩ window) of exp(−(axx x² + 2axy xy + ayy y²) + i(bx x + by y)) dx dy, where
 /// the piece is given in plate coordinates and `origin` is the hit point's plate position (so

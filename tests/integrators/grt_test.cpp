@@ -48,15 +48,18 @@ double PixelEstimate(const Scene &scene, int x, int y, int index = 0, int count 
     return v / wl.Count();
 }
 
-// D4/D4a: a unit plane wave at θ_s on a virtual plane reads cosθ_s·(1 − e^{−β²k²}) exactly.
+// D4/D4a: a unit plane wave at θ_s on a virtual plane reads its flux cosθ_s exactly — also for a
+// pixel a fifth of a wavelength wide (σ = 0.1 µm at 550 nm), whose states labelled outside the
+// propagating disc carry e^{−β²k²} = 7 % of it (docs/narrow_pixels.md; the propagating labels
+// alone gave cosθ_s·(1 − e^{−β²k²})).
 TEST(Grt, PlaneWaveOnSensorPlaneIsExact) {
     for (double thetaDeg : {0.0, 30.0}) {
         auto scene =
             LoadScene("grt_plane_wave_sensor.wscene", {{"theta", std::to_string(thetaDeg) + " deg"}});
         ASSERT_TRUE(scene);
         const double sigma = 0.1e-6, k = 2 * Pi / 550e-9, beta2 = 2 * sigma * sigma;
-        const double expected = std::cos(Radians(thetaDeg)) * (1 - std::exp(-beta2 * k * k));
-        ASSERT_LT(expected, 0.95 * std::cos(Radians(thetaDeg))) << "the tail term must be visible";
+        const double expected = std::cos(Radians(thetaDeg));
+        ASSERT_GT(std::exp(-beta2 * k * k), 0.05) << "the labels beyond the disc must matter here";
         ASSERT_EQ(scene->GetDetector().Height(), 1);
         for (int x = 0; x < scene->GetDetector().Width(); ++x)
             for (int s = 0; s < 4; ++s)

@@ -36,6 +36,9 @@ struct DetectorGrSample {
     /// IntegrateIncidence); then the sampled GR must not measure them itself.
     bool integratesIncidence = false;
     double maxLambda = 0;  // longest carried wavelength [m] (sensor planes size their regions by it)
+    /// Sensor planes: the pixel state the GR stands for (genray.h PixelState); its label may lie
+    /// outside the unit disc, and then ray.d only aims the GR at the footprint-aware shape.
+    PixelState pixel;
 };
 
 /// Where a sample sits among its pixel's samples (for stratifying directions across them, D4b).

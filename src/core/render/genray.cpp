@@ -69,6 +69,7 @@ void SpectralGenRay::Propagate(double z) {
 
 void SpectralGenRay::Redirect(const Vec3 &newDirection, double etaRatio) {
     d = newDirection;
+    pixel.valid = false;
     for (int i = 0; i < count; ++i) k[i] *= etaRatio;
 }
 

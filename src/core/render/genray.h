@@ -105,17 +105,42 @@ struct GenRay {
     double PhaseSpaceDensity(const Vec2 &dr, const Vec2 &dk) const;
 };
 
+/// The detection state of a sensor-plane pixel that a GR stands for while it travels straight
+/// from the sensor (docs/narrow_pixels.md, theory §0 D2, D16): the Gabor state
+/// ψ(δ) = (πβ²)^{−1/2}·e^{−|δ|²/(2β²)}·e^{−ik u·δ} on the sensor plane (δ = offset from `centre`
+/// in the plane), whose label u — the traced direction's sensor-plane direction cosines for a
+/// state inside the propagating disc — may lie outside the unit disc: such a state has no mean
+/// ray, yet the propagating part of its angular spectrum still detects light. Summed over all
+/// labels u ∈ ℝ² with weight d²κ/(2π)² = d²u/λ², these states measure exactly the flux weighted
+/// by the pixel's Gaussian N(0, β²/2) — what `rs` computes — whatever the pixel's size. Footprint-
+/// aware kernels evaluate such a state's field non-paraxially (materials/aperture_integral.h,
+/// PixelWavelet); a GR loses it at its first interaction (Redirect).
+struct PixelState {
+    bool valid = false;
+    Vec3 centre;       // the pixel state's centre on the sensor plane (world) [m]
+    Frame frame;       // s, t span the sensor plane; n = its front normal (towards the scene)
+    double beta2 = 0;  // β_D² = 2σ_pix² [m²], the same for every wavelength
+    Vec2 label;        // u (dimensionless); the transverse wavevector of the light it detects is −k·u
+    /// The GR's mean ray is not along the label (a label outside the propagating disc, or one
+    /// whose own ray misses the aperture plate the sensor aims at): it only aims the state at the
+    /// plate, and only a footprint-aware kernel may measure it.
+    bool labelOnly = false;
+    bool LabelOnly() const { return valid && labelOnly; }
+};
+
 /// The wavelengths a path carries share one mean ray; each has its own footprint (for a camera
 /// β ∝ λ, for a sensor plane σ_k/k ∝ λ). Used by the `grt` integrator.
 struct SpectralGenRay {
     Vec3 o, d;
     int count = 1;  // wavelengths in use (SampledWavelengths::Count())
     std::array<double, NumWavelengths> k{}, beta2{}, rho{};
+    PixelState pixel;  // set by a sensor plane; cleared by Redirect (see PixelState)
 
     GenRay At(int i) const { return GenRay{o, d, k[i], beta2[i], rho[i]}; }
     Ray MeanRay() const { return Ray{o, d}; }
     void Propagate(double z);
     /// New mean direction; every wavenumber scaled by etaRatio (= η_new/η_old; 1 on reflection).
+    /// The GR no longer stands for a sensor pixel's state (pixel.valid = false).
     void Redirect(const Vec3 &newDirection, double etaRatio);
     SpectralGenRay TimeReversed() const;
 };

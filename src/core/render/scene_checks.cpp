@@ -1,13 +1,15 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — checks and choices that need the whole built scene: a sensor plane against the
-// aperture plates (placement error, automatic `aim`, theory §0 D4b); after a render whose image
-// is black, the likely cause; and the wording of the integrators' work estimates.
+// aperture plates (placement error, pixels too narrow for their distance from a plate (theory
+// §2.6), automatic `aim`, theory §0 D4b); after a render whose image is black, the likely cause;
+// and the wording of the integrators' work estimates.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "core/render/aperture.h"
 #include "core/render/integrator.h"
+#include "core/render/narrow_pixels.h"
 #include "core/render/scene.h"
 
 namespace phasor {
@@ -62,6 +64,47 @@ bool LightDirection(const Light &light, const Vec3 &p, Vec3 *wi, double *dist) {
     return true;
 }
 
+/// Pixels narrow enough to be measured by their exact state at an aperture plate (theory §2.6)
+/// need the plate at least narrow_pixels::MinPlateDistance away; closer, the state's expansion in
+/// the pixel's extent fails and the generalized-ray integrators are not exact: warn with the
+/// distance and the fixes (only for wavelengths the lights emit, where kβ < 63).
+void WarnNarrowPixelsNearPlates(const Scene &scene, Diagnostics &diag, const std::vector<Plate> &plates) {
+    const Detector &det = scene.GetDetector();
+    const SensorPlaneGeometry *g = det.SensorPlane();
+    const double beta2 = 2 * g->sigma * g->sigma, kMax = narrow_pixels::NonParaxialBelowKBeta / std::sqrt(beta2);
+    // The largest wavenumber any light emits below kMax (the expansion's error grows with k).
+    double k = 0;
+    for (const Light *l : scene.Lights()) {
+        const Spectrum &s = l->EmissionSpectrum();
+        const auto [lo, hi] = s.LineWavelength() ? std::pair{*s.LineWavelength(), *s.LineWavelength()} : s.Support();
+        const double kLo = 2 * Pi / hi, kHi = lo > 0 ? 2 * Pi / lo : Infinity;
+        if (kLo < kMax) k = std::max(k, std::min(kHi, kMax));
+    }
+    if (!(k > 0)) return;
+    const double need = narrow_pixels::MinPlateDistance(k, beta2);
+    for (const Plate &pl : plates) {
+        if (!(Dot(pl.origin - g->origin, g->frame.n) > 0)) continue;  // behind the sensor
+        double h = Infinity;
+        for (int c = 0; c < 4; ++c) {
+            const Vec3 corner = g->origin + g->frame.s * (((c & 1) ? 0.5 : -0.5) * g->width) +
+                                g->frame.t * (((c & 2) ? 0.5 : -0.5) * g->height);
+            h = std::min(h, std::abs(Dot(corner - pl.origin, pl.n)));
+        }
+        if (h >= need) continue;
+        char msg[512];
+        std::snprintf(msg, sizeof msg,
+                      "sensor '%s' has pixels of sigma = %.3g um (k*beta = %.3g at %.5g nm) %.3g um from the aperture "
+                      "plate '%s': grt and sample_solve measure pixels this narrow by their exact state, whose "
+                      "expansion in the pixel's extent holds from %.3g um on (docs/narrow_pixels.md); closer, "
+                      "their values are not exact. Use --integrator rs, or move the sensor at least %.3g um from "
+                      "the plate",
+                      det.name.c_str(), g->sigma * 1e6, k * std::sqrt(beta2), 2 * Pi / k * 1e9, h * 1e6,
+                      pl.shape->name.c_str(), need * 1e6, need * 1e6);
+        diag.Warning(scene.Where(&det), msg,
+                     {Diagnostic{Severity::Note, scene.Where(pl.shape.get()), "the plate is defined here", {}}});
+    }
+}
+
 }  // namespace
 
 void Scene::CheckSensorPlane(Diagnostics &diag) {
@@ -94,7 +137,9 @@ void Scene::CheckSensorPlane(Diagnostics &diag) {
                                    " from it); place the whole sensor on one side of the plate",
                        {Diagnostic{Severity::Note, Where(pl.shape.get()), "the plate is defined here", {}}});
     }
-    if (diag.HasErrors() || !det.MayAutoAim()) return;
+    if (diag.HasErrors()) return;
+    WarnNarrowPixelsNearPlates(*this, diag, plates);
+    if (!det.MayAutoAim()) return;
 
     // Automatic aim (D4b): the one footprint-aware shape entirely in front of the sensor, when
     // every light lies beyond its plane (all light then reaches the sensor through it). Sampling
