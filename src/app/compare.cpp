@@ -336,6 +336,8 @@ int RunCompare(const CliOptions &o) {
                 }
             continue;
         }
+        for (const Diagnostic &x : d.All())
+            if (x.severity == Severity::Warning) run.warnings.push_back(x.message);
         const Detector &det = scene->GetDetector();
         if (width == 0) {
             width = det.Width();

@@ -94,6 +94,7 @@ TableRow RowOf(const CompareRun &r) {
                    : r.status == CompareRun::Status::Interrupted ? "interrupted (Ctrl-C)"
                    : r.isReference                               ? "reference"
                                                                  : "ok";
+    if (!r.warnings.empty() && r.status != CompareRun::Status::Failed) t.statusText += " — warning: " + r.warnings[0];
     if (r.status == CompareRun::Status::Done || r.status == CompareRun::Status::Interrupted) {
         t.seconds = Num(r.seconds, 4);
         if (!r.deterministic && r.image) {
@@ -574,6 +575,13 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
         h << "<h2>Convergence</h2>\n";
         figure(convergenceShown, "error against the reference as the samples accumulate (the render loop's passes)",
                " (<a href=\"convergence.csv\">convergence.csv</a>)");
+    }
+    if (std::any_of(runs.begin(), runs.end(), [](const CompareRun &r) { return !r.warnings.empty(); })) {
+        h << "<h2>Warnings at load</h2>\n<ul>\n";
+        for (const CompareRun &r : runs)
+            for (const std::string &w : r.warnings)
+                h << "<li class=\"warning\"><code>" << Html(r.name) << "</code>: " << Html(w) << "</li>\n";
+        h << "</ul>\n";
     }
     bool anyFailed = false;
     for (const CompareRun &r : runs) anyFailed |= r.status == CompareRun::Status::Failed;

@@ -11,10 +11,12 @@
 #include <vector>
 
 #include "core/image/film.h"
+#include "core/render/integrator_support.h"
 #include "core/render/sampler.h"
 
 namespace phasor {
 
+class Diagnostics;
 class Scene;
 
 struct RenderOptions {
@@ -93,15 +95,22 @@ struct RenderStats {
 class Integrator {
   public:
     virtual ~Integrator() = default;
+    /// What the integrator can render: lights by type, the detector it needs, kernel capabilities,
+    /// polarisation (integrator_support.h). Read by Validate and by the generated support table
+    /// of docs/plugins.md, so the two cannot disagree.
+    virtual IntegratorSupport Support() const = 0;
+    /// Checks a built scene before anything is rendered, reporting every problem at the object's
+    /// location (Scene::Build calls it, so `phasor check`, `render` and `compare` refuse the same
+    /// scenes). The default checks the declarations (ValidateSupport); an integrator with further
+    /// needs (rs: one aperture plate, the sensor in front of it) adds them. After a clean Validate,
+    /// Render throws only for what no check can know in advance.
+    virtual void Validate(const Scene &scene, Diagnostics &diag) const { ValidateSupport(*this, scene, diag); }
     /// Renders `scene` into `film` (whose size matches the scene's detector).
     virtual RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const = 0;
     virtual std::string ToString() const = 0;
     /// True for integrators that take no random samples (rs): no spp, seed or sampler applies;
     /// they report RenderStats::work and progress in their own steps.
     virtual bool Deterministic() const { return false; }
-    /// True for integrators that carry polarisation (`sample_solve`): only they honour a detector's
-    /// `polarizer` and `stokes` (Scene::Build refuses the others at those parameters).
-    virtual bool SupportsPolarization() const { return false; }
     std::string name;
 };
 

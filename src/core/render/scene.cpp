@@ -90,7 +90,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
         diag.Error(render ? render->EntityLoc() : sceneLoc, "the scene has no detector (add e.g. Detector \"perspective\")");
 
     // Integrator: the CLI override (by @name or by type), else Render.integrator, else the only one,
-    // else a default `ray`.
+    // else the family's default plug-in (`ray`, which declares itself so).
     if (!integratorOverride.empty()) {
         if (render && render->Has("integrator")) render->GetValue("integrator");  // overridden, not unused
         for (auto &i : ctx.All<Integrator>()) {
@@ -125,27 +125,15 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
             scene->integrator_ = PickOne<Integrator>(ctx, render, "integrator", "integrator", diag, sceneLoc, whole);
         else if (ctx.All<Integrator>().size() == 1)
             scene->integrator_ = ctx.All<Integrator>()[0];
-        else if (auto *entry = Registry<Integrator>::Find("ray")) {
+        else if (auto *entry = Registry<Integrator>::Default()) {
             ParamDict d;
             d.Validate(entry->schema(), diag);
             scene->integrator_ = std::shared_ptr<Integrator>(entry->create(d, ctx));
-            scene->integrator_->name = "ray";
+            scene->integrator_->name = entry->name;
         }
     }
     if (renderValid) render->ReportUnused(diag, "Render");  // (after an error, nothing was read)
     if (!whole || diag.HasErrors() || !scene->detector_ || !scene->integrator_) return nullptr;
-
-    // Polarisation options need an integrator that carries polarisation (sample_solve).
-    if (const DetectorPolarization &pol = scene->detector_->Polarization();
-        pol.Any() && !scene->integrator_->SupportsPolarization()) {
-        const std::string what = pol.polarizer ? "a polarizer" : "Stokes output";
-        diag.Error(pol.polarizer ? pol.polarizerLoc : pol.stokesLoc,
-                   "detector '" + scene->detector_->name + "' asks for " + what + ", but integrator '" +
-                       scene->integrator_->name +
-                       "' carries no polarisation (it renders unpolarised intensity); use "
-                       "integrator \"sample_solve\" (e.g. --integrator sample_solve) or remove the parameter");
-        return nullptr;
-    }
 
     // Geometry and lights.
     scene->shapes_ = ctx.All<Shape>();
@@ -178,6 +166,9 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     if (scene->lights_.empty()) diag.Warning(sceneLoc, "the scene has no light; the image will be black");
     scene->CheckSensorPlane(diag);
     scene->wavelengths_ = std::make_unique<WavelengthSampler>(emitters, scene->detector_->Response());
+    if (diag.HasErrors()) return nullptr;
+    // What the integrator cannot render, at load (`check` refuses what `render` would).
+    scene->integrator_->Validate(*scene, diag);
     if (diag.HasErrors()) return nullptr;
     return scene;
 }
