@@ -24,14 +24,8 @@ class SphericalWaveOnPlane final : public PlaneField {
         *amplitude = amp_ / rho;
         *phase = k_ * q / (rho + sz_);  // k(ρ − sz), without cancellation
     }
-    /// ∂ρ/∂a = (a − s_a)/ρ: a direction cosine from the source to the box.
     PhaseSlope Slope(int axis, const Bounds2 &box) const override {
-        double a0, a1, b0, b1, qLo, qHi, lo, hi;
-        BoxAxes(box, axis, &a0, &a1, &b0, &b1);
-        const double sa = axis == 0 ? su_ : sv_, sb = axis == 0 ? sv_ : su_;
-        DistanceRange(sb, b0, b1, &qLo, &qHi);
-        CosineRange(a0 - sa, a1 - sa, std::sqrt(qLo * qLo + sz_ * sz_), std::sqrt(qHi * qHi + sz_ * sz_), &lo, &hi);
-        return {lo, hi, 0};
+        return SphericalSlope(axis, box, Vec2(su_, sv_), sz_);
     }
     /// Panels of at most half the source's distance resolve the 1/ρ amplitude.
     double PanelLimit(const Bounds2 &) const override { return 0.5 * sz_; }

@@ -205,5 +205,31 @@ TEST(Validate, EveryIntegratorDeclaresWhatItRenders) {
     }
 }
 
+// Samplers are a plug-in family: Render.sampler names a plug-in or a Sampler block, checked at load
+// with a suggestion; the default is the plug-in that declares itself so (sobol).
+TEST(Validate, SamplersAreChosenByNameAtLoad) {
+    auto with = [](const std::string &extra) {
+        std::string s = Room("cam");
+        s.replace(s.find("Render { detector = @cam }"), 26, extra);
+        return s;
+    };
+    const Loaded plain = Load(with("Render { detector = @cam }"));
+    ASSERT_TRUE(plain.scene) << plain.log;
+    EXPECT_EQ(plain.scene->Settings().options.sampler, "sobol");
+    const Loaded chosen = Load(with("Render { detector = @cam  sampler = \"independent\" }"));
+    ASSERT_TRUE(chosen.scene) << chosen.log;
+    EXPECT_EQ(chosen.scene->NewSampler(chosen.scene->Settings().options.sampler, 3)->Name(), "independent");
+    const Loaded block = Load(with("Sampler \"independent\" \"mine\" {}\nRender { detector = @cam }"));
+    ASSERT_TRUE(block.scene) << block.log;
+    EXPECT_EQ(block.scene->Settings().options.sampler, "mine");
+    EXPECT_EQ(block.scene->NewSampler("mine", 3)->Name(), "independent");
+    EXPECT_EQ(block.scene->NewSampler("mine", 3)->Seed(), 3u);
+    const Loaded typo = Load(with("Render { detector = @cam  sampler = \"sobl\" }"));
+    EXPECT_FALSE(typo.scene);
+    EXPECT_NE(typo.log.find("validate.wscene:8:37: error: unknown sampler 'sobl'; did you mean 'sobol'?"),
+              std::string::npos)
+        << typo.log;
+}
+
 }  // namespace
 }  // namespace phasor::test

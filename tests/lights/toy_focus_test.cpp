@@ -40,12 +40,8 @@ class ConvergingOnPlane final : public PlaneField {
         *phase = -k_ * q / (rho + fz_);
     }
     PhaseSlope Slope(int axis, const Bounds2 &box) const override {
-        double a0, a1, b0, b1, qLo, qHi, lo, hi;
-        BoxAxes(box, axis, &a0, &a1, &b0, &b1);
-        const double fa = axis == 0 ? fu_ : fv_, fb = axis == 0 ? fv_ : fu_;
-        DistanceRange(fb, b0, b1, &qLo, &qHi);
-        CosineRange(a0 - fa, a1 - fa, std::sqrt(qLo * qLo + fz_ * fz_), std::sqrt(qHi * qHi + fz_ * fz_), &lo, &hi);
-        return {-hi, -lo, 0};
+        const PhaseSlope diverging = SphericalSlope(axis, box, Vec2(fu_, fv_), fz_);
+        return {-diverging.hi, -diverging.lo, 0};
     }
     double PanelLimit(const Bounds2 &) const override { return 0.5 * fz_; }
     Bounds2 Support() const override { return Bounds2{foot_ - Vec2(footR_, footR_), foot_ + Vec2(footR_, footR_)}; }

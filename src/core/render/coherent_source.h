@@ -84,12 +84,18 @@ inline void DistanceRange(double y, double a, double b, double *lo, double *hi) 
     *hi = std::max(std::abs(y - a), std::abs(y - b));
 }
 
-/// The box's extent along `axis` (0: u, 1: v) and across it.
-inline void BoxAxes(const Bounds2 &box, int axis, double *a0, double *a1, double *b0, double *b1) {
-    *a0 = axis == 0 ? box.lo.x : box.lo.y;
-    *a1 = axis == 0 ? box.hi.x : box.hi.y;
-    *b0 = axis == 0 ? box.lo.y : box.lo.x;
-    *b1 = axis == 0 ? box.hi.y : box.hi.x;
+/// The range of ∂ρ/∂a = (a − s_a)/ρ over a box of a plane, ρ the distance from a point at plane
+/// coordinates `s` and distance `dist` > 0 from the plane: a spherical wave's phase slope along
+/// `axis` (0: u, 1: v) in units of k (diverging from the point; a wave converging on it has the
+/// negated range).
+inline PhaseSlope SphericalSlope(int axis, const Bounds2 &box, const Vec2 &s, double dist) {
+    const double a0 = axis == 0 ? box.lo.x : box.lo.y, a1 = axis == 0 ? box.hi.x : box.hi.y;
+    const double b0 = axis == 0 ? box.lo.y : box.lo.x, b1 = axis == 0 ? box.hi.y : box.hi.x;
+    const double sa = axis == 0 ? s.x : s.y, sb = axis == 0 ? s.y : s.x;
+    double qLo, qHi, lo, hi;
+    DistanceRange(sb, b0, b1, &qLo, &qHi);
+    CosineRange(a0 - sa, a1 - sa, std::sqrt(qLo * qLo + dist * dist), std::sqrt(qHi * qHi + dist * dist), &lo, &hi);
+    return {lo, hi, 0};
 }
 
 }  // namespace phasor

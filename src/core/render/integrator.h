@@ -19,10 +19,14 @@ namespace phasor {
 class Diagnostics;
 class Scene;
 
+/// What a render uses: its samples per pixel, seed and sampler (the one place they live: a scene's
+/// Render block gives their defaults, Scene::Settings().options, and the program's --spp, --seed and
+/// --sampler override them), its threads, and the calls it makes back.
 struct RenderOptions {
     int spp = 16;
     uint64_t seed = 0;
     int threads = 0;  // 0 = all cores
+    /// A Sampler block's name or a sampler plug-in (Scene::NewSampler).
     std::string sampler = "sobol";
     /// Set to true (e.g. from a SIGINT/SIGTERM handler) to stop soon: sampling integrators finish
     /// the pixels in progress (each pixel keeps a whole number of samples; RenderStats::sppReached

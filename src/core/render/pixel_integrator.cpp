@@ -55,8 +55,8 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
     std::unique_ptr<tbb::global_control> threads;
     if (opt.threads > 0)
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opt.threads);
-    std::unique_ptr<Sampler> prototype = MakeSampler(opt.sampler, opt.seed);
-    if (!prototype) throw Error("unknown sampler '" + opt.sampler + "' (use sobol or independent)");
+    std::unique_ptr<Sampler> prototype = scene.NewSampler(opt.sampler, opt.seed);
+    if (!prototype) throw Error("unknown sampler '" + opt.sampler + "' (see 'phasor list sampler')");
 
     RenderStats stats;
     const int w = film.Width(), h = film.Height();

@@ -12,6 +12,7 @@
 #include "core/render/integrator.h"
 #include "core/render/light.h"
 #include "core/render/material.h"
+#include "core/render/sampler.h"
 #include "core/render/shape.h"
 #include "core/spectrum/spectrum.h"
 #include "plugin_tables.inc"

@@ -15,9 +15,9 @@ const Schema &RenderSchema() {
                 "the integrator (default: the only one in the scene, else `ray`; --integrator overrides)"),
          P::Integer("spp", "samples per pixel (--spp overrides)").Default(Value::Integer(16)).Min(1),
          P::Integer("seed", "random seed (--seed overrides)").Default(Value::Integer(0)).Min(0),
-         P::String("sampler", "sample generator (--sampler overrides)")
-             .Default(Value::String("sobol"))
-             .Choices({"sobol", "independent"}),
+         P::String("sampler",
+                   "the sample generator: a plug-in of the sampler family (`phasor list sampler`) or the name of "
+                   "a Sampler block; default: the scene's only Sampler block, else `sobol` (--sampler overrides)"),
          P::String("output",
                    "output EXR path, relative to the working directory as pbrt's film filename is (a .png is "
                    "written beside it; -o overrides); default: out/<scene file name>.exr")}};
@@ -76,12 +76,30 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     for (const SceneEntity &e : desc.entities)
         if (e.keyword == "Render" && ++renderCount == 2) diag.Error(e.loc, "only one Render block is allowed");
     const bool renderValid = render && render->Validate(RenderSchema(), diag);
+    RenderOptions &options = scene->settings_.options;
     if (renderValid) {
-        scene->settings_.spp = render->GetInt("spp");
-        scene->settings_.seed = (uint64_t)render->GetNumber("seed");
-        scene->settings_.sampler = render->GetString("sampler");
+        options.spp = render->GetInt("spp");
+        options.seed = (uint64_t)render->GetNumber("seed");
         if (render->Has("output")) scene->settings_.output = render->GetString("output");
         scene->settings_.loc = render->EntityLoc();
+    }
+    // The sampler: Render.sampler (a Sampler block's name or a plug-in), else the only Sampler
+    // block, else the family's default plug-in (`sobol`, which declares itself so).
+    const auto samplers = ctx.All<Sampler>();
+    if (renderValid && render->Has("sampler")) {
+        options.sampler = render->GetString("sampler");
+        if (!scene->NewSampler(options.sampler, 0)) {
+            const std::string s = Suggest(options.sampler, scene->SamplerNames());
+            diag.Error(render->Loc("sampler"), "unknown sampler '" + options.sampler + "'" +
+                                                   (s.empty() ? "" : "; did you mean '" + s + "'?"));
+        }
+    } else if (samplers.size() == 1) {
+        options.sampler = ctx.EntityOf(samplers[0].get())->name;
+    } else if (samplers.size() > 1) {
+        diag.Error(render ? render->EntityLoc() : sceneLoc, "the scene has " + std::to_string(samplers.size()) +
+                                                                " samplers; choose one with Render { sampler = \"name\" }");
+    } else if (const auto *entry = Registry<Sampler>::Default()) {
+        options.sampler = entry->name;
     }
 
     const bool whole = !desc.incomplete;
@@ -171,6 +189,25 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     scene->integrator_->Validate(*scene, diag);
     if (diag.HasErrors()) return nullptr;
     return scene;
+}
+
+std::unique_ptr<Sampler> Scene::NewSampler(const std::string &name, uint64_t seed) const {
+    if (ctx_)
+        for (const auto &s : ctx_->All<Sampler>())
+            if (const SceneEntity *e = ctx_->EntityOf(s.get()); e && e->name == name) {
+                std::unique_ptr<Sampler> copy = s->Clone();
+                copy->SetSeed(seed);
+                return copy;
+            }
+    return MakeSampler(name, seed);
+}
+
+std::vector<std::string> Scene::SamplerNames() const {
+    std::vector<std::string> names = Registry<Sampler>::Names();
+    if (ctx_)
+        for (const auto &s : ctx_->All<Sampler>())
+            if (const SceneEntity *e = ctx_->EntityOf(s.get()); e && !e->name.empty()) names.push_back(e->name);
+    return names;
 }
 
 FileLoc Scene::Where(const void *object) const {
