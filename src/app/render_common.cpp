@@ -14,6 +14,7 @@
 #include <iostream>
 #include <new>
 
+#include "app/distributed.h"
 #include "app/profile.h"
 #include "core/image/image_io.h"
 #include "parser/parser.h"
@@ -93,7 +94,7 @@ std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Di
     return scene;
 }
 
-std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
+std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag, SceneDesc *descOut) {
     std::optional<SceneDesc> desc;
     try {
         desc = ParseScene(o, diag);
@@ -108,7 +109,9 @@ std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
                   << "'\n";
         return nullptr;
     }
-    return BuildScene(o, *desc, diag, o.integrator);
+    std::unique_ptr<Scene> scene = BuildScene(o, *desc, diag, o.integrator);
+    if (descOut) *descOut = std::move(*desc);
+    return scene;
 }
 
 void PrintError(const Error &e) {
@@ -164,7 +167,8 @@ RenderOptions OptionsFor(const Scene &scene, const CliOptions &o) {
     if (o.spp > 0) opt.spp = o.spp;
     if (o.seed >= 0) opt.seed = uint64_t(o.seed);
     if (!o.sampler.empty()) opt.sampler = o.sampler;
-    opt.threads = o.threads;
+    // Under MPI, ranks sharing a node share its cores (distributed.h DefaultThreads).
+    opt.threads = o.threads > 0 ? o.threads : dist::DefaultThreads();
     opt.cancel = &gCancel;
     return opt;
 }

@@ -68,5 +68,5 @@ grep -q \"| ray | ok — warning: integrator 'ray' cannot reach light 'wave'\" '
 ! grep -q \"<code>grt</code>: integrator\" '${_out}/mirror_cmp/index.html'")
 set_tests_properties(cli.compare_shows_unreachable PROPERTIES LABELS unit)
 # Samplers are plug-ins: an unknown --sampler is an error with a suggestion, before rendering.
-phasor_cli_test(unknown_sampler ${_expect} 1 "<command line>.*unknown sampler 'sobl'; did you mean 'sobol'"
+phasor_cli_test(unknown_sampler ${_expect} 1 "<command line>.*unknown sampler 'sobl'. did you mean 'sobol'"
   --no-file ${_out}/sobl.exr -- $<TARGET_FILE:phasor_app> render ${_scenes}/small.wscene --sampler sobl -o ${_out}/sobl.exr)
