@@ -80,6 +80,9 @@ struct CompareRun {
     bool waveOptical = true;      // Integrator::WaveOptical
     Status status = Status::NotRun;
     std::string error;  // Failed: the integrator's message
+    /// What the scene checks said about this integrator at load (e.g. a light it cannot reach):
+    /// shown beside its status on the page and in results.md.
+    std::vector<std::string> warnings;
     std::string work;   // a deterministic integrator's own account ("solved 48 pixels …")
     int sppRequested = 0, sppReached = 0;
     std::vector<unsigned long long> seeds;  // the seed of each render (the reference: one per replica)

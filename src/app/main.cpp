@@ -92,6 +92,7 @@ int Describe(const CliOptions &o) {
         }
         std::cout << "## Render\n\n";
         std::cout << RenderSchema().Markdown();
+        std::cout << "\n## What each integrator renders\n\n" << SupportMarkdown();
         return 0;
     }
     if (o.family.empty() && (o.name == "Render" || o.name == "render")) {  // the Render block

@@ -288,7 +288,7 @@ int RenderOnce(CliOptions o, const std::string &out, const std::string &label) {
         now.integrator = integrator.ToString();
         now.sampler = opt.sampler;
         now.seed = opt.seed;
-        now.stokes = det.Polarization().stokes && integrator.SupportsPolarization();
+        now.stokes = det.Polarization().stokes && integrator.Support().polarization;
         std::error_code ec;
         now.scene = fs::absolute(o.scene, ec).string();
         now.output = fs::absolute(paths.exr, ec).string();

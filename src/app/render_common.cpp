@@ -72,6 +72,13 @@ std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Di
     std::unique_ptr<Scene> scene;
     try {
         scene = Scene::Build(desc, diag, integrator);
+        // --sampler names a sampler plug-in or one of the scene's Sampler blocks.
+        if (scene && !o.sampler.empty() && !scene->NewSampler(o.sampler, 0)) {
+            const std::string s = Suggest(o.sampler, scene->SamplerNames());
+            diag.Error(FileLoc{"<command line>", 0, 0, 1}, "unknown sampler '" + o.sampler + "'" +
+                                                               (s.empty() ? "" : "; did you mean '" + s + "'?"));
+            scene.reset();
+        }
     } catch (const std::bad_alloc &) {  // (what was allocated is released by now)
         scene.reset();
         diag.Error(FileLoc{o.scene, 0, 0, 1},
@@ -158,13 +165,12 @@ void CheckMemory(const Scene &scene) {
 }
 
 RenderOptions OptionsFor(const Scene &scene, const CliOptions &o) {
-    const RenderSettings &rs = scene.Settings();
-    RenderOptions opt;
-    opt.spp = o.spp > 0 ? o.spp : rs.spp;
-    opt.seed = o.seed >= 0 ? uint64_t(o.seed) : rs.seed;
+    RenderOptions opt = scene.Settings().options;  // the Render block's spp, seed, sampler
+    if (o.spp > 0) opt.spp = o.spp;
+    if (o.seed >= 0) opt.seed = uint64_t(o.seed);
+    if (!o.sampler.empty()) opt.sampler = o.sampler;
     // Under MPI, ranks sharing a node share its cores (distributed.h DefaultThreads).
     opt.threads = o.threads > 0 ? o.threads : dist::DefaultThreads();
-    opt.sampler = o.sampler.empty() ? rs.sampler : o.sampler;
     opt.cancel = &gCancel;
     return opt;
 }

@@ -22,5 +22,6 @@
     FAMILY(Shape,      shape,      Shape,      sphere)       \
     FAMILY(Light,      light,      Light,      point)        \
     FAMILY(Detector,   detector,   Detector,   perspective)  \
-    FAMILY(Integrator, integrator, Integrator, grt)
+    FAMILY(Integrator, integrator, Integrator, grt)          \
+    FAMILY(Sampler,    sampler,    Sampler,    independent)
 // clang-format on

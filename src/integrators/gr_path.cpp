@@ -21,13 +21,12 @@ std::vector<ParamSpec> PathParams() {
                 .Max(4096)};
 }
 
-void GrPathSampler::CheckDetector(const Scene &scene, const std::string &integrator) {
-    const Detector &det = scene.GetDetector();
-    if (!det.SupportsGR())
-        throw Error("integrator '" + integrator +
-                    "' needs a detector that generates generalized rays (perspective, thin_lens, virtual_plane); "
-                    "detector '" +
-                    det.name + "' does not");
+IntegratorSupport PathSupport() {
+    IntegratorSupport s;
+    s.lights = {LightReach::ClosedForm, LightReach::ClosedForm, LightReach::ClosedForm, LightReach::HitAndSampled};
+    s.detector = DetectorNeed::GeneralizedRays;
+    s.kernels = {KernelReach::Full, KernelReach::Full, KernelReach::Full};
+    return s;
 }
 
 bool GrPathSampler::DropCompanions(SampledSpectrum &T, const SampledWavelengths &wl) {

@@ -115,6 +115,10 @@ struct NullSink {
 /// The parameters of the path sampling (`grt`'s, which `sample_solve` shares): max_depth,
 /// rr_depth, light_samples.
 std::vector<ParamSpec> PathParams();
+/// What the path sampling renders (integrator_support.h): every light (delta and distant ones in
+/// closed form), detectors that generate generalized rays, every kernel as a GR sees it; no
+/// polarisation (sample_solve adds it).
+IntegratorSupport PathSupport();
 
 /// The sampler: `grt`'s parameters and the per-scene D4a-through-lobes table.
 class GrPathSampler {
@@ -130,9 +134,6 @@ class GrPathSampler {
     template <class Sink>
     SampledSpectrum Estimate(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
                              ScratchBuffer &scratch, PathStats &stats, Sink &sink) const;
-
-    /// Throws phasor::Error if the scene's detector cannot generate GRs; `integrator` names the caller.
-    static void CheckDetector(const Scene &scene, const std::string &integrator);
 
     /// D4a through listed lobes for the scene (an integrator belongs to one scene): built on first use.
     const LobeIncidence &Lobes(const Scene &scene) const {

@@ -62,10 +62,7 @@ class GrtIntegrator final : public PixelIntegrator {
                 "plane_wave_sensor", "point_source_sensor", "pairwise_cornell"};
     }
 
-    RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override {
-        grpath::GrPathSampler::CheckDetector(scene, "grt");
-        return PixelIntegrator::Render(scene, film, opt);
-    }
+    IntegratorSupport Support() const override { return grpath::PathSupport(); }
 
     SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
                                   ScratchBuffer &scratch, PathStats &stats) const override {

@@ -25,10 +25,23 @@ class RayIntegrator final : public PixelIntegrator {
     static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
         return std::make_unique<RayIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"));
     }
+    /// The integrator of a scene that names none (Render.integrator's default).
+    static constexpr bool IsDefault = true;
     /// The integrator contract cases `ray` supports (tests/integrators/integrator_contract_test.cpp).
     /// Not the sensor-plane normalisations: a ray cannot reach a delta light (plane wave, point).
     static std::vector<std::string> ContractCases() {
         return {"furnace", "direct_light", "camera_emitter", "pairwise_cornell"};
+    }
+
+    /// Delta lights only through next-event estimation at continuous lobes (a ray never hits them);
+    /// any detector; every kernel in its ray-optics limit; no polarisation.
+    IntegratorSupport Support() const override {
+        IntegratorSupport s;
+        s.lights = {LightReach::SampledOnly, LightReach::SampledOnly, LightReach::HitAndSampled,
+                    LightReach::HitAndSampled};
+        s.detector = DetectorNeed::Rays;
+        s.kernels = {KernelReach::RayOpticsLimit, KernelReach::RayOpticsLimit, KernelReach::RayOpticsLimit};
+        return s;
     }
 
     SampledSpectrum EstimatePixel(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,

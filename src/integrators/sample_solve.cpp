@@ -60,9 +60,7 @@ class CoherentMode final : public Light {
         return LightSample{e_, -travel_, Infinity, 1.0, true};
     }
     double PdfLi(const LightSampleContext &, const Vec3 &, const Vec3 &, const Vec3 &) const override { return 0; }
-    bool IsDelta() const override { return true; }
-    bool IsInfinite() const override { return true; }
-    bool MeasuredInClosedForm() const override { return true; }
+    LightType Type() const override { return LightType::DeltaDirection; }
     std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g, const SampledWavelengths &) const override {
         return MeasureDistantGR(g, travel_, e_, false, 0, 0);
     }
@@ -114,11 +112,15 @@ class SampleSolveIntegrator final : public PixelIntegrator {
                 "plane_wave_sensor", "point_source_sensor", "pairwise_cornell"};
     }
 
-    bool SupportsPolarization() const override { return true; }
     bool WaveOptical() const override { return true; }
+    /// grt's, and it carries polarisation.
+    IntegratorSupport Support() const override {
+        IntegratorSupport s = grpath::PathSupport();
+        s.polarization = true;
+        return s;
+    }
 
     RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override {
-        grpath::GrPathSampler::CheckDetector(scene, "sample_solve");
         if (scene.GetDetector().Polarization().stokes && !film.HasStokes()) film.EnableStokes();
         return PixelIntegrator::Render(scene, film, opt);
     }

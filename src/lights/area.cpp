@@ -39,6 +39,16 @@ class AreaLight final : public Light {
         return light;
     }
 
+    /// For the light contract suite, whose fixtures these name: a one-sided square, a two-sided
+    /// one, a sphere.
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(3);
+        p[0].Set("shape", Value::Ref("contract_panel"));
+        p[1].Set("shape", Value::Ref("contract_panel")).Set("two_sided", Value::Bool(true));
+        p[2].Set("shape", Value::Ref("contract_ball"));
+        return p;
+    }
+
     SampledSpectrum L(const Vec3 &, const Vec3 &n, const Vec3 &w, const SampledWavelengths &wl) const override {
         if (!twoSided_ && Dot(n, w) <= 0) return SampledSpectrum(0.0);
         return EvalEmission(*spectrum_, wl) * scale_;
@@ -63,7 +73,7 @@ class AreaLight final : public Light {
         if (cosL < 1e-12) return 0;
         return LengthSquared(pLight - ctx.p) / (cosL * shape_->Area());
     }
-    bool IsDelta() const override { return false; }
+    LightType Type() const override { return LightType::Area; }
     /// Coherence (theory §0 D5, §2.2): a thermal emitter subtending the solid angle Ω_src ≈ A/r²
     /// (r to the centre of its bounds, orientation ignored) is treated as a disc of that solid angle,
     /// πα² = Ω_src, so Ω = α²/4 = Ω_src/(4π) per axis. GRs measure it as L_e (theory §2.4 item 4).

@@ -32,14 +32,19 @@ class DirectionalLight final : public Light {
         return std::make_unique<DirectionalLight>(dir, ReadLightEmission(d, ctx, "directional", "irradiance", true));
     }
 
+    /// For the light contract suite: the default and an oblique direction.
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(2);
+        p[1].Set("direction", Value::Vector({0.3, -0.2, -1}));
+        return p;
+    }
+
     std::optional<LightSample> SampleLi(const LightSampleContext &, const Vec2 &,
                                         const SampledWavelengths &wl) const override {
         return LightSample{EvalEmission(*spectrum_, wl) * scale_, -dir_, Infinity, 1.0, true};
     }
     double PdfLi(const LightSampleContext &, const Vec3 &, const Vec3 &, const Vec3 &) const override { return 0; }
-    bool IsDelta() const override { return true; }
-    bool IsInfinite() const override { return true; }
-    bool MeasuredInClosedForm() const override { return true; }
+    LightType Type() const override { return LightType::DeltaDirection; }
     std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
                                            const SampledWavelengths &wl) const override {
         return MeasureDistantGR(g, dir_, EvalEmission(*spectrum_, wl) * scale_, false, 0, 0);

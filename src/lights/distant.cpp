@@ -83,11 +83,23 @@ class DistantLight final : public Light {
                                               omega);
     }
 
+    /// For the light contract suite: the sun's disc, a Gaussian profile, and zero extent (a delta
+    /// direction).
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(3);
+        p[0].Set("direction", Value::Vector({0.1, 0.3, -1}));
+        p[1].Set("profile", Value::String("gaussian")).Set("omega", Value::Number(1e-4, Dim::Angle().Pow(2)));
+        p[2].Set("angular_radius", Value::Number(0, Dim::Angle()));
+        return p;
+    }
+
     SampledSpectrum Emission(const SampledWavelengths &wl) const {
         return EvalEmission(*spectrum_, wl) * scale_;
     }
-    bool IsDelta() const override { return disc_ ? alpha_ == 0 : omega_ == 0; }
-    bool IsInfinite() const override { return true; }
+    /// A profile of zero extent is a plane wave: a delta direction.
+    LightType Type() const override {
+        return (disc_ ? alpha_ == 0 : omega_ == 0) ? LightType::DeltaDirection : LightType::Distant;
+    }
 
     // Radiance arriving from direction w (towards the light) relative to the spectrum: the profile.
     double Profile(const Vec3 &w) const {
@@ -132,7 +144,6 @@ class DistantLight final : public Light {
         return p > 0 ? Emission(wl) * p : SampledSpectrum(0.0);
     }
 
-    bool MeasuredInClosedForm() const override { return true; }
     std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
                                            const SampledWavelengths &wl) const override {
         return MeasureDistantGR(g, dir_, Emission(wl), disc_, alpha_, omega_);

@@ -4,7 +4,10 @@
 // normal to `direction` (the direction of travel) over the spectrum, whose shape is normalised
 // (lights/strength.h; a line carries all of it). Delta direction: classical rays never
 // hit it (the `ray` integrator sees it only through next-event estimation); generalized rays
-// measure it in closed form (theory §2.4 item 2, §0 D4a/D14). Coherence: Ω = 0.
+// measure it in closed form (theory §2.4 item 2, §0 D4a/D14). Coherence: Ω = 0. Its field
+// (CoherentSource) is U = √E(λ)·e^{ik d·x}, E(λ) the spectral irradiance; `rs` propagates it when
+// the spectrum is a line.
+#include "core/render/coherent_source.h"
 #include "core/render/light.h"
 #include "lights/closed_form.h"
 #include "lights/strength.h"
@@ -12,7 +15,28 @@
 
 namespace phasor {
 
-class PlaneWaveLight final : public Light {
+namespace {
+
+/// The plane wave over a plane: constant amplitude, phase k·(d·e1·u + d·e2·v) from the plane's origin.
+class PlaneWaveOnPlane final : public PlaneField {
+  public:
+    PlaneWaveOnPlane(double amplitude, double k, double du, double dv) : amp_(amplitude), k_(k), du_(du), dv_(dv) {}
+    void At(double u, double v, double *amplitude, double *phase) const override {
+        *amplitude = amp_;
+        *phase = k_ * du_ * u + k_ * dv_ * v;
+    }
+    PhaseSlope Slope(int axis, const Bounds2 &) const override {
+        const double d = axis == 0 ? du_ : dv_;
+        return {d, d, 0};
+    }
+
+  private:
+    double amp_, k_, du_, dv_;  // du, dv: the direction cosines along the plane's axes
+};
+
+}  // namespace
+
+class PlaneWaveLight final : public Light, public CoherentSource {
   public:
     PlaneWaveLight(Vec3 dir, double e, LightEmission emission)
         : dir_(Normalize(dir)), irradiance_(e), scale_(emission.scale), spectrum_(std::move(emission.spectrum)) {}
@@ -37,6 +61,13 @@ class PlaneWaveLight final : public Light {
                                                 ReadLightEmission(d, ctx, "plane_wave", "irradiance", false));
     }
 
+    /// For the light contract suite: the default and an oblique line (its coherent field).
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(2);
+        p[1].Set("direction", Value::Vector({0.2, 0.1, -1})).Set("spectrum", Value::Call("line", {Value::Number(633e-9, Dim::Length())}, {""}));
+        return p;
+    }
+
     SampledSpectrum Emission(const SampledWavelengths &wl) const {
         return EvalEmission(*spectrum_, wl) * scale_;
     }
@@ -47,9 +78,7 @@ class PlaneWaveLight final : public Light {
     double PdfLi(const LightSampleContext &, const Vec3 &, const Vec3 &, const Vec3 &) const override {
         return 0;
     }
-    bool IsDelta() const override { return true; }
-    bool IsInfinite() const override { return true; }
-    bool MeasuredInClosedForm() const override { return true; }
+    LightType Type() const override { return LightType::DeltaDirection; }
     std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
                                            const SampledWavelengths &wl) const override {
         return MeasureDistantGR(g, dir_, Emission(wl), false, 0, 0);
@@ -59,16 +88,18 @@ class PlaneWaveLight final : public Light {
         return DistantIncidence(g, dir_, Emission(wl), 0);
     }
     LightCoherence Coherence(const Vec3 &) const override { return LightCoherence{-dir_, 0}; }
-    /// The `rs` field: only a line spectrum is monochromatic (the line carries all the irradiance).
-    std::optional<CoherentWave> CoherentField() const override {
-        const auto line = spectrum_->LineWavelength();
-        if (!line) return std::nullopt;
-        CoherentWave w;
-        w.kind = CoherentWave::Kind::Plane;
-        w.dir = dir_;
-        w.strength = scale_ * spectrum_->Eval(*line);  // the line's irradiance
-        w.lambda = *line;
-        return w;
+
+    // ---- The field (core/render/coherent_source.h) -------------------------------------------
+    const CoherentSource *Coherent() const override { return this; }
+    /// √E(λ)·e^{ik d·x}: E(λ) = the spectral irradiance (a line: its irradiance, D10).
+    Complex Field(const Vec3 &x, double lambda) const override {
+        return std::polar(std::sqrt(scale_ * spectrum_->Eval(lambda)), 2 * Pi / lambda * Dot(dir_, x));
+    }
+    Vec3 Travel(const Vec3 &, double) const override { return dir_; }
+    std::optional<Vec3> PlaneWaveDirection() const override { return dir_; }
+    std::unique_ptr<PlaneField> OnPlane(const PlateFrame &plane, double lambda) const override {
+        return std::make_unique<PlaneWaveOnPlane>(std::sqrt(scale_ * spectrum_->Eval(lambda)), 2 * Pi / lambda,
+                                                  Dot(dir_, plane.e1), Dot(dir_, plane.e2));
     }
     void Preprocess(const Bounds3 &b) override { sceneArea_ = SceneCrossSection(b); }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }

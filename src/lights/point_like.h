@@ -33,8 +33,7 @@ class PointLikeLight : public Light {
         return LightSample{EvalEmission(*spectrum_, wl) * (scale_ * f / r2), wi, r, 1.0, true};
     }
     double PdfLi(const LightSampleContext &, const Vec3 &, const Vec3 &, const Vec3 &) const override { return 0; }
-    bool IsDelta() const override { return true; }
-    bool MeasuredInClosedForm() const override { return true; }
+    LightType Type() const override { return LightType::DeltaPosition; }
     std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
                                            const SampledWavelengths &wl) const override {
         const Vec3 toLight = p_ - g.o;
@@ -68,19 +67,6 @@ class PointLikeLight : public Light {
         return inc;
     }
     LightCoherence Coherence(const Vec3 &p) const override { return LightCoherence{Normalize(p_ - p), 0}; }
-    /// True if Falloff is 1 in every direction (`point`; a spherical wave for `rs`).
-    virtual bool IsIsotropic() const { return false; }
-    /// The `rs` field: isotropic lights with a line spectrum only; I = scale × line strength.
-    std::optional<CoherentWave> CoherentField() const override {
-        const auto line = spectrum_->LineWavelength();
-        if (!line || !IsIsotropic()) return std::nullopt;
-        CoherentWave w;
-        w.kind = CoherentWave::Kind::Spherical;
-        w.pos = p_;
-        w.strength = scale_ * spectrum_->Eval(*line);
-        w.lambda = *line;
-        return w;
-    }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
 
   protected:

@@ -36,6 +36,16 @@ class SpotLight final : public PointLikeLight {
                                            ReadLightEmission(d, ctx, "spot", "intensity", true));
     }
 
+    /// For the light contract suite: the default cone, and a narrow one off the axes.
+    static std::vector<ParamDict> TestPresets() {
+        std::vector<ParamDict> p(2);
+        p[1].Set("from", Value::Vector({0.1, 0.2, 0.8}, Dim::Length()))
+            .Set("to", Value::Vector({0, 0, 0}, Dim::Length()))
+            .Set("cone_angle", Value::Number(Radians(10), Dim::Angle()))
+            .Set("cone_delta", Value::Number(Radians(3), Dim::Angle()));
+        return p;
+    }
+
     double Falloff(const Vec3 &w) const override {
         const double cosTheta = Dot(w, dir_);
         if (cosTheta >= cosStart_) return 1;

@@ -48,3 +48,25 @@ phasor_cli_test(work_estimate_warns_promptly ${CMAKE_CURRENT_SOURCE_DIR}/work_es
   ${_ds} ${_out} grt_1pm "lower the spp" -D lambda=1pm --spp 65536)
 phasor_cli_test(work_estimate_rs ${CMAKE_CURRENT_SOURCE_DIR}/work_estimate.sh $<TARGET_FILE:phasor_app>
   ${_ds} ${_out} rs_20pm "a longer wavelength" --integrator rs -D lambda=20pm)
+# `check` says what `render` would (issue 25 §3): an integrator's refusal comes at load, located.
+phasor_cli_test(check_refuses_like_render ${_expect} 1 "small.wscene:8:1: error: integrator 'rs' needs a virtual_plane detector"
+  -- $<TARGET_FILE:phasor_app> check ${_scenes}/small.wscene --integrator rs)
+phasor_cli_test(render_refuses_at_load ${_expect} 1 "small.wscene:8:1: error: integrator 'rs' needs a virtual_plane detector"
+  --no-file ${_out}/small_rs.exr -- $<TARGET_FILE:phasor_app> render ${_scenes}/small.wscene --integrator rs -o ${_out}/small_rs.exr)
+# What each integrator can see (issue 26 §2): `ray` cannot reach a plane wave seen through a mirror;
+# `check` warns, the black render says why (not "turn the light", which would break grt's render),
+# and `compare` shows the warning for ray on its page.
+set(_mirror ${PROJECT_SOURCE_DIR}/scenes/validation/screen_behind_mirror.wscene)
+phasor_cli_test(check_ray_unreachable ${_expect} 0 "warning: integrator 'ray' cannot reach light 'wave'.*use integrator \"grt\""
+  -- $<TARGET_FILE:phasor_app> check ${_mirror} --integrator ray)
+phasor_cli_test(black_ray_unreachable ${_expect} 0 "warning: the image is black: integrator 'ray' cannot reach light 'wave'"
+  -- $<TARGET_FILE:phasor_app> render ${_mirror} --integrator ray --spp 1 -o ${_out}/mirror_ray.exr)
+add_test(NAME cli.compare_shows_unreachable COMMAND sh -c "rm -rf '${_out}/mirror_cmp' && \
+$<TARGET_FILE:phasor_app> compare '${_mirror}' --integrators grt,ray --spp 1 -o '${_out}/mirror_cmp' --quiet 2>/dev/null; \
+grep -q \"<code>ray</code>: integrator 'ray' cannot reach light 'wave'\" '${_out}/mirror_cmp/index.html' && \
+grep -q \"| ray | ok — warning: integrator 'ray' cannot reach light 'wave'\" '${_out}/mirror_cmp/results.md' && \
+! grep -q \"<code>grt</code>: integrator\" '${_out}/mirror_cmp/index.html'")
+set_tests_properties(cli.compare_shows_unreachable PROPERTIES LABELS unit)
+# Samplers are plug-ins: an unknown --sampler is an error with a suggestion, before rendering.
+phasor_cli_test(unknown_sampler ${_expect} 1 "<command line>.*unknown sampler 'sobl'. did you mean 'sobol'"
+  --no-file ${_out}/sobl.exr -- $<TARGET_FILE:phasor_app> render ${_scenes}/small.wscene --sampler sobl -o ${_out}/sobl.exr)

@@ -22,18 +22,54 @@
 namespace phasor::test {
 namespace {
 
-using rs::Propagator;
-
 constexpr double Um = 1e-6;
 
-CoherentWave PlaneWave(double lambda, Vec3 dir, double e = 1) {
-    CoherentWave w;
-    w.kind = CoherentWave::Kind::Plane;
+/// A coherent light built through the registry (its field is what rs propagates: Light::Coherent),
+/// with the numbers the independent references below use.
+struct Wave {
+    std::shared_ptr<Light> light;
+    bool plane = true;
+    Vec3 dir, pos;        // plane: direction of travel; point: position [m]
+    double strength = 0;  // plane: irradiance [W/m²]; point: intensity [W/sr]
+    double lambda = 0;
+    const CoherentSource &Source() const { return *light->Coherent(); }
+};
+
+Value Line(double lambda) { return Value::Call("line", {Value::Number(lambda, Dim::Length())}, {""}); }
+
+Wave PlaneWave(double lambda, Vec3 dir, double e = 1) {
+    Wave w;
     w.dir = Normalize(dir);
     w.strength = e;
     w.lambda = lambda;
+    w.light = BuildOne<Light>("Light", "plane_wave",
+                              ParamDict()
+                                  .Set("direction", Value::Vector({dir.x, dir.y, dir.z}))
+                                  .Set("irradiance", Value::Number(e, Dim::Irradiance()))
+                                  .Set("spectrum", Line(lambda)));
     return w;
 }
+
+Wave PointWave(double lambda, Vec3 pos, double intensity) {
+    Wave w;
+    w.plane = false;
+    w.pos = pos;
+    w.strength = intensity;
+    w.lambda = lambda;
+    w.light = BuildOne<Light>("Light", "point",
+                              ParamDict()
+                                  .Set("position", Value::Vector({pos.x, pos.y, pos.z}, Dim::Length()))
+                                  .Set("intensity", Value::Number(intensity, Dim::Intensity()))
+                                  .Set("spectrum", Line(lambda)));
+    return w;
+}
+
+/// The propagator of a test wave.
+struct Propagator : rs::Propagator {
+    Propagator(const PlateFrame &plate, const ApertureMask &mask, const Wave &w, bool flip, bool twoD,
+               rs::QuadratureRule rule = {})
+        : rs::Propagator(plate, mask, w.Source(), w.lambda, flip, twoD, rule) {}
+};
 
 ApertureMask Slits(double d, double b, double length) {
     ApertureMask m;
@@ -291,7 +327,7 @@ TEST(Rs, DiscOnAxisMatchesClosedForm) {
 
 /// Brute-force RS-I (theory §6.2, 3-D form) over a rectangle [u0,u1]×[v0,v1] at point p (plate at
 /// z = 0, light towards −z), composite Simpson with `n` intervals per axis; returns U and ∂U/∂m.
-rs::FieldValue BruteForce3D(double u0, double u1, double v0, double v1, int nu, int nv, const CoherentWave &w,
+rs::FieldValue BruteForce3D(double u0, double u1, double v0, double v1, int nu, int nv, const Wave &w,
                             const Vec3 &p, const Vec3 &m) {
     const double k = 2 * Pi / w.lambda, hu = (u1 - u0) / nu, hv = (v1 - v0) / nv;
     const Complex i(0, 1);
@@ -302,7 +338,7 @@ rs::FieldValue BruteForce3D(double u0, double u1, double v0, double v1, int nu, 
                          wb = (b == 0 || b == nv) ? 1 : (b % 2 ? 4 : 2);
             const Vec3 q(u0 + a * hu, v0 + b * hv, 0);
             Complex u0v;
-            if (w.kind == CoherentWave::Kind::Plane) {
+            if (w.plane) {
                 u0v = std::sqrt(w.strength) * std::exp(i * k * Dot(w.dir, q));
             } else {
                 const double rho = Length(q - w.pos);
@@ -328,13 +364,9 @@ TEST(Rs, ThreeDRectangleMatchesBruteForce) {
     const double lambda = 1 * Um, z = 2000 * Um;
     ApertureMask m;
     m.AddRect(Vec2(-20 * Um, -100 * Um), Vec2(20 * Um, 100 * Um));
-    const CoherentWave plane = PlaneWave(lambda, Vec3(0.05, -0.03, -1), 2.0);
-    CoherentWave point;
-    point.kind = CoherentWave::Kind::Spherical;
-    point.pos = Vec3(30 * Um, 10 * Um, 500 * Um);
-    point.strength = 0.7;
-    point.lambda = lambda;
-    for (const CoherentWave &w : {plane, point}) {
+    const Wave plane = PlaneWave(lambda, Vec3(0.05, -0.03, -1), 2.0);
+    const Wave point = PointWave(lambda, Vec3(30 * Um, 10 * Um, 500 * Um), 0.7);
+    for (const Wave &w : {plane, point}) {
         const Propagator prop(PlateFrame{}, m, w, true, false);
         double worst = 0;
         for (const Vec3 &p : {Vec3(0, 0, -z), Vec3(60 * Um, -20 * Um, -z), Vec3(-150 * Um, 90 * Um, -z)}) {
@@ -353,7 +385,7 @@ TEST(Rs, ThreeDRectangleMatchesBruteForce) {
             worst = std::max(worst, std::abs(a - b) / std::abs(b));
         }
         std::printf("3-D rectangle (%s): max relative difference to brute-force Simpson = %.2e\n",
-                    w.kind == CoherentWave::Kind::Plane ? "plane wave" : "point source", worst);
+                    w.plane ? "plane wave" : "point source", worst);
         EXPECT_LT(worst, 1e-7);
     }
 }
@@ -364,7 +396,7 @@ TEST(Rs, ThreeDSensorQuadratureIsConverged) {
     const double lambda = 1 * Um, z = 2000 * Um;
     ApertureMask m;
     m.AddRect(Vec2(-20 * Um, -100 * Um), Vec2(20 * Um, 100 * Um));
-    const CoherentWave w = PlaneWave(lambda, Vec3(0.01, 0, -1));
+    const Wave w = PlaneWave(lambda, Vec3(0.01, 0, -1));
     const SensorPlaneGeometry g = Sensor(z, 3, 3, 25 * Um, 7.98 * Um, false);
     const Propagator prop(PlateFrame{}, m, w, true, false);
     const rs::SensorGrid grid = rs::MakeGrid(g, prop);
@@ -399,7 +431,7 @@ TEST(Rs, ThreeDSensorQuadratureIsConverged) {
 TEST(Rs, AccuracyParameterHoldsItsTarget) {
     ApertureMask m;
     m.AddRect(Vec2(-20 * Um, -100 * Um), Vec2(20 * Um, 100 * Um));
-    const CoherentWave w = PlaneWave(1 * Um, Vec3(0.03, 0.01, -1));
+    const Wave w = PlaneWave(1 * Um, Vec3(0.03, 0.01, -1));
     const SensorPlaneGeometry g = Sensor(2000 * Um, 5, 3, 25 * Um, 7.98 * Um);
     auto row = [&](double accuracy) {
         const Propagator p(PlateFrame{}, m, w, true, false, rs::QuadratureRule::ForAccuracy(accuracy));
@@ -488,7 +520,7 @@ TEST(Rs, ThreeDLongSlitsApproachTwoD) {
     const double lambda = 1 * Um, z = 1000 * Um, b = 10 * Um, d = 30 * Um, length = 600 * Um;
     const ApertureMask mask = Slits(d, b, length);
     const SensorPlaneGeometry g = Sensor(z, 6, 1, 10 * Um, 3 * Um);
-    const CoherentWave w = PlaneWave(lambda, Vec3(0, 0, -1));
+    const Wave w = PlaneWave(lambda, Vec3(0, 0, -1));
     const Propagator p2(PlateFrame{}, mask, w, true, true), p3(PlateFrame{}, mask, w, true, false);
     const auto t0 = std::chrono::steady_clock::now();
     const rs::SensorGrid grid3 = rs::MakeGrid(g, p3);
@@ -510,7 +542,7 @@ TEST(Rs, ThreeDLongSlitsApproachTwoD) {
 TEST(Rs, SlitEndErrorPredictsTheThreeDDifference) {
     const double lambda = 1 * Um, k = 2 * Pi / lambda, z = 1000 * Um, b = 10 * Um, d = 30 * Um, length = 600 * Um;
     const ApertureMask mask = Slits(d, b, length);
-    const CoherentWave w = PlaneWave(lambda, Vec3(0, 0, -1));
+    const Wave w = PlaneWave(lambda, Vec3(0, 0, -1));
     const Propagator p2(PlateFrame{}, mask, w, true, true), p3(PlateFrame{}, mask, w, true, false);
     Bounds2 slits = mask.Bounds();
     for (double y : {0.0, 250 * Um}) {
@@ -543,11 +575,7 @@ TEST(Rs, PointSourceThroughLargeDisc) {
     const double lambda = 1 * Um, k = 2 * Pi / lambda, zs = 300 * Um, z = 200 * Um, a = 150 * Um, I = 2.5;
     ApertureMask m;
     m.AddDisc(Vec2(0, 0), a);
-    CoherentWave w;
-    w.kind = CoherentWave::Kind::Spherical;
-    w.pos = Vec3(0, 0, zs);
-    w.strength = I;
-    w.lambda = lambda;
+    const Wave w = PointWave(lambda, Vec3(0, 0, zs), I);
     const Propagator prop(PlateFrame{}, m, w, true, false);
     // Radial RS integral on the axis: U = z ∫₀^a s (1/R − ik) e^{ik(R+ρ)}/(R²ρ) √I ds.
     const int n = 200000;
@@ -764,41 +792,48 @@ TEST(RsScene, CancelStopsBeforeWriting) {
     EXPECT_EQ(film.SampleCount(0, 0), 0);
 }
 
-void ExpectRenderError(const Edits &edits, const std::vector<std::string> &fragments) {
-    auto scene = BuildDoubleSlit(edits);
-    ASSERT_TRUE(scene);
-    const std::string msg = RenderError(*scene);
-    for (const std::string &f : fragments)
-        EXPECT_NE(msg.find(f), std::string::npos) << "'" << f << "' not in: " << msg;
+// Every scene rs cannot render is refused when it is loaded (Scene::Build → Integrator::Validate:
+// `phasor check` says what `render` would), with the location of the object at fault: the
+// definition at `where` ("rs_test.wscene:LINE:COL") and the message holding every fragment.
+void ExpectLoadError(const Edits &edits, const std::string &where, const std::vector<std::string> &fragments) {
+    std::string log;
+    EXPECT_FALSE(BuildDoubleSlit(edits, &log, false)) << "built, though it should not";
+    EXPECT_NE(log.find(where + ": error: "), std::string::npos) << "no error at " << where << " in: " << log;
+    for (const std::string &f : fragments) EXPECT_NE(log.find(f), std::string::npos) << "'" << f << "' not in: " << log;
 }
 
-TEST(RsScene, UnsupportedScenesAreClearErrors) {
-    // Detector, lights, shapes and materials are checked first (a diffuse plate suffices).
-    const std::pair<std::string, std::string> grey[] = {{"@APERTURE@", ""}, {"@MATERIAL@", "grey"}};
-    auto with = [&](std::pair<std::string, std::string> e) { return Edits{grey[0], grey[1], std::move(e)}; };
-    ExpectRenderError(with({"@DETECTOR@", "camera"}), {"virtual_plane", "'camera'"});
-    ExpectRenderError(with({"@LIGHTS@", "Light \"directional\" \"sun\" { direction = [0 0 -1] }"}),
-                      {"light 'sun'", "monochromatic", "isotropic point lights or Gaussian beams"});
-    ExpectRenderError(with({"@LIGHTS@", "Light \"plane_wave\" \"white\" { direction = [0 0 -1] }"}),
-                      {"light 'white'", "monochromatic"});
-    ExpectRenderError(with({"@LIGHTS@",
-                            "Light \"spot\" \"torch\" { from = [0 0 1] m  to = [0 0 0] m  spectrum = "
-                            "line(1 um) }"}),
-                      {"light 'torch'", "isotropic point lights"});
-    ExpectRenderError(
-        with({"@SHAPES@", "Shape \"sphere\" \"ball\" { radius = 1 mm  to_world = translate([0 0 5] mm) }"}),
-        {"exactly one planar aperture plate", "'plate'", "'ball'"});
-    ExpectRenderError(Edits{grey[0], grey[1]}, {"'plate'", "no material with openings"});
+// Lines of kDoubleSlit (with one-line edits): the light 'wave' 2, @LIGHTS@ 7, @APERTURE@ 8, the
+// plate 10, @SHAPES@ 16, the sensor 17, the camera 24, the integrator 25.
+TEST(RsScene, UnsupportedScenesAreLoadErrors) {
+    ExpectLoadError({{"@DETECTOR@", "camera"}}, "rs_test.wscene:24:1", {"needs a virtual_plane", "'camera'"});
+    ExpectLoadError({{"@LIGHTS@", "Light \"directional\" \"sun\" { direction = [0 0 -1] }"}},
+                    "rs_test.wscene:7:1", {"light 'sun' has no coherent field", "plane_wave, point, gaussian_beam"});
+    ExpectLoadError({{"@LIGHTS@", "Light \"plane_wave\" \"white\" { direction = [0 0 -1] }"}},
+                    "rs_test.wscene:7:1", {"light 'white' is not monochromatic", "line("});
+    ExpectLoadError({{"@LIGHTS@",
+                      "Light \"spot\" \"torch\" { from = [0 0 1] m  to = [0 0 0] m  spectrum = line(1 um) }"}},
+                    "rs_test.wscene:7:1", {"light 'torch' has no coherent field"});
+    ExpectLoadError({{"@LIGHTS@", "Shape \"disk\" \"lamp\" { radius = 1 mm  to_world = translate([0 0 5] mm) }\n"
+                                  "Light \"area\" \"glow\" { shape = @lamp }"}},
+                    "rs_test.wscene:8:1", {"light 'glow' has no coherent field"});
+    ExpectLoadError({{"@SHAPES@", "Shape \"sphere\" \"ball\" { radius = 1 mm  to_world = translate([0 0 5] mm) }"}},
+                    "rs_test.wscene:16:1", {"'ball' has no material with openings", "one plate"});
+    ExpectLoadError({{"@SHAPES@", "Shape \"rectangle\" \"second\" { material = @slits  to_world = "
+                                  "translate([0 0 5] mm) }"}},
+                    "rs_test.wscene:16:1", {"exactly one planar aperture plate", "'plate'", "'second'"});
+    ExpectLoadError({{"@APERTURE@", ""}, {"@MATERIAL@", "grey"}}, "rs_test.wscene:10:1",
+                    {"'plate' has no material with openings"});
 }
 
-TEST(RsScene, GeometryErrorsNameTheObjects) {
-    ExpectRenderError(
-        {{"@LIGHTS@", "Light \"point\" \"lamp\" { position = [0 0 -20] mm  spectrum = line(1 um) }"}},
-        {"light 'lamp'", "sensor 'sensor'", "same side", "'plate'"});
-    ExpectRenderError({{"@SENSOR@", "[rotate(180 deg, [1 0 0]) translate([0 0 10] mm)]"}},
-                      {"light 'wave'", "same side"});
-    ExpectRenderError({{"@SENSOR@", "[rotate(180 deg, [1 0 0]) translate([0 0 -10] mm)]"}},
-                      {"sensor 'sensor'", "not in front", "faces away"});
+TEST(RsScene, GeometryErrorsAreLoadErrorsNamingTheObjects) {
+    ExpectLoadError({{"@LIGHTS@", "Light \"point\" \"lamp\" { position = [0 0 -20] mm  spectrum = line(1 um) }"}},
+                    "rs_test.wscene:7:1", {"light 'lamp'", "sensor 'sensor'", "same side", "'plate'"});
+    ExpectLoadError({{"@SENSOR@", "[rotate(180 deg, [1 0 0]) translate([0 0 10] mm)]"}}, "rs_test.wscene:2:1",
+                    {"light 'wave'", "same side"});
+    ExpectLoadError({{"@SENSOR@", "[rotate(180 deg, [1 0 0]) translate([0 0 -10] mm)]"}}, "rs_test.wscene:17:1",
+                    {"sensor 'sensor'", "not in front", "faces away"});
+    ExpectLoadError({{"@SENSOR@", "translate([0 0 -0.5] um)"}, {"@EXTENT@", "[100 25] um"}}, "rs_test.wscene:17:1",
+                    {"sensor 'sensor'", "closer than one wavelength"});
     {  // A sensor in the plate's plane is refused when the scene is built (for every integrator).
         std::string log;
         EXPECT_FALSE(BuildDoubleSlit({{"@SENSOR@", "translate([0 0 0] m)"}}, &log, false));
@@ -806,11 +841,23 @@ TEST(RsScene, GeometryErrorsNameTheObjects) {
                   std::string::npos)
             << log;
     }
-    ExpectRenderError({{"@RS@", "mode = \"2d\""},
-                       {"@LIGHTS@",
-                        "Light \"point\" \"lamp\" { position = [0 0 20] mm  "
-                        "spectrum = line(1 um) }"}},
-                      {"mode = \"2d\"", "light 'lamp'", "plane wave"});
+    ExpectLoadError({{"@RS@", "mode = \"2d\""},
+                     {"@LIGHTS@", "Light \"point\" \"lamp\" { position = [0 0 20] mm  spectrum = line(1 um) }"}},
+                    "rs_test.wscene:25:1", {"mode = \"2d\"", "light 'lamp'", "plane wave"});
+    ExpectLoadError({{"@LIGHTS@", "Light \"gaussian_beam\" \"laser\" { position = [0 0 20] mm  direction = [1 0 0]  "
+                                  "spectrum = line(1 um) }"}},
+                    "rs_test.wscene:7:1", {"light 'laser'", "parallel"});
+}
+
+// A scene that loads renders: what Validate accepts, Render does not refuse (the same Plan).
+TEST(RsScene, WhatLoadsRenders) {
+    for (const Edits &e : {Edits{}, Edits{{"@RS@", "mode = \"3d\""}, {"@EXTENT@", "[100 25] um"}},
+                           Edits{{"@LIGHTS@", "Light \"point\" \"lamp\" { position = [0 0 20] mm  spectrum = line(1 um) }"},
+                                 {"@EXTENT@", "[100 25] um"}}}) {
+        auto scene = BuildDoubleSlit(e);
+        ASSERT_TRUE(scene);
+        EXPECT_EQ(RenderError(*scene), "");
+    }
 }
 
 }  // namespace

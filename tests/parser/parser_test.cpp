@@ -507,7 +507,7 @@ TEST(Parser, MessagesNameEveryFamilyFromTheOneList) {
     // lists them all, and a block without its type shows the family's example.
     Parsed p = Parse("wscene 1\nQwertyuiop {}\n");
     EXPECT_NE(p.Errors().find("2:1: unknown statement 'Qwertyuiop' (expected Include, Define, Render, Spectrum, "
-                              "Texture, Material, Shape, Light, Detector or Integrator)"),
+                              "Texture, Material, Shape, Light, Detector, Integrator or Sampler)"),
               std::string::npos)
         << p.Errors();
 #define PHASOR_CHECK_FAMILY(Keyword, family, Interface, Example)                                        \

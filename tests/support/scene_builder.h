@@ -53,6 +53,29 @@ class SceneBuilder {
     SceneDesc desc_;
 };
 
+/// One plug-in of family T built through the registry as a scene builds it (look-up, schema,
+/// Create, the unused-parameter report), named "under_test" in `desc` (which may hold objects its
+/// parameters refer to). Throws phasor::Error with the diagnostics if it does not build.
+template <typename T>
+std::shared_ptr<T> BuildOne(const std::string &keyword, const std::string &type, const ParamDict &params,
+                            SceneDesc desc = {}) {
+    SceneEntity e;
+    e.keyword = keyword;
+    e.type = type;
+    e.name = "under_test";
+    e.params = params;
+    desc.entities.push_back(std::move(e));
+    Diagnostics diag;
+    BuildContext ctx(desc, diag);
+    ctx.BuildAll();
+    for (const auto &o : ctx.All<T>())
+        if (const SceneEntity *ent = ctx.EntityOf(o.get()); ent && ent->name == "under_test" && !diag.HasErrors())
+            return o;
+    std::ostringstream os;
+    diag.Print(os);
+    throw Error(keyword + " \"" + type + "\" did not build: " + os.str());
+}
+
 /// Renders with the scene's integrator and returns the resolved image. Its `variance` channel is
 /// the i.i.d. variance of each pixel mean: for error estimates use support/replicas.h.
 inline Image RenderImage(const Scene &scene, int spp, uint64_t seed = 1, const std::string &sampler = "sobol") {

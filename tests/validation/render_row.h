@@ -62,7 +62,7 @@ inline Row RenderRow(const std::string &scene, const DefineList &defines, const 
     auto built = BuildValidation(scene, defines, integrator);
     if (!built) return {};
     const auto start = std::chrono::steady_clock::now();
-    const Image img = test::RenderImage(*built, spp > 0 ? spp : built->Settings().spp);
+    const Image img = test::RenderImage(*built, spp > 0 ? spp : built->Settings().options.spp);
     Row r;
     r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const SensorPlaneGeometry *sp = built->GetDetector().SensorPlane();

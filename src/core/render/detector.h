@@ -59,7 +59,7 @@ bool SameStratification(int a, int b);
 
 /// Polarisation options of a detector (docs/sample_solve.md): an ideal linear polariser in front
 /// of the pixels and/or Stokes output. Only integrators that carry polarisation honour them
-/// (Integrator::SupportsPolarization: `sample_solve`); the scene refuses the others.
+/// (IntegratorSupport::polarization: `sample_solve`); Integrator::Validate refuses the others.
 /// The frame: x = the image's x axis (Detector::PolarizationX) projected ⊥ to the direction in
 /// which the light arrives, y = (that direction) × x — image up for cameras; angles count from x
 /// towards y.

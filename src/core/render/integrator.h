@@ -11,17 +11,23 @@
 #include <vector>
 
 #include "core/image/film.h"
+#include "core/render/integrator_support.h"
 #include "core/render/sampler.h"
 
 namespace phasor {
 
+class Diagnostics;
 class Scene;
 class WorkShare;
 
+/// What a render uses: its samples per pixel, seed and sampler (the one place they live: a scene's
+/// Render block gives their defaults, Scene::Settings().options, and the program's --spp, --seed and
+/// --sampler override them), its threads, and the calls it makes back.
 struct RenderOptions {
     int spp = 16;
     uint64_t seed = 0;
     int threads = 0;  // 0 = all cores
+    /// A Sampler block's name or a sampler plug-in (Scene::NewSampler).
     std::string sampler = "sobol";
     /// Set to true (e.g. from a SIGINT/SIGTERM handler) to stop soon: sampling integrators finish
     /// the pixels in progress (each pixel keeps a whole number of samples; RenderStats::sppReached
@@ -100,6 +106,16 @@ struct RenderStats {
 class Integrator {
   public:
     virtual ~Integrator() = default;
+    /// What the integrator can render: lights by type, the detector it needs, kernel capabilities,
+    /// polarisation (integrator_support.h). Read by Validate and by the generated support table
+    /// of docs/plugins.md, so the two cannot disagree.
+    virtual IntegratorSupport Support() const = 0;
+    /// Checks a built scene before anything is rendered, reporting every problem at the object's
+    /// location (Scene::Build calls it, so `phasor check`, `render` and `compare` refuse the same
+    /// scenes). The default checks the declarations (ValidateSupport); an integrator with further
+    /// needs (rs: one aperture plate, the sensor in front of it) adds them. After a clean Validate,
+    /// Render throws only for what no check can know in advance.
+    virtual void Validate(const Scene &scene, Diagnostics &diag) const { ValidateSupport(*this, scene, diag); }
     /// Renders `scene` into `film` (whose size matches the scene's detector).
     virtual RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const = 0;
     virtual std::string ToString() const = 0;
@@ -110,9 +126,6 @@ class Integrator {
     /// `sample_solve`, `rs`), false for classical ray optics (`ray`). `compare` never grades an
     /// integrator against a reference of the other physics as if their difference were error.
     virtual bool WaveOptical() const = 0;
-    /// True for integrators that carry polarisation (`sample_solve`): only they honour a detector's
-    /// `polarizer` and `stokes` (Scene::Build refuses the others at those parameters).
-    virtual bool SupportsPolarization() const { return false; }
     std::string name;
 };
 

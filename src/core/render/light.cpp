@@ -19,6 +19,16 @@ std::optional<GrIncidence> Light::IncidenceOnGR(const SpectralGenRay &, const Sa
 
 LightCoherence Light::Coherence(const Vec3 &) const { return LightCoherence{}; }
 
+const char *Describe(LightType t) {
+    switch (t) {
+        case LightType::DeltaPosition: return "delta position";
+        case LightType::DeltaDirection: return "delta direction";
+        case LightType::Distant: return "distant";
+        case LightType::Area: return "area";
+    }
+    return "?";
+}
+
 double SceneCrossSection(const Bounds3 &b) {
     const double r = b.Empty() ? 1 : 0.5 * Length(b.Diagonal());
     return Pi * r * r;

@@ -44,19 +44,30 @@ struct LightCoherence {
     double omega = 0;   // [rad²]; 0 = fully (spatially) coherent
 };
 
-/// A coherent monochromatic field for the forward `rs` integrator (theory §6.2): a plane wave of
-/// irradiance `strength` [W/m², normal to `dir`] travelling along `dir`, a spherical wave from a
-/// point at `pos` of intensity `strength` [W/sr] (isotropic within `Falloff`-free point lights), or
-/// a TEM₀₀ Gaussian beam of power `strength` [W] with its waist (β_s² = `beta2`) centred at `pos`.
-/// Amplitude convention: |U|² = irradiance normal to the local direction of travel.
-struct CoherentWave {
-    enum class Kind { Plane, Spherical, GaussianBeam } kind = Kind::Plane;
-    Vec3 dir{0, 0, -1};   // plane, beam: unit direction of travel (the beam's axis)
-    Vec3 pos;             // spherical: source position; beam: centre of the waist [m]
-    double strength = 0;  // plane: irradiance E [W/m²]; spherical: intensity I [W/sr]; beam: power P [W]
-    double lambda = 0;    // vacuum wavelength of the line [m]
-    double beta2 = 0;     // beam: β_s² of the waist [m²] (GaussianBeamGeometry; |U|² = P·|ψ|²)
+/// What kind of emitter a light is: how a path can reach it (pbrt-v4's LightType, plus the sources
+/// at infinity of finite extent that generalized rays measure in closed form). The one category
+/// integrators and scene checks read (Light::Type(); the scene's category lists, the support
+/// declarations of integrator_support.h).
+enum class LightType {
+    /// At one point (point, spot): never hit; reached by next-event estimation, and measured in
+    /// closed form by generalized rays (theory §2.4 item 5).
+    DeltaPosition,
+    /// One direction at every point, from infinity (directional, plane_wave, gaussian_beam, a
+    /// distant source of zero extent): never hit; next-event estimation or closed form (items 1–2).
+    DeltaDirection,
+    /// At infinity with a finite angular extent (distant): escaping rays see it (Le), next-event
+    /// estimation samples it, and generalized rays measure it in closed form after a detector or a
+    /// near-delta lobe (item 3, D14).
+    Distant,
+    /// A surface that emits (area): hit by rays (L) and sampled by next-event estimation;
+    /// generalized rays measure it as its radiance where they hit it (item 4).
+    Area,
 };
+inline constexpr int NumLightTypes = 4;
+/// "delta position", "delta direction", "distant", "area".
+const char *Describe(LightType t);
+
+class CoherentSource;
 
 /// Cross-section π r² of the scene's bounding sphere [m²]: the area through which a light at
 /// infinity sends power into the scene (for relative power estimates).
@@ -88,21 +99,24 @@ class Light {
     /// Lights at infinity with finite extent: radiance arriving along a ray that escapes the
     /// scene in direction d (d points away from the scene).
     virtual SampledSpectrum Le(const Vec3 &d, const SampledWavelengths &wl) const;
-    /// True for delta-position or delta-direction lights (never hit by rays).
-    virtual bool IsDelta() const = 0;
-    /// True for lights at infinity (directional, environment).
-    virtual bool IsInfinite() const { return false; }
+    /// The light's category; may depend on its parameters (a distant source of zero extent is a
+    /// delta direction).
+    virtual LightType Type() const = 0;
+    /// Delta position or delta direction: never hit by rays.
+    bool IsDelta() const { return Type() == LightType::DeltaPosition || Type() == LightType::DeltaDirection; }
+    /// At infinity (delta directions and distant sources): shadow rays run to infinity and escaping
+    /// rays ask Le.
+    bool IsInfinite() const { return Type() == LightType::DeltaDirection || Type() == LightType::Distant; }
     /// The emission spectrum (for wavelength sampling) and a relative power scale [W/m] so that
     /// the sampler can weight lights against each other.
     virtual const Spectrum &EmissionSpectrum() const = 0;
     virtual double PowerScale() const = 0;
 
     // ---- Generalized rays (theory §2.4, §0 D4a, D5, D14) ------------------------------------
-    /// True for sources that GRs measure in closed form instead of hitting them: delta position or
-    /// direction (point, spot, plane wave, directional, Gaussian beam) and distant sources. The
-    /// `grt` integrator measures these right after a detector or a near-delta lobe (and never
-    /// again on escape); continuous lobes still reach them through SampleLi / Le.
-    virtual bool MeasuredInClosedForm() const { return false; }
+    /// True for sources that GRs measure in closed form instead of hitting them: every type but
+    /// Area. The `grt` integrator measures these right after a detector or a near-delta lobe (and
+    /// never again on escape); continuous lobes still reach them through SampleLi / Le.
+    bool MeasuredInClosedForm() const { return Type() != LightType::Area; }
     /// Eq. 24 in radiance units (k²·M) for the *physical* GR g (g.d = direction of light flow,
     /// ρ > 0 diverging along it), per carried wavelength; nullopt if nothing reaches g.
     virtual std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
@@ -111,9 +125,10 @@ class Light {
     /// not used — the caller decides which arrival directions count).
     virtual std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
                                                      const SampledWavelengths &wl) const;
-    /// The field for `rs`: set by monochromatic (line-spectrum) plane waves and isotropic point
-    /// lights; nullopt for everything else (the integrator reports which light it cannot handle).
-    virtual std::optional<CoherentWave> CoherentField() const { return std::nullopt; }
+    /// The light's field, for integrators that propagate fields (`rs`, which also needs a line
+    /// spectrum): core/render/coherent_source.h. nullptr for lights that are not coherent (area,
+    /// distant sources of finite extent) or whose field is not implemented (spot).
+    virtual const CoherentSource *Coherent() const { return nullptr; }
     /// Coherence description at p (theory §0 D5). Default: fully coherent light from nowhere.
     virtual LightCoherence Coherence(const Vec3 &p) const;
 

@@ -82,8 +82,8 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
     std::unique_ptr<tbb::global_control> threads;
     if (opt.threads > 0)
         threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism, opt.threads);
-    std::unique_ptr<Sampler> prototype = MakeSampler(opt.sampler, opt.seed);
-    if (!prototype) throw Error("unknown sampler '" + opt.sampler + "' (use sobol or independent)");
+    std::unique_ptr<Sampler> prototype = scene.NewSampler(opt.sampler, opt.seed);
+    if (!prototype) throw Error("unknown sampler '" + opt.sampler + "' (see 'phasor list sampler')");
 
     auto cancelled = [&] { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); };
     // Renders one tile: each pixel from its own sample count to the task's end, into a scratch film

@@ -12,6 +12,7 @@
 #include "core/render/integrator.h"
 #include "core/render/light.h"
 #include "core/render/material.h"
+#include "core/render/sampler.h"
 #include "core/render/shape.h"
 #include "core/spectrum/spectrum.h"
 #include "plugin_tables.inc"
@@ -28,9 +29,11 @@ namespace phasor {
     const Schema &PhasorSchema_##Class();                                                       \
     std::unique_ptr<Interface> PhasorCreate_##Class(const ParamDict &, BuildContext &);         \
     std::vector<ParamDict> PhasorPresets_##Class();                                              \
-    std::optional<std::vector<std::string>> PhasorContractCases_##Class();
+    std::optional<std::vector<std::string>> PhasorContractCases_##Class();                      \
+    bool PhasorIsDefault_##Class();
 #define PHASOR_PLUGIN_ENTRY(Interface, name, Class)                                             \
-    {name, &PhasorSchema_##Class, &PhasorCreate_##Class, &PhasorPresets_##Class, &PhasorContractCases_##Class},
+    {name, &PhasorSchema_##Class, &PhasorCreate_##Class, &PhasorPresets_##Class, &PhasorContractCases_##Class, \
+     &PhasorIsDefault_##Class},
 #define PHASOR_FAMILY_TABLE(Keyword, family, Interface, Example)                                \
     PHASOR_PLUGINS_##family(PHASOR_DECLARE_PLUGIN, Interface)                                   \
     template <> const char *Registry<Interface>::Family() { return #family; }                   \

@@ -44,6 +44,9 @@ struct PluginEntry {
     /// the class supports, from its `static std::vector<std::string> ContractCases()`; nullopt if
     /// it declares none (an integrator without it fails that suite; other families have none).
     std::optional<std::vector<std::string>> (*contractCases)();
+    /// True for the family's default plug-in, the one used when a scene names none (the `ray`
+    /// integrator, the `sobol` sampler): the class's `static constexpr bool IsDefault = true`.
+    bool (*isDefault)();
 };
 
 /// The class's TestPresets() if it has one.
@@ -60,6 +63,13 @@ std::optional<std::vector<std::string>> ContractCasesOf() {
     else return std::nullopt;
 }
 
+/// The class's IsDefault if it has one.
+template <typename C>
+bool IsDefaultOf() {
+    if constexpr (requires { C::IsDefault; }) return C::IsDefault;
+    else return false;
+}
+
 /// Registry of one plug-in family. The entries come from the generated plug-in tables.
 template <typename T>
 struct Registry {
@@ -68,6 +78,12 @@ struct Registry {
     static const PluginEntry<T> *Find(const std::string &name) {
         for (const auto &e : Entries())
             if (name == e.name) return &e;
+        return nullptr;
+    }
+    /// The family's default plug-in (PluginEntry::isDefault), nullptr if it has none.
+    static const PluginEntry<T> *Default() {
+        for (const auto &e : Entries())
+            if (e.isDefault()) return &e;
         return nullptr;
     }
     static std::vector<std::string> Names() {
@@ -228,7 +244,8 @@ class BuildContext {
 /// tests/): one line at the end of the file instead of PHASOR_EXPORT_PLUGIN + the CMake line.
 #define PHASOR_REGISTER_PLUGIN(Interface, Class, name)                                           \
     [[maybe_unused]] static const bool PhasorRegistered_##Class = [] {                           \
-        Registry<Interface>::Register({name, &Class::GetSchema, &Class::Create, &PresetsOf<Class>, &ContractCasesOf<Class>}); \
+        Registry<Interface>::Register({name, &Class::GetSchema, &Class::Create, &PresetsOf<Class>, &ContractCasesOf<Class>, \
+                                      &IsDefaultOf<Class>});                                     \
         return true;                                                                             \
     }()
 
@@ -242,4 +259,5 @@ class BuildContext {
     std::vector<ParamDict> PhasorPresets_##Class() { return PresetsOf<Class>(); }              \
     std::optional<std::vector<std::string>> PhasorContractCases_##Class() {                    \
         return ContractCasesOf<Class>();                                                       \
-    }
+    }                                                                                          \
+    bool PhasorIsDefault_##Class() { return IsDefaultOf<Class>(); }

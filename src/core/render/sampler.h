@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — random numbers and samplers. Every sample value is a pure function of
-// (seed, pixel, sample index, dimension), so renders are deterministic for any thread count and
+// phasor — random numbers and the sampler interface. Samplers are a plug-in family (`sampler`,
+// src/samplers/: `sobol`, the default, and `independent`). Every sample value is a pure function
+// of (seed, pixel, sample index, dimension), so renders are deterministic for any thread count and
 // any tile order.
 #pragma once
 
@@ -29,29 +30,38 @@ class Pcg32 {
 /// 64-bit mix (splitmix64 finaliser) for hashing seeds and indices.
 uint64_t MixBits(uint64_t v);
 uint64_t Hash(uint64_t a, uint64_t b, uint64_t c = 0, uint64_t d = 0);
+/// A pixel's coordinates as one 64-bit key (for hashing).
+inline uint64_t PixelKey(int x, int y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); }
 
 /// A sampler hands out the dimensions of one sample of one pixel. Not thread-safe; one per
-/// thread (Clone()).
+/// thread (Clone()). A plug-in (`static const Schema &GetSchema()`, `static std::unique_ptr<Sampler>
+/// Create(const ParamDict &, BuildContext &)`, PHASOR_EXPORT_PLUGIN(Sampler, Class), one CMake
+/// line); the render loop seeds it (SetSeed) with the render's seed.
 class Sampler {
   public:
     virtual ~Sampler() = default;
+    /// The render's seed (--seed, Render.seed): every value depends on it.
+    void SetSeed(uint64_t seed) { seed_ = seed; }
+    uint64_t Seed() const { return seed_; }
     /// Starts sample `index` of pixel (x, y); resets the dimension counter.
     virtual void StartPixelSample(int x, int y, int index) = 0;
     virtual double Get1D() = 0;
     virtual Vec2 Get2D() = 0;
     /// The 2-D sample used for the position inside the pixel (first dimensions, stratified best).
     virtual Vec2 GetPixel2D() = 0;
+    /// A copy with the same seed (its per-sample state is reset by StartPixelSample).
     virtual std::unique_ptr<Sampler> Clone() const = 0;
     virtual std::string Name() const = 0;
+
+  protected:
+    uint64_t seed_ = 0;
 };
 
-/// Independent uniform samples from a PCG stream per (seed, pixel, sample).
-std::unique_ptr<Sampler> MakeIndependentSampler(uint64_t seed);
-/// Low-discrepancy: Sobol' (first 2 dims: the 2-D Sobol' (0,2)-sequence) with Owen-style hashed
-/// scrambling per pixel and dimension, so pixels are decorrelated and every prefix of 2^k samples
-/// is stratified.
-std::unique_ptr<Sampler> MakeSobolSampler(uint64_t seed);
-/// By name: "independent" or "sobol"; nullptr if unknown.
+/// A plug-in of the sampler family by name (Registry<Sampler>), seeded; nullptr if unknown. (A
+/// scene's own Sampler blocks are found by name through Scene::NewSampler.)
 std::unique_ptr<Sampler> MakeSampler(const std::string &name, uint64_t seed);
+/// Shorthands for tests and benchmarks.
+inline std::unique_ptr<Sampler> MakeSobolSampler(uint64_t seed) { return MakeSampler("sobol", seed); }
+inline std::unique_ptr<Sampler> MakeIndependentSampler(uint64_t seed) { return MakeSampler("independent", seed); }
 
 }  // namespace phasor

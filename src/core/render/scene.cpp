@@ -15,9 +15,9 @@ const Schema &RenderSchema() {
                 "the integrator (default: the only one in the scene, else `ray`; --integrator overrides)"),
          P::Integer("spp", "samples per pixel (--spp overrides)").Default(Value::Integer(16)).Min(1),
          P::Integer("seed", "random seed (--seed overrides)").Default(Value::Integer(0)).Min(0),
-         P::String("sampler", "sample generator (--sampler overrides)")
-             .Default(Value::String("sobol"))
-             .Choices({"sobol", "independent"}),
+         P::String("sampler",
+                   "the sample generator: a plug-in of the sampler family (`phasor list sampler`) or the name of "
+                   "a Sampler block; default: the scene's only Sampler block, else `sobol` (--sampler overrides)"),
          P::String("output",
                    "output EXR path, relative to the working directory as pbrt's film filename is (a .png is "
                    "written beside it; -o overrides); default: out/<scene file name>.exr")}};
@@ -76,12 +76,30 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     for (const SceneEntity &e : desc.entities)
         if (e.keyword == "Render" && ++renderCount == 2) diag.Error(e.loc, "only one Render block is allowed");
     const bool renderValid = render && render->Validate(RenderSchema(), diag);
+    RenderOptions &options = scene->settings_.options;
     if (renderValid) {
-        scene->settings_.spp = render->GetInt("spp");
-        scene->settings_.seed = (uint64_t)render->GetNumber("seed");
-        scene->settings_.sampler = render->GetString("sampler");
+        options.spp = render->GetInt("spp");
+        options.seed = (uint64_t)render->GetNumber("seed");
         if (render->Has("output")) scene->settings_.output = render->GetString("output");
         scene->settings_.loc = render->EntityLoc();
+    }
+    // The sampler: Render.sampler (a Sampler block's name or a plug-in), else the only Sampler
+    // block, else the family's default plug-in (`sobol`, which declares itself so).
+    const auto samplers = ctx.All<Sampler>();
+    if (renderValid && render->Has("sampler")) {
+        options.sampler = render->GetString("sampler");
+        if (!scene->NewSampler(options.sampler, 0)) {
+            const std::string s = Suggest(options.sampler, scene->SamplerNames());
+            diag.Error(render->Loc("sampler"), "unknown sampler '" + options.sampler + "'" +
+                                                   (s.empty() ? "" : "; did you mean '" + s + "'?"));
+        }
+    } else if (samplers.size() == 1) {
+        options.sampler = ctx.EntityOf(samplers[0].get())->name;
+    } else if (samplers.size() > 1) {
+        diag.Error(render ? render->EntityLoc() : sceneLoc, "the scene has " + std::to_string(samplers.size()) +
+                                                                " samplers; choose one with Render { sampler = \"name\" }");
+    } else if (const auto *entry = Registry<Sampler>::Default()) {
+        options.sampler = entry->name;
     }
 
     const bool whole = !desc.incomplete;
@@ -90,7 +108,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
         diag.Error(render ? render->EntityLoc() : sceneLoc, "the scene has no detector (add e.g. Detector \"perspective\")");
 
     // Integrator: the CLI override (by @name or by type), else Render.integrator, else the only one,
-    // else a default `ray`.
+    // else the family's default plug-in (`ray`, which declares itself so).
     if (!integratorOverride.empty()) {
         if (render && render->Has("integrator")) render->GetValue("integrator");  // overridden, not unused
         for (auto &i : ctx.All<Integrator>()) {
@@ -125,27 +143,15 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
             scene->integrator_ = PickOne<Integrator>(ctx, render, "integrator", "integrator", diag, sceneLoc, whole);
         else if (ctx.All<Integrator>().size() == 1)
             scene->integrator_ = ctx.All<Integrator>()[0];
-        else if (auto *entry = Registry<Integrator>::Find("ray")) {
+        else if (auto *entry = Registry<Integrator>::Default()) {
             ParamDict d;
             d.Validate(entry->schema(), diag);
             scene->integrator_ = std::shared_ptr<Integrator>(entry->create(d, ctx));
-            scene->integrator_->name = "ray";
+            scene->integrator_->name = entry->name;
         }
     }
     if (renderValid) render->ReportUnused(diag, "Render");  // (after an error, nothing was read)
     if (!whole || diag.HasErrors() || !scene->detector_ || !scene->integrator_) return nullptr;
-
-    // Polarisation options need an integrator that carries polarisation (sample_solve).
-    if (const DetectorPolarization &pol = scene->detector_->Polarization();
-        pol.Any() && !scene->integrator_->SupportsPolarization()) {
-        const std::string what = pol.polarizer ? "a polarizer" : "Stokes output";
-        diag.Error(pol.polarizer ? pol.polarizerLoc : pol.stokesLoc,
-                   "detector '" + scene->detector_->name + "' asks for " + what + ", but integrator '" +
-                       scene->integrator_->name +
-                       "' carries no polarisation (it renders unpolarised intensity); use "
-                       "integrator \"sample_solve\" (e.g. --integrator sample_solve) or remove the parameter");
-        return nullptr;
-    }
 
     // Geometry and lights.
     scene->shapes_ = ctx.All<Shape>();
@@ -181,7 +187,29 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     scene->CheckSensorPlane(diag);
     scene->wavelengths_ = std::make_unique<WavelengthSampler>(emitters, scene->detector_->Response());
     if (diag.HasErrors()) return nullptr;
+    // What the integrator cannot render, at load (`check` refuses what `render` would).
+    scene->integrator_->Validate(*scene, diag);
+    if (diag.HasErrors()) return nullptr;
     return scene;
+}
+
+std::unique_ptr<Sampler> Scene::NewSampler(const std::string &name, uint64_t seed) const {
+    if (ctx_)
+        for (const auto &s : ctx_->All<Sampler>())
+            if (const SceneEntity *e = ctx_->EntityOf(s.get()); e && e->name == name) {
+                std::unique_ptr<Sampler> copy = s->Clone();
+                copy->SetSeed(seed);
+                return copy;
+            }
+    return MakeSampler(name, seed);
+}
+
+std::vector<std::string> Scene::SamplerNames() const {
+    std::vector<std::string> names = Registry<Sampler>::Names();
+    if (ctx_)
+        for (const auto &s : ctx_->All<Sampler>())
+            if (const SceneEntity *e = ctx_->EntityOf(s.get()); e && !e->name.empty()) names.push_back(e->name);
+    return names;
 }
 
 FileLoc Scene::Where(const void *object) const {

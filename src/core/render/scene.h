@@ -20,10 +20,10 @@ namespace phasor {
 
 /// Settings of the `Render` block (all optional; the CLI may override them).
 struct RenderSettings {
-    int spp = 16;
-    uint64_t seed = 0;
-    std::string output;          // "" → derived from the scene file name
-    std::string sampler = "sobol";
+    /// The block's spp, seed and sampler: the defaults of a render's RenderOptions (the program
+    /// applies --spp, --seed, --sampler on top; threads, cancellation and callbacks are unset here).
+    RenderOptions options;
+    std::string output;  // "" → derived from the scene file name
     FileLoc loc;
 };
 
@@ -62,6 +62,10 @@ class Scene {
     /// inside closed geometry, lights reaching a sensor plane only from behind). scene_checks.cpp.
     std::string DarkImageCause() const;
     const RenderSettings &Settings() const { return settings_; }
+    /// A sampler by name, seeded: the scene's Sampler block of that name, else a plug-in of the
+    /// sampler family of that type; nullptr if neither exists (SamplerNames lists the choices).
+    std::unique_ptr<Sampler> NewSampler(const std::string &name, uint64_t seed) const;
+    std::vector<std::string> SamplerNames() const;
     RenderSettings &Settings() { return settings_; }
     Bounds3 Bounds() const { return accel_->Bounds(); }
 

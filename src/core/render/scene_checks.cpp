@@ -10,6 +10,7 @@
 #include "core/render/aperture.h"
 #include "core/render/integrator.h"
 #include "core/render/narrow_pixels.h"
+#include "core/render/integrator_support.h"
 #include "core/render/scene.h"
 
 namespace phasor {
@@ -220,6 +221,9 @@ std::string Scene::DarkImageCause() const {
                " response covers 360–830 nm): give the light a visible spectrum, or the detector response = "
                "\"radiometric\"";
 
+    // Delta lights the integrator cannot reach (a classical path tracer: only by next-event
+    // estimation at surfaces with a continuous lobe).
+    if (std::string why = UnreachableDeltaLights(*integrator_, *this); !why.empty()) return why;
     // Aperture plates that transmit nothing.
     for (const Plate &pl : Plates(shapes_))
         if (!(OpeningsOf(*pl.shape->material)->OpenArea() > 0))
@@ -249,8 +253,20 @@ std::string Scene::DarkImageCause() const {
         return std::to_string(100 * inside / total) + "% of the detector's rays start inside shape '" + where->name +
                "' (they meet its inside first): move detector '" + det.name + "' out of it";
 
-    // A sensor plane that every light reaches only from behind.
-    if (const SensorPlaneGeometry *g = det.SensorPlane()) {
+    // A sensor plane that every light reaches only from behind, with nothing in front of it that
+    // could send the light back (a mirror, a grating or a screen in front makes the light's side
+    // irrelevant; an aperture plate only lets it through).
+    const SensorPlaneGeometry *g = det.SensorPlane();
+    const bool redirectorInFront = g && std::any_of(shapes_.begin(), shapes_.end(), [&](const auto &s) {
+        if (!s->material || s->material->IsFootprintAware()) return false;
+        const Bounds3 b = s->Bounds();
+        for (int c = 0; c < 8; ++c) {
+            const Vec3 p((c & 1) ? b.hi.x : b.lo.x, (c & 2) ? b.hi.y : b.lo.y, (c & 4) ? b.hi.z : b.lo.z);
+            if (Dot(p - g->origin, g->frame.n) > 0) return true;
+        }
+        return false;
+    });
+    if (g && !redirectorInFront) {
         std::string behind;
         int nBehind = 0;
         for (const Light *l : lights_) {
@@ -267,6 +283,21 @@ std::string Scene::DarkImageCause() const {
                    "of its to_world); turn the light or the sensor (a plane wave through a plate must travel "
                    "from the far side of the plate towards the sensor)";
     }
+    // Only delta lights, which the integrator reaches only at continuous lobes (`ray`): the
+    // detector sees no surface they light.
+    const IntegratorSupport support = integrator_->Support();
+    if (std::all_of(lights_.begin(), lights_.end(),
+                    [&](const Light *l) { return support.Reach(l->Type()) == LightReach::SampledOnly; })) {
+        std::string names;
+        for (const Light *l : lights_) names += (names.empty() ? "'" : ", '") + l->name + "'";
+        return "integrator '" + integrator_->name + "' reaches the delta light" + (lights_.size() > 1 ? "s " : " ") +
+               names +
+               " only by next-event estimation at surfaces with a continuous lobe, and the detector sees none that "
+               "they light (a delta light seen directly, or through a mirror, grating or aperture, is invisible to "
+               "it): render with integrator \"grt\", which measures delta lights in closed form at the detector "
+               "and through every specular lobe";
+    }
+
     return "no light reached the detector; check that the lights face the scene, that nothing blocks them and "
            "that the detector sees lit surfaces";
 }

@@ -5,9 +5,12 @@
 //  * Aperture integral, per field point, per mask piece {v ∈ [v0, v1], u ∈ [ULo(v), UHi(v)]}:
 //    Gauss–Legendre panels along v, and for each v node along u. Panels are marched so that
 //    (bound of |∂φ/∂u| or |∂φ/∂v| over the panel's box) × length ≤ 6π, φ = kR + incident phase;
-//    the bound is exact interval arithmetic on the direction cosines (monotone in the offsets),
-//    plus |slope|·|∂φ/∂u| for the moving limits of trapezoids. Panels are at most half the distance
-//    to the field point (and to a point source) so the 1/R amplitudes are resolved. Nodes per
+//    the bound is exact interval arithmetic on the direction cosines (monotone in the offsets)
+//    plus the incident field's own bound (PlaneField::Slope), plus |slope|·|∂φ/∂u| for the moving
+//    limits of trapezoids. Panels are at most half the distance to the field point, and no longer
+//    than the incident field's PanelLimit (half a point source's distance, a beam's width), so the
+//    amplitudes are resolved; openings outside the field's Support (a beam's footprint) are left
+//    out. The incident field is any CoherentSource's (core/render/coherent_source.h). Nodes per
 //    panel: the fewest n ∈ [6, 20] whose Gauss–Legendre error for a linear phase Φ,
 //    Φ^{2n}(n!)⁴/((2n+1)((2n)!)³) (A&S 25.4.30, GaussLegendreMaxPhase), is below the per-panel
 //    tolerance (accuracy·1e-3; n = 12 at Φ = 6π for the default). Discs are integrated in ψ,
@@ -29,25 +32,6 @@ namespace phasor {
 namespace rs {
 
 namespace {
-
-// Gaussian beams: openings farther than this many β(z) from the beam's axis are not integrated.
-constexpr double BeamCutoff = 8;
-
-// ---- Interval bounds of phase gradients -----------------------------------------------------------
-
-/// Range of a/√(a² + p²) over a ∈ [aLo, aHi], p ∈ [pLo, pHi] (p ≥ 0): increasing in a, and |·|
-/// decreasing in p.
-inline void CosineRange(double aLo, double aHi, double pLo, double pHi, double *lo, double *hi) {
-    const double pa = aHi > 0 ? pLo : pHi, pb = aLo < 0 ? pLo : pHi;
-    *hi = aHi / std::sqrt(aHi * aHi + pa * pa);
-    *lo = aLo / std::sqrt(aLo * aLo + pb * pb);
-}
-
-/// Distance range from y to the points of [a, b].
-inline void DistanceRange(double y, double a, double b, double *lo, double *hi) {
-    *lo = y < a ? a - y : (y > b ? y - b : 0.0);
-    *hi = std::max(std::abs(y - a), std::abs(y - b));
-}
 
 /// Marches panels over [a, b]: each is at most lmax long and has bound(x0, x1)·(x1 − x0) ≤ phiMax
 /// (bound: an upper bound of |φ'| on [x0, x1], monotone under inclusion). Calls emit(x0, x1, Φ)
@@ -112,108 +96,41 @@ struct NodeRule {
     }
 };
 
-Propagator::Propagator(const PlateFrame &plate, const ApertureMask &mask, const CoherentWave &wave, bool flip,
-                       bool twoD, QuadratureRule rule)
+Propagator::Propagator(const PlateFrame &plate, const ApertureMask &mask, const CoherentSource &source,
+                       double lambda, bool flip, bool twoD, QuadratureRule rule)
     : plate_(plate),
       zSign_(flip ? -1.0 : 1.0),
       twoD_(twoD),
       rule_(rule),
       nodes_(std::make_shared<const NodeRule>(rule)) {
-    if (!(wave.lambda > 0) || !(wave.strength >= 0))
-        throw Error("rs: the coherent wave has no valid wavelength");
-    k_ = 2 * Pi / wave.lambda;
-    amp_ = std::sqrt(wave.strength);
-    spherical_ = wave.kind == CoherentWave::Kind::Spherical;
-    beam_ = wave.kind == CoherentWave::Kind::GaussianBeam;
-    if (beam_) {
-        if (!(wave.beta2 > 0)) throw Error("rs: the Gaussian beam has no waist");
-        beamGeo_ = GaussianBeamGeometry{wave.pos, Normalize(wave.dir), wave.beta2};
-        beamZRef_ = beamGeo_.Axial(plate.origin);
-    }
-    if (spherical_) {
-        const Vec3 d = wave.pos - plate.origin;
-        su_ = Dot(d, plate.e1);
-        sv_ = Dot(d, plate.e2);
-        sz_ = -zSign_ * Dot(d, plate.n);
-        if (!(sz_ > 0)) throw Error("the point source is not on the far side of the plate from the sensor");
-    } else {
-        const Vec3 d = Normalize(wave.dir);
-        du_ = Dot(d, plate.e1);
-        dv_ = Dot(d, plate.e2);
-        if (!(zSign_ * Dot(d, plate.n) > 0))
-            throw Error(std::string(beam_ ? "the Gaussian beam" : "the plane wave") +
-                        " does not travel towards the sensor side of the plate");
-    }
+    if (!(lambda > 0)) throw Error("rs: the coherent wave has no valid wavelength");
+    k_ = 2 * Pi / lambda;
+    // The wave must cross the plate towards the sensor (its direction of travel at the plate).
+    if (!(zSign_ * Dot(source.Travel(plate.origin, lambda), plate.n) > 0))
+        throw Error("the light does not travel through the plate towards the sensor side");
+    incident_ = source.OnPlane(plate, lambda);
     bounds_ = mask.Bounds();
-    Bounds2 beamBox;
-    if (beam_ && !bounds_.Empty()) {
-        // Only the beam's footprint on the plate carries light: clip the openings to the box of
-        // the points within BeamCutoff·β(z) of its axis (amplitude e^{−32} of the axis value
-        // there), which also keeps the panels from resolving the wavefront's phase where there is
-        // no amplitude. β at the farthest z of the box bounds the footprint (one refinement).
-        const double cn = std::abs(Dot(beamGeo_.axis, plate.n));
-        if (!(cn > 1e-6)) throw Error("the Gaussian beam runs parallel to the aperture plate");
-        const double t = Dot(plate.origin - beamGeo_.waist, plate.n) / Dot(beamGeo_.axis, plate.n);
-        const Vec3 hit = beamGeo_.waist + beamGeo_.axis * t;  // the axis meets the plate here
-        const Vec2 c(Dot(hit - plate.origin, plate.e1), Dot(hit - plate.origin, plate.e2));
-        double half = BeamCutoff * std::sqrt(beamGeo_.Beta2At(t, k_)) / cn;
-        const double slope = std::sqrt(std::max(0.0, 1 - cn * cn));  // |dz/ds| along the plate
-        half = BeamCutoff * std::sqrt(beamGeo_.Beta2At(std::abs(t) + half * slope, k_)) / cn;
-        beamBox = Bounds2{c - Vec2(half, half), c + Vec2(half, half)};
-        bounds_ = bounds_.Intersect(beamBox);
-    }
-    if (beam_ && !bounds_.Empty()) {
-        // Panels no longer than the beam's radius β(z) anywhere on the openings' box, so that
-        // Gauss–Legendre resolves its Gaussian envelope (β(z) is smallest at the z nearest 0).
-        double zLo = Infinity, zHi = -Infinity;
-        for (int c = 0; c < 4; ++c) {
-            const double z = beamGeo_.Axial(
-                plate.ToWorld(Vec2((c & 1) ? bounds_.hi.x : bounds_.lo.x, (c & 2) ? bounds_.hi.y : bounds_.lo.y)));
-            zLo = std::min(zLo, z);
-            zHi = std::max(zHi, z);
-        }
-        const double zNear = (zLo <= 0 && zHi >= 0) ? 0.0 : std::min(std::abs(zLo), std::abs(zHi));
-        beamPanel_ = std::sqrt(beamGeo_.Beta2At(zNear, k_));
-    }
+    const Bounds2 support = incident_->Support();
+    bounds_ = bounds_.Intersect(support);
     if (!bounds_.Empty()) {
+        panelLimit_ = incident_->PanelLimit(bounds_);
         Bounds2 box = bounds_;
         const Vec2 pad = 0.01 * (box.hi - box.lo);
         box.lo = box.lo - pad;
         box.hi = box.hi + pad;
-        if (beam_) box = box.Intersect(beamBox);
+        box = box.Intersect(support);
         mask.ForEachPiece(box, [&](const MaskPiece &p) {
             if (p.t > 0 && p.v1 > p.v0) pieces_.push_back(p);
         });
     }
     if (twoD_) {
-        if (spherical_ || beam_ || std::abs(dv_) > 1e-9)
+        const std::optional<Vec3> dir = source.PlaneWaveDirection();
+        if (!dir || std::abs(Dot(Normalize(*dir), plate.e2)) > 1e-9)
             throw Error(
                 "the 2-D mode needs a plane wave with no component along the slits (the plate's y axis)");
         if (!mask.IsSlitsAlongV(0))
             throw Error("the 2-D mode needs openings that are rectangles sharing one v range");
     }
-}
-
-double Propagator::BeamSlopeBound(double ua, double ub, double va, double vb) const {
-    // φ = k z + k r² z/(2(z² + z_R²)) − atan(z/z_R) (GaussianBeamGeometry); along a plate axis
-    // |∂r/∂u| ≤ 1 and |∂z/∂u| ≤ a (the axis' largest component on the plate), so beyond k·∂z/∂u
-    // the gradient is at most k·r·max|z|/(z² + z_R²) + a·(k r²/(2 z_R²) + 1/z_R). r (distance from the axis, convex) and z
-    // (linear) take their extremes over the box at its corners.
-    const double zr = k_ * beamGeo_.beta2;
-    const double a = std::max(std::abs(du_), std::abs(dv_));  // |∂z/∂u|, |∂z/∂v| ≤ a
-    double rMax = 0, zLo = Infinity, zHi = -Infinity;
-    for (int c = 0; c < 4; ++c) {
-        const Vec3 p = plate_.ToWorld(Vec2((c & 1) ? ub : ua, (c & 2) ? vb : va));
-        const double z = beamGeo_.Axial(p);
-        rMax = std::max(rMax, std::sqrt(std::max(0.0, LengthSquared(p - beamGeo_.waist) - z * z)));
-        zLo = std::min(zLo, z);
-        zHi = std::max(zHi, z);
-    }
-    auto f = [&](double z) { return std::abs(z) / (z * z + zr * zr); };
-    double fMax = std::max(f(zLo), f(zHi));
-    if (zLo <= zr && zHi >= zr) fMax = std::max(fMax, f(zr));
-    if (zLo <= -zr && zHi >= -zr) fMax = std::max(fMax, f(-zr));
-    return k_ * rMax * fMax + a * (k_ * rMax * rMax / (2 * zr * zr) + 1 / zr);
 }
 
 double Propagator::Height(const Vec3 &p) const { return zSign_ * Dot(p - plate_.origin, plate_.n); }
@@ -246,47 +163,31 @@ double Propagator::Intensity(const Vec3 &p) const { return std::norm(Field(p, pl
 void Propagator::Field3D(const Local &p, double acc[4]) const {
     const NodeRule &nodes = *nodes_;
     const double k = k_, X = p.x, Y = p.y, Z = p.z, Z2 = Z * Z;
-    const double lmax =
-        std::min(rule_.maxPanelOverDistance * (spherical_ ? std::min(Z, sz_) : Z), beamPanel_);
+    const double lmax = std::min(rule_.maxPanelOverDistance * Z, panelLimit_);
     const double phiMax = rule_.maxPanelPhase;
     double ur = 0, ui = 0, dr = 0, di = 0;
 
     // Bounds of |∂φ/∂u| and |∂φ/∂v| over a box, φ = k(R − Z) + φ_inc.
     // Bound on |∂(kR + phase of U_inc)/∂a| over the panel [a0, a1] × [b0, b1], for the axis a
-    // (field point coordinate A along it, B across; source point (sa, sb); plane-wave slope da).
-    auto gradAlong = [&](double A, double B, double a0, double a1, double b0, double b1, double sa, double sb,
-                         double da, double beamExtra) {
+    // (field point coordinate A along it, B across): the interval of −∂R/∂a plus the incident
+    // field's (PlaneField::Slope, in units of k, and its slack).
+    auto gradAlong = [&](int axis, double A, double B, double ua, double ub, double va, double vb) {
+        const double a0 = axis == 0 ? ua : va, a1 = axis == 0 ? ub : vb;
+        const double b0 = axis == 0 ? va : ua, b1 = axis == 0 ? vb : ub;
         double pLo, pHi, lo, hi;
         DistanceRange(B, b0, b1, &pLo, &pHi);
         CosineRange(A - a1, A - a0, std::sqrt(pLo * pLo + Z2), std::sqrt(pHi * pHi + Z2), &lo, &hi);
-        double gLo = -hi, gHi = -lo;  // ∂R/∂a = −(A − a)/R
-        if (spherical_) {
-            double qLo, qHi, sLo, sHi;
-            DistanceRange(sb, b0, b1, &qLo, &qHi);
-            CosineRange(a0 - sa, a1 - sa, std::sqrt(qLo * qLo + sz_ * sz_), std::sqrt(qHi * qHi + sz_ * sz_),
-                        &sLo, &sHi);
-            gLo += sLo;
-            gHi += sHi;
-        } else {
-            gLo += da;
-            gHi += da;
-        }
-        return k * std::max(std::abs(gLo), std::abs(gHi)) + beamExtra;
+        const PhaseSlope inc = incident_->Slope(axis, Bounds2{Vec2(ua, va), Vec2(ub, vb)});
+        const double gLo = -hi + inc.lo, gHi = -lo + inc.hi;  // ∂R/∂a = −(A − a)/R
+        return k * std::max(std::abs(gLo), std::abs(gHi)) + inc.slack;
     };
-    auto gradU = [&](double ua, double ub, double va, double vb) {
-        return gradAlong(X, Y, ua, ub, va, vb, su_, sv_, du_, beam_ ? BeamSlopeBound(ua, ub, va, vb) : 0.0);
-    };
-    auto gradV = [&](double ua, double ub, double va, double vb) {
-        return gradAlong(Y, X, va, vb, ua, ub, sv_, su_, dv_, beam_ ? BeamSlopeBound(ua, ub, va, vb) : 0.0);
-    };
+    auto gradU = [&](double ua, double ub, double va, double vb) { return gradAlong(0, X, Y, ua, ub, va, vb); };
+    auto gradV = [&](double ua, double ub, double va, double vb) { return gradAlong(1, Y, X, ua, ub, va, vb); };
 
     // One line v = const of a piece: the u integral, weight wv (outer node weight × Jacobian).
     auto line = [&](double v, double wv, double uLo, double uHi, double t) {
         const double dy = Y - v, dy2z2 = dy * dy + Z2;
         const double mvw = p.mv * dy + p.mn * Z;
-        // Incident wave along this line (plane: linear phase; point: spherical).
-        const double phiV = spherical_ ? 0.0 : k * dv_ * v;
-        const double dsv = v - sv_;
         MarchPanels(
             uLo, uHi, lmax, phiMax, [&](double ua, double ub) { return gradU(ua, ub, v, v); },
             [&](double ua, double ub, double phaseU) {
@@ -296,21 +197,9 @@ void Propagator::Field3D(const Local &p, double acc[4]) const {
                 const double half = 0.5 * (ub - ua), mid = 0.5 * (ua + ub);
                 for (int iu = 0; iu < nu; ++iu) {
                     const double u = mid + half * hx[iu];
-                    double a = amp_ * t * wv * half * hw[iu], phi;
-                    if (spherical_) {
-                        // U_inc = √I e^{ikρ}/ρ, phase relative to kρ₀ (ρ₀ = sz).
-                        const double dsu = u - su_, q = dsu * dsu + dsv * dsv;
-                        const double rho = std::sqrt(q + sz_ * sz_);
-                        a /= rho;
-                        phi = k * q / (rho + sz_);
-                    } else if (beam_) {
-                        // U_inc = √P·ψ (GaussianBeamGeometry), phase relative to k·z(origin).
-                        const Complex psi = beamGeo_.Field(plate_.ToWorld(Vec2(u, v)), k, beamZRef_);
-                        a *= std::abs(psi);
-                        phi = std::arg(psi);
-                    } else {
-                        phi = k * du_ * u + phiV;
-                    }
+                    double a, phi;  // U_inc's amplitude and phase
+                    incident_->At(u, v, &a, &phi);
+                    a *= t * wv * half * hw[iu];
                     const double dx = X - u, q = dx * dx + dy * dy;
                     const double r2 = dx * dx + dy2z2, r = std::sqrt(r2), ir = 1 / r, ir2 = ir * ir;
                     const double ir3 = ir2 * ir;
@@ -412,10 +301,13 @@ void Propagator::Field2D(const Local &p, double acc[4]) const {
     // The reference phase kZ − 3π/4 is dropped from every node (propagator.h: phases are relative).
     const Complex refPhase = std::polar(1.0, -(k * Z - 3 * Pi / 4));
     double ur = 0, ui = 0, dr = 0, di = 0;
+    // The incident field is a plane wave with no component along the slits (checked at
+    // construction): it is read on the line v = 0.
     auto gradU = [&](double ua, double ub) {
         double lo, hi;
         CosineRange(X - ub, X - ua, Z, Z, &lo, &hi);
-        return k * std::max(std::abs(du_ - hi), std::abs(du_ - lo));
+        const PhaseSlope inc = incident_->Slope(0, Bounds2{Vec2(ua, 0), Vec2(ub, 0)});
+        return k * std::max(std::abs(inc.lo - hi), std::abs(inc.hi - lo)) + inc.slack;
     };
     for (const MaskPiece &piece : pieces_) {
         const double vm = 0.5 * (piece.v0 + piece.v1);
@@ -428,9 +320,10 @@ void Propagator::Field2D(const Local &p, double acc[4]) const {
             const double half = 0.5 * (ub - ua), mid = 0.5 * (ua + ub);
             for (int i = 0; i < n; ++i) {
                 const double u = mid + half * gx[i];
-                const double a = amp_ * piece.t * half * gw[i];
+                double a, phiInc;  // U_inc's amplitude and phase
+                incident_->At(u, 0.0, &a, &phiInc);
+                a *= piece.t * half * gw[i];
                 const double dx = X - u, r2 = dx * dx + Z2, r = std::sqrt(r2), x = k * r;
-                const double phiInc = k * du_ * u;
                 // h0, h1 = H₀⁽¹⁾(kR), H₁⁽¹⁾(kR) without the common factor e^{i(kZ − 3π/4)}.
                 Complex h0, h1;
                 if (x >= HankelAsymptoticMin) {

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/render/aperture.h"
-#include "core/render/light.h"
+#include "core/render/coherent_source.h"
 #include "core/math.h"
 
 namespace phasor::rs {
@@ -42,17 +42,19 @@ struct FieldValue {
 };
 
 /// RS-I propagation (theory §6.2) from the openings of one plate, with Kirchhoff boundary values
-/// U₀ = t·U_inc, to points on the far side of the plate. Amplitude convention: |U_inc|² =
-/// irradiance normal to the local direction of travel (CoherentWave). Phases are relative to a
+/// U₀ = t·U_inc, to points on the far side of the plate. U_inc is any coherent source's field at
+/// one wavelength (core/render/coherent_source.h: |U_inc|² = irradiance normal to the local
+/// direction of travel), read over the plate through its PlaneField. Phases are relative to a
 /// per-point reference (only |U|², and U*·∂U, are meaningful).
 class Propagator {
   public:
+    /// The field of `source` at vacuum wavelength `lambda` [m].
     /// `flip`: the sensor lies on the −n side of `plate` (local z is then measured along −n).
     /// `twoD`: openings are slits infinite along the plate's v axis (e2) and the wave is a plane
     /// wave with no component along e2 — the 2-D form of theory §6.2 with H₁⁽¹⁾.
     /// Throws phasor::Error if the wave does not reach the plate from the other side.
-    Propagator(const PlateFrame &plate, const ApertureMask &mask, const CoherentWave &wave, bool flip,
-               bool twoD, QuadratureRule rule = {});
+    Propagator(const PlateFrame &plate, const ApertureMask &mask, const CoherentSource &source, double lambda,
+               bool flip, bool twoD, QuadratureRule rule = {});
 
     /// U and ∂U/∂m at world point p (which must lie in front of the plate, on the sensor side).
     FieldValue Field(const Vec3 &p, const Vec3 &m) const;
@@ -90,21 +92,10 @@ class Propagator {
     QuadratureRule rule_;
     std::shared_ptr<const NodeRule> nodes_;  // panel phase → Gauss–Legendre node count
     std::vector<MaskPiece> pieces_;
-    Bounds2 bounds_;
-    /// Gaussian beams: an upper bound, over the plate box [ua, ub] × [va, vb], of how far the
-    /// beam's phase gradient along either plate axis departs from k times its axis' component
-    /// (curvature, the change of curvature along the axis and the Gouy phase) [rad/m].
-    double BeamSlopeBound(double ua, double ub, double va, double vb) const;
-
-    // Incident wave in plate coordinates (local z towards the sensor).
-    bool spherical_;
-    bool beam_ = false;                 // a Gaussian beam (du_, dv_: its axis on e1, e2)
-    GaussianBeamGeometry beamGeo_;
-    double beamZRef_ = 0;               // axial position of the plate origin (phase reference)
-    double beamPanel_ = Infinity;       // panel length limit: the beam's smallest β on the openings
-    double k_, amp_;
-    double du_ = 0, dv_ = 0;           // plane: direction cosines along e1, e2
-    double su_ = 0, sv_ = 0, sz_ = 0;  // spherical: source at (su, sv), distance sz > 0 behind
+    Bounds2 bounds_;            // the openings' box within the incident field's support
+    std::shared_ptr<const PlaneField> incident_;  // U_inc over the plate
+    double panelLimit_ = Infinity;               // the incident amplitude's panel limit over bounds_
+    double k_;
 };
 
 }  // namespace phasor::rs

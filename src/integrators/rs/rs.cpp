@@ -1,9 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
 // `rs`: the forward Rayleigh–Sommerfeld reference (theory §6.2, §9; docs/rs.md). Coherent,
-// monochromatic sources (`plane_wave` with a line spectrum at any incidence, isotropic `point`
-// with a line spectrum, `gaussian_beam` with a line spectrum: its exact paraxial TEM₀₀ field,
-// GaussianBeamGeometry, with the waist anywhere) shine on ONE planar aperture plate — the scene's only shape, whose
-// material has openings (PlateOpenings, core/render/aperture.h: the `aperture`) — and the scalar field behind it is
+// monochromatic sources — any light with a field (Light::Coherent, core/render/coherent_source.h)
+// and a line spectrum: `plane_wave` at any incidence, `point`, `gaussian_beam` (its exact paraxial
+// TEM₀₀ field, with the waist anywhere) — shine on ONE planar aperture plate — the scene's only shape, whose
+// material has openings (Material::Openings, e.g. `aperture`) — and the scalar field behind it is
 // computed in double precision on the `virtual_plane` sensor:
 //   Kirchhoff boundary values U₀ = t·U_inc on the openings (the plate is infinite and opaque
 //   elsewhere), RS of the first kind
@@ -16,6 +16,8 @@
 //   the sensor's reference irradiance. Several lights add incoherently (intensities add).
 //   In the double-slit set-up F differs from |U|² by 2.8e-5 of peak (measured in rs_test.cpp).
 //
+// Every check of the scene runs at load (Validate: the declarations of Support, then Plan), so
+// `phasor check` refuses what Render would.
 // The integrator's files (docs/rs.md §1): this one checks the scene and drives the rest —
 //  * rs/propagator.{h,cpp}: the field U and ∇U at a point, by Gauss–Legendre panels over the
 //    openings (3-D, or 2-D with Hankel functions);
@@ -36,6 +38,7 @@
 
 #include <tbb/global_control.h>
 
+#include "core/render/coherent_source.h"
 #include "core/render/integrator.h"
 #include "core/render/material.h"
 #include "core/render/registry.h"
@@ -92,114 +95,38 @@ class RsIntegrator final : public Integrator {
     /// a 3-D integral of ~5e9 kernel evaluations (minutes); the 2-D mode takes plane waves only.
     static std::vector<std::string> ContractCases() { return {"plane_wave_open_plate"}; }
 
+    /// Coherent lights with a field, a sensor plane, one aperture plate (integrator_support.h).
+    IntegratorSupport Support() const override {
+        IntegratorSupport s;
+        s.lights = {LightReach::Field, LightReach::Field, LightReach::Refused, LightReach::Refused};
+        s.detector = DetectorNeed::SensorPlane;
+        s.kernels = {KernelReach::Refused, KernelReach::Refused, KernelReach::OpeningsOnly};
+        return s;
+    }
+
+    /// The declarations (ValidateSupport), then the set-up Render makes: one planar plate, the
+    /// sensor in front of it, every light on its far side, the mode, the field grid.
+    void Validate(const Scene &scene, Diagnostics &diag) const override {
+        const std::size_t before = diag.ErrorCount();
+        ValidateSupport(*this, scene, diag);
+        if (diag.ErrorCount() > before) return;
+        try {
+            Plan(scene);
+        } catch (const Error &e) {
+            diag.Report(e);
+        }
+    }
+
     RenderStats Render(const Scene &scene, Film &film, const RenderOptions &opt) const override {
         const auto start = std::chrono::steady_clock::now();
         std::unique_ptr<tbb::global_control> threads;
         if (opt.threads > 0)
             threads = std::make_unique<tbb::global_control>(tbb::global_control::max_allowed_parallelism,
                                                             opt.threads);
-
-        // ---- Checks (every unsupported scene is a clear error naming the object) -------------
-        const Detector &det = scene.GetDetector();
-        const SensorPlaneGeometry *sensor = det.SensorPlane();
-        if (!sensor)
-            throw Error(scene.Where(&det),
-                        "integrator 'rs' needs a virtual_plane detector (a sensor plane); detector '" +
-                        det.name + "' is not one");
-        if (scene.Lights().empty())
-            throw Error(scene.Where(this), "integrator 'rs' needs at least one coherent light; the scene has none");
-        for (const Light *light : scene.Lights())
-            if (!light->CoherentField())
-                throw Error(
-                    scene.Where(light),
-                    "light '" + light->name +
-                    "' has no coherent field: integrator 'rs' needs monochromatic (line-spectrum) plane "
-                    "waves, isotropic point lights or Gaussian beams");
-        const auto &shapes = scene.Shapes();
-        if (shapes.empty())
-            throw Error(
-                scene.Where(this),
-                "integrator 'rs' needs exactly one shape, a planar aperture plate (material with openings, "
-                "e.g. 'aperture') between the source and the sensor; the scene has none");
-        if (shapes.size() > 1) {
-            std::string names;
-            for (std::size_t i = 0; i < shapes.size() && i < 6; ++i)
-                names += (i ? ", '" : "'") + shapes[i]->name + "'";
-            throw Error(
-                scene.Where(shapes[1].get()),
-                "integrator 'rs' handles exactly one planar aperture plate between source and sensor; the "
-                "scene has " +
-                std::to_string(shapes.size()) + " shapes (" + names + (shapes.size() > 6 ? ", …" : "") + ")");
-        }
-        const Shape &shape = *shapes[0];
-        const ApertureMask *mask = shape.material ? OpeningsOf(*shape.material) : nullptr;
-        if (!mask)
-            throw Error(scene.Where(&shape), "integrator 'rs' needs an aperture plate: shape '" + shape.name +
-                        "' has no material with openings (use the 'aperture' material)");
-        if (!shape.IsPlanar())
-            throw Error(scene.Where(&shape), "integrator 'rs': the aperture plate '" + shape.name + "' is not planar");
-        PlateFrame plate;
-        try {
-            plate = PlateFrame::FromTransform(shape.objectToWorld);
-        } catch (const Error &e) {
-            throw Error(scene.Where(&shape), "aperture plate '" + shape.name + "': " + e.Message());
-        }
-
-        // Sensor side: the whole evaluation window must lie strictly on one side, ≥ 1 λ away.
-        const double extX = 6 * sensor->sigma + 0.5 * sensor->pitchX,
-                     extY = 6 * sensor->sigma + 0.5 * sensor->pitchY;
-        const Vec2 c00 = sensor->PixelCenter(0, 0), c11 = sensor->PixelCenter(sensor->nx - 1, sensor->ny - 1);
-        double hMin = Infinity, hMax = -Infinity;
-        for (int c = 0; c < 4; ++c) {
-            const double x = (c & 1) ? c11.x + extX : c00.x - extX, y = (c & 2) ? c00.y + extY : c11.y - extY;
-            const double h =
-                Dot(sensor->origin + sensor->frame.s * x + sensor->frame.t * y - plate.origin, plate.n);
-            hMin = std::min(hMin, h);
-            hMax = std::max(hMax, h);
-        }
-        if (!(hMin > 0) && !(hMax < 0))
-            throw Error(scene.Where(&det), "sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
-                        "': it reaches the plate's plane");
-        const bool flip = hMax < 0;
-        const Vec3 towardsSensor = flip ? -plate.n : plate.n;
-        if (!(Dot(sensor->frame.n, towardsSensor) < 0))
-            throw Error(scene.Where(&det), "sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
-                        "': its front side (+z) faces away from the plate");
-
-        struct Job {
-            const Light *light;
-            CoherentWave wave;
-            std::unique_ptr<rs::Propagator> prop;
-            rs::SensorGrid grid;
-        };
-        std::vector<Job> jobs;
-        int totalUnits = 0;
-        for (const Light *light : scene.Lights()) {
-            const auto wave = light->CoherentField();
-            const double minHeight = std::min(std::abs(hMin), std::abs(hMax));
-            if (minHeight < wave->lambda)
-                throw Error(scene.Where(&det), "sensor '" + det.name +
-                            "' is closer than one wavelength to the aperture plate '" + shape.name +
-                            "' (Kirchhoff boundary values need a distant sensor)");
-            const bool sameSide = wave->kind != CoherentWave::Kind::Spherical
-                                      ? !(Dot(Normalize(wave->dir), towardsSensor) > 0)
-                                      : !(Dot(wave->pos - plate.origin, towardsSensor) < 0);
-            if (sameSide)
-                throw Error(scene.Where(light), "light '" + light->name + "' and sensor '" + det.name +
-                            "' are on the same side of the aperture plate '" + shape.name +
-                            "' (rs propagates from the source through the plate to the sensor)");
-            const bool twoD = Choose2d(scene, *mask, plate, *wave, *sensor, light->name);
-            Job job{light, *wave, std::make_unique<rs::Propagator>(plate, *mask, *wave, flip, twoD,
-                                                                  rs::QuadratureRule::ForAccuracy(accuracy_)),
-                    {}};
-            try {
-                job.grid = rs::MakeGrid(*sensor, *job.prop);
-            } catch (const Error &e) {
-                throw Error(scene.Where(&det), "sensor '" + det.name + "': " + e.Message());
-            }
-            totalUnits += rs::ProgressUnits(job.grid);
-            jobs.push_back(std::move(job));
-        }
+        const RsPlan plan = Plan(scene);
+        const SensorPlaneGeometry *sensor = plan.sensor;
+        const std::vector<Job> &jobs = plan.jobs;
+        const int totalUnits = plan.totalUnits;
 
         // Work estimate before the long part: a few field evaluations timed (≤ ~0.5 s per light)
         // times the grid's nodes, on all threads.
@@ -271,8 +198,8 @@ class RsIntegrator final : public Integrator {
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
                 return stats;
             }
-            const Vec3 wc = film.Response().Channels(job.wave.lambda);
-            const double wi = film.Response().Intensity(job.wave.lambda);
+            const Vec3 wc = film.Response().Channels(job.lambda);
+            const double wi = film.Response().Intensity(job.lambda);
             for (std::size_t p = 0; p < flux.size(); ++p) {
                 const double v = flux[p] / eRef;
                 channels[p] += wc * v;
@@ -312,6 +239,116 @@ class RsIntegrator final : public Integrator {
         return stats;
     }
 
+    /// One light's field on the sensor: its propagator and the grid of field points.
+    struct Job {
+        const Light *light;
+        double lambda;
+        std::unique_ptr<rs::Propagator> prop;
+        rs::SensorGrid grid;
+    };
+    struct RsPlan {
+        const SensorPlaneGeometry *sensor = nullptr;
+        std::vector<Job> jobs;
+        int totalUnits = 0;
+    };
+
+    /// Everything Render needs before the field integral, checked: throws a phasor::Error located at
+    /// the object at fault (Validate reports it at load). Assumes the declarations hold (a sensor
+    /// plane, coherent lights with line spectra).
+    RsPlan Plan(const Scene &scene) const {
+        RsPlan plan;
+        const Detector &det = scene.GetDetector();
+        const SensorPlaneGeometry *sensor = det.SensorPlane();
+        plan.sensor = sensor;
+        if (scene.Lights().empty())
+            throw Error(scene.Where(this), "integrator 'rs' needs at least one coherent light; the scene has none");
+        const auto &shapes = scene.Shapes();
+        if (shapes.empty())
+            throw Error(
+                scene.Where(this),
+                "integrator 'rs' needs exactly one shape, a planar aperture plate (material with openings, "
+                "e.g. 'aperture') between the source and the sensor; the scene has none");
+        if (shapes.size() > 1) {
+            std::string names;
+            for (std::size_t i = 0; i < shapes.size() && i < 6; ++i)
+                names += (i ? ", '" : "'") + shapes[i]->name + "'";
+            throw Error(
+                scene.Where(shapes[1].get()),
+                "integrator 'rs' handles exactly one planar aperture plate between source and sensor; the "
+                "scene has " +
+                std::to_string(shapes.size()) + " shapes (" + names + (shapes.size() > 6 ? ", …" : "") + ")");
+        }
+        const Shape &shape = *shapes[0];
+        const ApertureMask *mask = shape.material ? OpeningsOf(*shape.material) : nullptr;
+        if (!mask)
+            throw Error(scene.Where(&shape), "integrator 'rs' needs an aperture plate: shape '" + shape.name +
+                        "' has no material with openings (use the 'aperture' material)");
+        if (!shape.IsPlanar())
+            throw Error(scene.Where(&shape), "integrator 'rs': the aperture plate '" + shape.name + "' is not planar");
+        PlateFrame plate;
+        try {
+            plate = PlateFrame::FromTransform(shape.objectToWorld);
+        } catch (const Error &e) {
+            throw Error(scene.Where(&shape), "aperture plate '" + shape.name + "': " + e.Message());
+        }
+
+        // Sensor side: the whole evaluation window must lie strictly on one side, ≥ 1 λ away.
+        const double extX = 6 * sensor->sigma + 0.5 * sensor->pitchX,
+                     extY = 6 * sensor->sigma + 0.5 * sensor->pitchY;
+        const Vec2 c00 = sensor->PixelCenter(0, 0), c11 = sensor->PixelCenter(sensor->nx - 1, sensor->ny - 1);
+        double hMin = Infinity, hMax = -Infinity;
+        for (int c = 0; c < 4; ++c) {
+            const double x = (c & 1) ? c11.x + extX : c00.x - extX, y = (c & 2) ? c00.y + extY : c11.y - extY;
+            const double h =
+                Dot(sensor->origin + sensor->frame.s * x + sensor->frame.t * y - plate.origin, plate.n);
+            hMin = std::min(hMin, h);
+            hMax = std::max(hMax, h);
+        }
+        if (!(hMin > 0) && !(hMax < 0))
+            throw Error(scene.Where(&det), "sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
+                        "': it reaches the plate's plane");
+        const bool flip = hMax < 0;
+        const Vec3 towardsSensor = flip ? -plate.n : plate.n;
+        if (!(Dot(sensor->frame.n, towardsSensor) < 0))
+            throw Error(scene.Where(&det), "sensor '" + det.name + "' is not in front of the aperture plate '" + shape.name +
+                        "': its front side (+z) faces away from the plate");
+
+        for (const Light *light : scene.Lights()) {
+            const CoherentSource &source = *light->Coherent();
+            const double lambda = *light->EmissionSpectrum().LineWavelength();
+            const double minHeight = std::min(std::abs(hMin), std::abs(hMax));
+            if (minHeight < lambda)
+                throw Error(scene.Where(&det), "sensor '" + det.name +
+                            "' is closer than one wavelength to the aperture plate '" + shape.name +
+                            "' (Kirchhoff boundary values need a distant sensor)");
+            const double towards = Dot(source.Travel(plate.origin, lambda), towardsSensor);
+            if (std::abs(towards) < 1e-6)
+                throw Error(scene.Where(light), "light '" + light->name + "' travels parallel to the aperture plate '" +
+                                                    shape.name + "' (rs propagates from the source through the plate)");
+            if (!(towards > 0))
+                throw Error(scene.Where(light), "light '" + light->name + "' and sensor '" + det.name +
+                            "' are on the same side of the aperture plate '" + shape.name +
+                            "' (rs propagates from the source through the plate to the sensor)");
+            const bool twoD = Choose2d(scene, *mask, plate, source, lambda, *sensor, light->name);
+            Job job{light, lambda, nullptr, {}};
+            try {
+                job.prop = std::make_unique<rs::Propagator>(plate, *mask, source, lambda, flip, twoD,
+                                                            rs::QuadratureRule::ForAccuracy(accuracy_));
+            } catch (const Error &e) {
+                throw Error(scene.Where(light), "light '" + light->name + "' on the aperture plate '" + shape.name +
+                                                    "': " + e.Message());
+            }
+            try {
+                job.grid = rs::MakeGrid(*sensor, *job.prop);
+            } catch (const Error &e) {
+                throw Error(scene.Where(&det), "sensor '" + det.name + "': " + e.Message());
+            }
+            plan.totalUnits += rs::ProgressUnits(job.grid);
+            plan.jobs.push_back(std::move(job));
+        }
+        return plan;
+    }
+
     bool Deterministic() const override { return true; }
     bool WaveOptical() const override { return true; }
 
@@ -323,8 +360,8 @@ class RsIntegrator final : public Integrator {
 
   private:
     /// Whether the 2-D mode applies (this file's header); throws for `mode = "2d"` when it cannot.
-    bool Choose2d(const Scene &scene, const ApertureMask &mask, const PlateFrame &plate, const CoherentWave &wave,
-                  const SensorPlaneGeometry &sensor, const std::string &lightName) const {
+    bool Choose2d(const Scene &scene, const ApertureMask &mask, const PlateFrame &plate, const CoherentSource &source,
+                  double lambda, const SensorPlaneGeometry &sensor, const std::string &lightName) const {
         if (mode_ == Mode::ThreeD) return false;
         const bool forced = mode_ == Mode::TwoD;
         auto fail = [&](const std::string &why) {
@@ -335,7 +372,8 @@ class RsIntegrator final : public Integrator {
         if (!mask.IsSlitsAlongV(0, &v0, &v1))
             return fail(
                 "the openings must be rectangles that share one range along the plate's y axis (slits)");
-        if (wave.kind != CoherentWave::Kind::Plane || std::abs(Dot(Normalize(wave.dir), plate.e2)) > 1e-9)
+        const std::optional<Vec3> dir = source.PlaneWaveDirection();
+        if (!dir || std::abs(Dot(Normalize(*dir), plate.e2)) > 1e-9)
             return fail("light '" + lightName + "' must be a plane wave with no component along the slits");
         const bool alongT = std::abs(Dot(sensor.frame.t, plate.e2)) >= 1 - 1e-9;
         const bool alongS = std::abs(Dot(sensor.frame.s, plate.e2)) >= 1 - 1e-9;
@@ -346,7 +384,7 @@ class RsIntegrator final : public Integrator {
         Bounds2 slits = mask.Bounds();
         slits.lo.y = v0;
         slits.hi.y = v1;
-        return rs::SlitEndError(plate, slits, sensor, 2 * Pi / wave.lambda) <= auto2dTolerance_;
+        return rs::SlitEndError(plate, slits, sensor, 2 * Pi / lambda) <= auto2dTolerance_;
     }
 
     Mode mode_;
