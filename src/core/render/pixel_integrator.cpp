@@ -16,15 +16,18 @@ namespace phasor {
 
 void PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const RenderOptions &opt,
                                    const Sampler &prototype) const {
-    // A pilot of up to 256 samples spread over the image (at most ~0.5 s, at least one sample),
+    // A pilot of up to 256 samples spread over the image (at most ~0.5 s, at least one sample, and
+    // at most 1/64 of the render's samples, so a tiny render does not pay for more than it renders),
     // extrapolated to every pixel and sample on all threads; the film is not touched.
+    const double samples = double(w) * h * opt.spp;
+    const int pilot = int(std::clamp(samples / 64, 1.0, 256.0));
     const auto t0 = std::chrono::steady_clock::now();
     std::unique_ptr<Sampler> sampler = prototype.Clone();
     PathStats ps;
     int n = 0;
     double elapsed = 0;
-    for (; n < 256 && (n == 0 || elapsed < 0.5); ++n) {
-        const int x = int((n * 0.618034 - std::floor(n * 0.618034)) * w), y = (n * h) / 256;
+    for (; n < pilot && (n == 0 || elapsed < 0.5); ++n) {
+        const int x = int((n * 0.618034 - std::floor(n * 0.618034)) * w), y = (n * h) / pilot;
         // Samples spread over the pixel's set (a sample's cost depends on its direction).
         const int index = int((uint64_t(n) * 2654435761u + 7) % uint64_t(opt.spp));
         sampler->StartPixelSample(x, y, index);
@@ -34,7 +37,7 @@ void PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Rende
         elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
     const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    const double perSample = elapsed / n, samples = double(w) * h * opt.spp;
+    const double perSample = elapsed / n;
     char what[160];
     std::snprintf(what, sizeof what, "%d spp x %dx%d pixels at %.3g ms per sample on %d threads", opt.spp, w, h,
                   perSample * 1e3, threads);
