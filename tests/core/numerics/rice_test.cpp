@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// The Rice distribution function (core/numerics/rice.h): the Poisson-mixture series against the
-// Gauss–Legendre quadrature of the Rice density it replaced, over the whole range the series is
-// used in; against closed forms (a centred disc, a disc whose rim passes through the mean) to
-// relative accuracy, deep in the tails too; its truncation bound; RiceCdf's switches.
+// The Rice distribution function (core/numerics/rice.h): the Poisson-mixture and Marcum (Bessel)
+// series against the Gauss–Legendre quadrature of the Rice density they replaced and against each
+// other, over the whole range they are used in; against closed forms (a centred disc, a disc whose
+// rim passes through the mean) and a fine quadrature to relative accuracy, deep in the tails too;
+// their truncation bounds; RiceCdf's switches.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -27,17 +28,39 @@ void ForGrid(F &&f) {
 
 TEST(Rice, SeriesAgreesWithTheQuadratureOverItsWholeRange) {
     // The quadrature is accurate to ~1e-12 absolute; where it is in the tail beyond t − 11 it
-    // integrates only [t − 11, c] and loses the relative accuracy the series keeps (tested below
+    // integrates only [t − 11, c] and loses the relative accuracy the series keep (tested below
     // against closed forms), so this comparison is absolute.
-    double worst = 0, worstT = 0, worstC = 0;
+    double worstSeries = 0, worstBessel = 0, worstT = 0, worstC = 0;
     int n = 0;
     ForGrid([&](double t, double c) {
-        const double d = std::fabs(RiceCdfSeries(t, c) - RiceCdfQuadrature(t, c));
-        if (d > worst) worst = d, worstT = t, worstC = c;
+        const double q = RiceCdfQuadrature(t, c);
+        const double d = std::fabs(RiceCdfSeries(t, c) - q);
+        if (d > worstSeries) worstSeries = d, worstT = t, worstC = c;
+        worstBessel = std::max(worstBessel, std::fabs(RiceCdfBessel(t, c) - q));
         ++n;
     });
     EXPECT_GT(n, 10000);
-    EXPECT_LT(worst, 1e-12) << "at t = " << worstT << ", c = " << worstC;
+    EXPECT_LT(worstSeries, 1e-12) << "at t = " << worstT << ", c = " << worstC;
+    EXPECT_LT(worstBessel, 1e-12);
+    // Marcum's series beyond the Poisson series' range, up to where it hands over (t·c ≈ 39 000).
+    double worst = 0;
+    for (double t = 60; t < 197; t += 3.7)
+        for (double c = t - 10.9; c < t + 11; c += 0.87) worst = std::max(worst, std::fabs(RiceCdfBessel(t, c) - RiceCdfQuadrature(t, c)));
+    EXPECT_LT(worst, 1e-12);
+}
+
+TEST(Rice, TheTwoSeriesAgreeToRelativeAccuracy) {
+    // Independent algorithms (Poisson mixture vs Miller-recurrence Bessel functions), relative to
+    // each other, where P is not tiny or is a positive sum in both.
+    double worst = 0;
+    ForGrid([&](double t, double c) {
+        // Where RiceCdf uses them: Marcum's 1 − Q is relative only where P is not small, and a disc
+        // 11σ beyond the mean is 0 (there both underflow near 1e-290 in different places).
+        if (t < 1e-3 || (c >= t && c < 2) || t - c >= 11) return;
+        const double a = RiceCdfSeries(t, c), b = RiceCdfBessel(t, c);
+        if (a > 1e-290) worst = std::max(worst, std::fabs(a - b) / a);
+    });
+    EXPECT_LT(worst, 1e-12);
 }
 
 TEST(Rice, SeriesKeepsRelativeAccuracyFarInTheTail) {
@@ -50,6 +73,7 @@ TEST(Rice, SeriesKeepsRelativeAccuracyFarInTheTail) {
             const double ref = IntegrateGaussLegendre(density, 0.0, c, 16, 400);
             ASSERT_GT(ref, 1e-300) << t << " " << c;
             EXPECT_NEAR(RiceCdfSeries(t, c) / ref, 1, 1e-13) << "t = " << t << ", c = " << c;
+            EXPECT_NEAR(RiceCdfBessel(t, c) / ref, 1, 1e-13) << "t = " << t << ", c = " << c;
         }
 }
 
@@ -63,6 +87,7 @@ TEST(Rice, SeriesMatchesClosedFormsToRelativeAccuracy) {
     for (double t = 0.3; t < 63; t *= 1.3) {
         const double ref = 0.5 * (1 - BesselI0Scaled(t * t));
         EXPECT_NEAR(RiceCdfSeries(t, t) / ref, 1, 1e-13) << t;
+        EXPECT_NEAR(RiceCdfBessel(t, t) / ref, 1, 1e-13) << t;
     }
     // Tiny arguments on both sides of the 1e-20 switch to the leading terms.
     for (double t : {1e-12, 1e-10, 1.5e-10, 1e-9})
@@ -74,15 +99,20 @@ TEST(Rice, SeriesMatchesClosedFormsToRelativeAccuracy) {
         }
 }
 
-TEST(Rice, TruncationBoundIsNegligibleEverywhere) {
-    double worst = 0;
+TEST(Rice, TruncationBoundsAreNegligibleEverywhere) {
+    double worstSeries = 0, worstBessel = 0;
     ForGrid([&](double t, double c) {
         double bound = -1;
         const double p = RiceCdfSeries(t, c, &bound);
         ASSERT_GE(bound, 0);
-        if (p > 1e-290) worst = std::max(worst, bound / p);  // (below, the value underflows)
+        if (p > 1e-290) worstSeries = std::max(worstSeries, bound / p);  // (below, the value underflows)
+        const double b = RiceCdfBessel(t, c, &bound);
+        ASSERT_GE(bound, 0);
+        if (b > 1e-290 && t > 0 && t - c < 11 && !(c >= t && c < 2)) worstBessel = std::max(worstBessel, bound / b);
     });
-    EXPECT_LT(worst, 1e-15);
+    EXPECT_LT(worstSeries, 1e-15);
+    // Marcum's, where RiceCdf uses it.
+    EXPECT_LT(worstBessel, 1e-15);
 }
 
 TEST(Rice, IsAProbabilityMonotoneInBothArguments) {
@@ -108,13 +138,12 @@ TEST(Rice, SwitchesOfRiceCdfAreContinuous) {
             EXPECT_EQ(RiceCdf(t, c), 0);
             EXPECT_LE(RiceCdfSeries(t, c), 0.5 * c * c * std::exp(-0.5 * Sqr(t - c))) << t << " " << c;
         }
-    // Up to M = 2000 (t = 63.2) the series, beyond it the quadrature; they agree at the switch.
-    const double top = std::sqrt(2 * RiceSeriesMaxHalfSquare);
-    for (double dc : {-5.0, 0.0, 5.0}) {
-        EXPECT_EQ(RiceCdf(top - 6, top - 6 + dc), RiceCdfSeries(top - 6, top - 6 + dc));
-        EXPECT_EQ(RiceCdf(top + 6, top + 6 + dc), RiceCdfQuadrature(top + 6, top + 6 + dc));
-        EXPECT_NEAR(RiceCdfSeries(top, top + dc), RiceCdfQuadrature(top, top + dc), 1e-12);
-    }
+    // A small disc about a near mean: the Poisson series; else Marcum's; beyond its terms the quadrature.
+    EXPECT_EQ(RiceCdf(0.5, 1.5), RiceCdfSeries(0.5, 1.5));
+    EXPECT_EQ(RiceCdf(1.5, 0.5), RiceCdfBessel(1.5, 0.5));
+    EXPECT_EQ(RiceCdf(30, 35), RiceCdfBessel(30, 35));
+    EXPECT_EQ(RiceCdfBessel(200, 201), RiceCdfQuadrature(200, 201));
+    EXPECT_NEAR(RiceCdfBessel(197, 198), RiceCdfQuadrature(197, 198), 1e-12);
     // Beyond it a disc more than 11σ short of the mean holds nothing (< e^{−60.5}).
     EXPECT_EQ(RiceCdf(100, 88.9), 0);
     EXPECT_EQ(RiceCdf(0, 0), 0);
