@@ -3,8 +3,8 @@
 // render per integrator at ref_factor × the largest budget, then renders at 1, 2, 4, … spp (the
 // double slit: 64, 128, …, its direction lattice needs many);
 // prints, per scene and integrator, the CPU time to reach 5 % and 2 % relative RMSE against the
-// reference and the cost per sample relative to `ray` (from the render loop's own time at the
-// largest budget, the EXR's phasor:render_seconds, so start-up does not enter the ratio).
+// reference and the cost per sample relative to `ray` (the slope of CPU time against spp, so
+// start-up does not enter the ratio).
 //
 // It drives a `phasor` executable (by default this build's), so the same program measures an older
 // tree: `bench_time_to_clean --phasor OLD/build/bin/phasor --scenes OLD/scenes`. Times are the CPU
@@ -15,7 +15,7 @@
 // reference's own noise adds ~1/ref_factor of the image's variance (≤ 3 % of the RMSE at 16×).
 // Reaching a level is interpolated between the bracketing renders (log error linear in log time); a
 // level not reached by the largest budget is extrapolated from the last render with error ∝ spp^−½
-// at its cost per spp, plus its start-up (marked ≈).
+// at the measured CPU cost per spp (marked ≈).
 //
 //   bench_time_to_clean [--phasor BIN] [--scenes DIR] [--size N] [--max-spp S] [--ref-factor F]
 //                       [--integrators grt,sample_solve,ray] [--only cd,boa,…] [--work DIR]
@@ -108,11 +108,10 @@ double Sqr(double v) { return v * v; }
 struct Point {
     int spp;
     double cpu, err;
-    double renderSeconds;  // the render loop alone (EXR metadata phasor:render_seconds; wall, 1 thread)
 };
 
 // CPU time at which the error reaches `level` (error ∝ time^−½ between and after the points).
-std::string TimeTo(const std::vector<Point> &pts, double level) {
+std::string TimeTo(const std::vector<Point> &pts, double level, double cpuPerSpp) {
     char buf[64];
     for (std::size_t i = 0; i < pts.size(); ++i) {
         if (pts[i].err > level) continue;
@@ -127,11 +126,10 @@ std::string TimeTo(const std::vector<Point> &pts, double level) {
         std::snprintf(buf, sizeof buf, "%.2f s", t);
         return buf;
     }
-    // Not reached: the spp that would reach it (variance ∝ 1/spp), at the last render's cost per
-    // spp, plus its start-up (process CPU time minus the render loop's).
+    // Not reached: the last render plus the samples that would reach it (variance ∝ 1/spp) at the
+    // measured CPU cost per spp.
     const Point &l = pts.back();
-    const double startUp = std::max(0.0, l.cpu - l.renderSeconds);
-    std::snprintf(buf, sizeof buf, "≈ %.1f s", startUp + l.renderSeconds * Sqr(l.err / level));
+    std::snprintf(buf, sizeof buf, "≈ %.1f s", l.cpu + cpuPerSpp * l.spp * (Sqr(l.err / level) - 1));
     return buf;
 }
 
@@ -170,7 +168,7 @@ int main(int argc, char **argv) {
     std::printf("Time to a clean image: %s, %d×%d (double slit: its 48 pixels), 1 thread, CPU seconds;\n"
                 "references at %d× %d spp (seed 1000), renders at 1 … %d spp (seed 1)\n\n",
                 o.phasor.c_str(), o.size, o.size, o.refFactor, o.maxSpp, o.maxSpp);
-    std::printf("| scene | integrator | to 5 %% | to 2 %% | rel. RMSE at %d spp | render s per spp | per spp / ray |\n",
+    std::printf("| scene | integrator | to 5 %% | to 2 %% | rel. RMSE at %d spp | CPU s per spp | per spp / ray |\n",
                 o.maxSpp);
     std::printf("|---|---|---|---|---|---|---|\n");
     for (const Scene &s : scenes) {
@@ -185,13 +183,16 @@ int main(int argc, char **argv) {
             for (int spp = s.sppScale; spp <= o.maxSpp * s.sppScale; spp *= 2) {
                 const double cpu = Render(o, s, integ, spp, 1, base + ".exr");
                 if (cpu < 0) break;
-                const phasor::Image img = phasor::ReadImage(base + ".exr");
-                const auto rs = img.metadata.find("phasor:render_seconds");
-                pts.push_back({spp, cpu, RelativeRmse(Values(img), ref),
-                               rs != img.metadata.end() ? std::stod(rs->second) : cpu});
+                pts.push_back({spp, cpu, RelativeRmse(Values(phasor::ReadImage(base + ".exr")), ref)});
             }
             if (pts.size() < 2 || !std::isfinite(pts.back().err)) continue;
-            perSpp[integ] = pts.back().renderSeconds / pts.back().spp;
+            // CPU seconds per spp: the least-squares slope of process CPU time against spp (start-up
+            // is the intercept), robust on a loaded machine where the render loop's wall time is not.
+            double ms = 0, mc = 0, sxx = 0, sxy = 0;
+            for (const Point &p : pts) ms += p.spp, mc += p.cpu;
+            ms /= pts.size(), mc /= pts.size();
+            for (const Point &p : pts) sxx += (p.spp - ms) * (p.spp - ms), sxy += (p.spp - ms) * (p.cpu - mc);
+            perSpp[integ] = sxy / sxx;
             curves[integ] = pts;
         }
         for (const auto &[integ, pts] : curves) {
@@ -199,7 +200,8 @@ int main(int argc, char **argv) {
             if (perSpp.count("ray") && perSpp["ray"] > 0)
                 std::snprintf(ratio, sizeof ratio, "%.2f×", perSpp[integ] / perSpp["ray"]);
             std::printf("| %s | %s | %s | %s | %.3f | %.4f | %s |\n", s.name.c_str(), integ.c_str(),
-                        TimeTo(pts, 0.05).c_str(), TimeTo(pts, 0.02).c_str(), pts.back().err, perSpp[integ],
+                        TimeTo(pts, 0.05, perSpp[integ]).c_str(), TimeTo(pts, 0.02, perSpp[integ]).c_str(),
+                        pts.back().err, perSpp[integ],
                         ratio);
             std::fflush(stdout);
         }
