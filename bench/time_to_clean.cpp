@@ -3,8 +3,8 @@
 // render per integrator at ref_factor × the largest budget, then renders at 1, 2, 4, … spp (the
 // double slit: 64, 128, …, its direction lattice needs many);
 // prints, per scene and integrator, the CPU time to reach 5 % and 2 % relative RMSE against the
-// reference and the cost per sample relative to `ray` (the slope of CPU time against spp, so
-// start-up does not enter the ratio).
+// reference and the cost per sample relative to `ray` (the slope of CPU time against spp over all
+// renders and the reference, so start-up does not enter the ratio).
 //
 // It drives a `phasor` executable (by default this build's), so the same program measures an older
 // tree: `bench_time_to_clean --phasor OLD/build/bin/phasor --scenes OLD/scenes`. Times are the CPU
@@ -177,7 +177,9 @@ int main(int argc, char **argv) {
         std::map<std::string, std::vector<Point>> curves;
         for (const std::string &integ : o.integrators) {
             const std::string base = o.work + "/" + s.name + "_" + integ;
-            if (Render(o, s, integ, o.maxSpp * o.refFactor * s.sppScale, 1000, base + "_ref.exr") < 0) continue;
+            const int refSpp = o.maxSpp * o.refFactor * s.sppScale;
+            const double refCpu = Render(o, s, integ, refSpp, 1000, base + "_ref.exr");
+            if (refCpu < 0) continue;
             const std::vector<double> ref = Values(phasor::ReadImage(base + "_ref.exr"));
             std::vector<Point> pts;
             for (int spp = s.sppScale; spp <= o.maxSpp * s.sppScale; spp *= 2) {
@@ -186,12 +188,15 @@ int main(int argc, char **argv) {
                 pts.push_back({spp, cpu, RelativeRmse(Values(phasor::ReadImage(base + ".exr")), ref)});
             }
             if (pts.size() < 2 || !std::isfinite(pts.back().err)) continue;
-            // CPU seconds per spp: the least-squares slope of process CPU time against spp (start-up
-            // is the intercept), robust on a loaded machine where the render loop's wall time is not.
+            // CPU seconds per spp: the least-squares slope of process CPU time against spp over every
+            // render, the reference's long lever arm included (start-up is the intercept) — robust on
+            // a loaded machine, where the render loop's wall time is not.
+            std::vector<Point> fit = pts;
+            fit.push_back({refSpp, refCpu, 0});
             double ms = 0, mc = 0, sxx = 0, sxy = 0;
-            for (const Point &p : pts) ms += p.spp, mc += p.cpu;
-            ms /= pts.size(), mc /= pts.size();
-            for (const Point &p : pts) sxx += (p.spp - ms) * (p.spp - ms), sxy += (p.spp - ms) * (p.cpu - mc);
+            for (const Point &p : fit) ms += p.spp, mc += p.cpu;
+            ms /= fit.size(), mc /= fit.size();
+            for (const Point &p : fit) sxx += (p.spp - ms) * (p.spp - ms), sxy += (p.spp - ms) * (p.cpu - mc);
             perSpp[integ] = sxy / sxx;
             curves[integ] = pts;
         }
