@@ -146,7 +146,11 @@ class DistantLight final : public Light {
 
     std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
                                            const SampledWavelengths &wl) const override {
-        return MeasureDistantGR(g, dir_, Emission(wl), disc_, alpha_, omega_);
+        // The geometry first: most GRs see none of a small source (and half face away from it), so
+        // the emission spectrum is evaluated only for a measurement that is not zero.
+        std::optional<GrMeasurement> m = MeasureDistantGR(g, dir_, SampledSpectrum(1.0), disc_, alpha_, omega_);
+        if (m && !m->value.IsZero()) m->value *= Emission(wl);
+        return m;
     }
     std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
                                              const SampledWavelengths &wl) const override {

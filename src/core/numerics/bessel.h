@@ -24,7 +24,7 @@ void Hankel01(double x, Complex *h0, Complex *h1);
 
 /// The exponentially scaled modified Bessel function I₀(x)·e^{−x} for x ≥ 0: the power series
 /// below 22, the asymptotic expansion A&S 9.7.1 summed to convergence above (relative error
-/// < 1e-14 against std::cyl_bessel_i; ~6× faster — the disc-source overlap calls it 192 times).
+/// < 1e-14 against std::cyl_bessel_i; ~6× faster; RiceCdfQuadrature calls it 192 times).
 double BesselI0Scaled(double x);
 
 /// J_0(x), J_1(x), …, J_nMax(x) for x ≥ 0 into out[0 … nMax], by Miller's backward recurrence

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — Gauss–Legendre quadrature: the one set of rules every integral in the project uses
-// (the `rs` propagator, the `aperture` footprint integral, the GR disc measurement).
+// (the `rs` propagator, the `aperture` footprint integral, the Rice quadrature of core/numerics/rice.h).
 #pragma once
 
 #include <type_traits>

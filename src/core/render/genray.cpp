@@ -5,8 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/numerics/bessel.h"
-#include "core/numerics/gauss_legendre.h"
+#include "core/numerics/rice.h"
 
 namespace phasor {
 
@@ -172,22 +171,7 @@ double MeasureGaussianBeam(const GenRay &g, const GenRay &beam, double power) {
 double DiscGaussianProbability(double offset, double radius, double sigma) {
     if (radius <= 0) return 0;
     if (!(sigma > 0)) return offset <= radius ? 1.0 : 0.0;
-    const double t = offset / sigma, c = radius / sigma;
-    // Rice density of ρ = |X|/σ: ρ·exp(−(ρ−t)²/2)·I₀e(ρt), which is negligible (< e^{-60})
-    // outside [t − 11, t + 11].
-    auto density = [&](double r) { return r * std::exp(-0.5 * (r - t) * (r - t)) * BesselI0Scaled(r * t); };
-    constexpr double Reach = 11;
-    const double lo = std::max(0.0, t - Reach), hi = t + Reach;
-    if (c >= hi) return 1;
-    if (c <= lo) {
-        // A disc far out in the tail: negligible unless the disc is small, where [0, c] is smooth
-        // and short enough to integrate directly (keeps relative accuracy for tiny sources).
-        return c < 2 ? IntegrateGaussLegendre(density, 0.0, c, 8, 8) : 0.0;
-    }
-    // Integrate the shorter side for accuracy near 0 and 1.
-    // Composite 8-point Gauss–Legendre on 24 panels.
-    if (c - lo <= hi - c) return std::min(1.0, IntegrateGaussLegendre(density, lo, c, 8, 24));
-    return std::max(0.0, 1 - IntegrateGaussLegendre(density, c, hi, 8, 24));
+    return RiceCdf(offset / sigma, radius / sigma);
 }
 
 double RectGaussianProbability(const Vec2 &mu, double sigma, const Vec2 &lo, const Vec2 &hi) {

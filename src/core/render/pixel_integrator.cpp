@@ -21,8 +21,11 @@ double PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Ren
     // A pilot spread over the image by the R2 sequence (any prefix covers the whole image, so a
     // pilot stopped early by its time limit is not confined to the top rows) and over the pixel's
     // samples. The first samples fill caches and tables built on first use (a grating's order
-    // listing, Gauss–Legendre rules): they are not timed. Then up to 1024 samples or 0.5 s,
+    // listing, Gauss–Legendre rules): they are not timed. Then up to 1024 samples or 0.5 s, and at
+    // most 1/64 of the render's samples (so a tiny render does not pay for more than it renders),
     // extrapolated to every pixel and sample on all threads; the film is not touched.
+    const double samples = double(w) * h * opt.spp;
+    const int pilot = int(std::clamp(samples / 64, 1.0, 1024.0));
     std::unique_ptr<Sampler> sampler = prototype.Clone();
     PathStats ps;
     ScratchBuffer buffer;  // what a sample prepares (kernels), reset after each
@@ -37,8 +40,8 @@ double PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Ren
         EstimatePixel(scene, x, y, wl, *sampler, buffer, ps);
         buffer.Reset();
     };
-    constexpr int WarmUp = 8;
-    for (int n = 0; n < WarmUp; ++n) sample(n);
+    const int warmUp = std::min(8, pilot / 8);
+    for (int n = 0; n < warmUp; ++n) sample(n);
     // Timed in this thread's CPU time: on a machine other processes share, wall time would count
     // their time too, and the estimate would change with the load (it is the render's time on the
     // threads' own cores).
@@ -50,12 +53,12 @@ double PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Ren
     const double c0 = cpuNow();
     int n = 0;
     double elapsed = 0;
-    for (; n < 1024 && (n == 0 || elapsed < 0.5); ++n) {
-        sample(WarmUp + n);
+    for (; n < pilot - warmUp && (n == 0 || elapsed < 0.5); ++n) {
+        sample(warmUp + n);
         elapsed = cpuNow() - c0;
     }
     const int threads = opt.threads > 0 ? opt.threads : int(std::max(1u, std::thread::hardware_concurrency()));
-    const double perSample = elapsed / n, samples = double(w) * h * opt.spp, seconds = perSample * samples / threads;
+    const double perSample = elapsed / n, seconds = perSample * samples / threads;
     char what[160];
     std::snprintf(what, sizeof what, "%d spp x %dx%d pixels at %.3g ms per sample on %d threads", opt.spp, w, h,
                   perSample * 1e3, threads);
