@@ -13,6 +13,7 @@ PACKAGES=(
   fonts-dejavu-core   # DejaVu Sans: labels on images drawn by OpenImageIO (core/image/sheet.cpp)
   python3-matplotlib  # every plot (python/phasor_plot.py: profile, compare, probe); brings numpy
   chromium            # headless: the test that opens `phasor compare`'s page (tests/app/compare.sh)
+  libopenmpi-dev openmpi-bin  # MPI (docs/distributed.md): mpirun -n N phasor render …; the MPI tests
 )
 # Optional extras for `make fuzz` (clang + libFuzzer runtime).
 if [[ "${PHASOR_WITH_FUZZ:-0}" == 1 ]]; then

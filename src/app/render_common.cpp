@@ -14,6 +14,7 @@
 #include <iostream>
 #include <new>
 
+#include "app/distributed.h"
 #include "app/profile.h"
 #include "core/image/image_io.h"
 #include "parser/parser.h"
@@ -86,7 +87,7 @@ std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Di
     return scene;
 }
 
-std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
+std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag, SceneDesc *descOut) {
     std::optional<SceneDesc> desc;
     try {
         desc = ParseScene(o, diag);
@@ -101,7 +102,9 @@ std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
                   << "'\n";
         return nullptr;
     }
-    return BuildScene(o, *desc, diag, o.integrator);
+    std::unique_ptr<Scene> scene = BuildScene(o, *desc, diag, o.integrator);
+    if (descOut) *descOut = std::move(*desc);
+    return scene;
 }
 
 void PrintError(const Error &e) {
@@ -157,7 +160,8 @@ RenderOptions OptionsFor(const Scene &scene, const CliOptions &o) {
     RenderOptions opt;
     opt.spp = o.spp > 0 ? o.spp : rs.spp;
     opt.seed = o.seed >= 0 ? uint64_t(o.seed) : rs.seed;
-    opt.threads = o.threads;
+    // Under MPI, ranks sharing a node share its cores (distributed.h DefaultThreads).
+    opt.threads = o.threads > 0 ? o.threads : dist::DefaultThreads();
     opt.sampler = o.sampler.empty() ? rs.sampler : o.sampler;
     opt.cancel = &gCancel;
     return opt;

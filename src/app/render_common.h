@@ -43,8 +43,9 @@ std::optional<SceneDesc> ParseScene(const CliOptions &o, Diagnostics &diag);
 /// Builds `desc` with `integrator` ("" = the scene's own); prints `diag` and "N errors in 'SCENE'".
 std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Diagnostics &diag,
                                   const std::string &integrator);
-/// ParseScene + BuildScene with o.integrator: nullptr after errors (all of them printed).
-std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag);
+/// ParseScene + BuildScene with o.integrator: nullptr after errors (all of them printed). The
+/// description read goes to `desc` when given.
+std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag, SceneDesc *desc = nullptr);
 /// Prints an error: `file:line:col: error: …` with the source line when it has a location.
 void PrintError(const Error &e);
 
@@ -57,7 +58,8 @@ void CheckWritable(const std::string &path);
 /// available memory (film.h Film::MemoryNeeded, AvailableMemory).
 void CheckMemory(const Scene &scene);
 /// RenderOptions from the scene's Render block and the command line (--spp, --seed, --threads,
-/// --sampler), cancelled by StopFlag().
+/// --sampler), cancelled by StopFlag(). Without --threads, an MPI rank takes its share of its
+/// node's cores (dist::DefaultThreads).
 RenderOptions OptionsFor(const Scene &scene, const CliOptions &o);
 
 /// A RenderOptions::progress callback drawing a bar on stderr: "[label] [====   ]  40% 8/16 spp

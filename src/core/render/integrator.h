@@ -16,6 +16,7 @@
 namespace phasor {
 
 class Scene;
+class WorkShare;
 
 struct RenderOptions {
     int spp = 16;
@@ -33,6 +34,8 @@ struct RenderOptions {
     /// Called from the calling thread with a warning found while rendering (e.g. a work estimate
     /// far beyond the usual, before the first pass); may be empty.
     std::function<void(const std::string &)> warn;
+    /// Other processes and checkpoints (core/render/work.h); null: this process alone.
+    WorkShare *work = nullptr;
 };
 
 /// Render-time events an integrator counts and the user is told about once after the render (named
@@ -65,6 +68,8 @@ struct RenderCounters {
     }
     /// "warning: N path vertices …" lines for every non-zero counter.
     std::vector<std::string> Warnings() const;
+    /// EXR metadata "phasor:count:<key>" = N for every non-zero counter (others removed).
+    void ToMetadata(std::map<std::string, std::string> &metadata) const;
 };
 
 /// The estimated run time [s] above which integrators warn before rendering (WorkWarning).
