@@ -52,19 +52,14 @@ class FsdContract : public ::testing::TestWithParam<int> {
   protected:
     void SetUp() override {
         const Preset p = Presets()[std::size_t(GetParam())];
-        Diagnostics diag;
-        auto desc = ParseSceneString(FsdScene(p.shapes), "fsd.wscene", DefineList{}, diag);
-        ASSERT_TRUE(desc);
-        scene_ = Scene::Build(*desc, diag);
+        scene_ = BuildFsdScene(p.shapes);
         ASSERT_TRUE(scene_);
         occ_ = std::make_unique<fsd::Occluders>(*scene_);
         st_.enabled = true;
         g_ = FsdGr(p.origin * Um, Vec3(0.01, 0.02, 1), Lambda, std::pow(2.5 * Um, 2), p.rho);
         ASSERT_EQ(fsd::FindEvent(*scene_, *occ_, g_, Infinity, nullptr, st_, &ev_), fsd::Search::Event);
         g_.Propagate(ev_.t);
-        wl_.lambda.fill(Lambda);
-        wl_.pdf.fill(1);
-        wl_.delta = true;
+        wl_ = OneWavelength(Lambda);
         lobe_ = std::make_unique<fsd::Lobe>(ev_, g_, wl_, st_);
         name_ = p.name + (p.rho != 0 ? "_curved" : "_waist");
     }

@@ -59,22 +59,13 @@ TEST_P(FsdKnifeEdge, LobeMatchesFresnelAcrossTheShadowBoundaryAndFiveFringes) {
     const double um = 1e-6 * scale, lambda = 0.5 * um;
     // A box covering x < 0, 2 (scaled) µm thick, much wider than the footprint along y.
     const std::string box = Box(Vec3(-4000 * scale, -4000 * scale, 0), Vec3(0, 4000 * scale, 2 * scale)).Shape("edge");
-    Diagnostics diag;
-    auto desc = ParseSceneString(FsdScene(box, 500 * scale), "knife.wscene", DefineList{}, diag);
-    ASSERT_TRUE(desc);
-    auto scene = Scene::Build(*desc, diag);
+    auto scene = BuildFsdScene(box, 500 * scale);
     ASSERT_TRUE(scene);
     const fsd::Occluders occ(*scene);
     fsd::Settings st;
     st.enabled = true;
     const double zDet = 1002 * um, beta0 = 3 * um;
-    const SampledWavelengths wl = [&] {
-        SampledWavelengths w;
-        w.lambda.fill(lambda);
-        w.pdf.fill(1);
-        w.delta = true;
-        return w;
-    }();
+    const SampledWavelengths wl = OneWavelength(lambda);
     // From 3 fringe periods deep in the shadow to beyond the 5th bright fringe (w ≈ 4.4).
     const double zone = std::sqrt(lambda * 1000 * um / 2);  // x = w·zone
     double worst = 0, shifted = 0;

@@ -20,24 +20,7 @@ using namespace test;
 constexpr double Um = 1e-6;
 constexpr double Lambda = 0.5e-6;
 
-std::unique_ptr<Scene> Build(const std::string &shapes) {
-    Diagnostics diag;
-    auto desc = ParseSceneString(FsdScene(shapes), "fsd.wscene", DefineList{}, diag);
-    std::unique_ptr<Scene> scene;
-    if (desc) scene = Scene::Build(*desc, diag);
-    std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(scene) << os.str();
-    return scene;
-}
-
-SampledWavelengths OneWavelength(double lambda) {
-    SampledWavelengths wl;
-    wl.lambda.fill(lambda);
-    wl.pdf.fill(1);
-    wl.delta = true;
-    return wl;
-}
+std::unique_ptr<Scene> Build(const std::string &shapes) { return BuildFsdScene(shapes); }
 
 // The knife edge: a thin box covering x < 0 (|y| < 200 µm, z ∈ [0, 2] µm), seen by GRs travelling
 // towards +z from z = −50 µm.
@@ -229,6 +212,64 @@ TEST(FsdLobe, UnobstructedGrMatchesTheClosedFormMeasurement) {
             const double m = g.k[0] * g.k[0] * MeasurePlaneWave(physical, -wo, 1.0);
             EXPECT_NEAR(f, m, 2e-3 * m + 1e-12 * g.k[0] * g.k[0] * beta2) << "ρ = " << rho << ", tilt " << a;
         }
+    }
+}
+
+}  // namespace
+}  // namespace phasor
+
+namespace phasor {
+namespace {
+
+// |ψ|² mass (waist form, β at the event) of the region `inside` of the event plane, by a grid sum
+// over the footprint's box (plane coordinates relative to the GR's centre).
+template <typename Inside>
+double GridMass(const fsd::Event &ev, Inside inside) {
+    const double beta = std::sqrt(ev.heroBeta2), h = beta / 100;
+    double sum = 0;
+    for (double u = -5 * beta; u < 5 * beta; u += h)
+        for (double v = -5 * beta; v < 5 * beta; v += h) {
+            const double pu = u + 0.5 * h, pv = v + 0.5 * h;
+            if (!inside(ev.p + ev.frame.s * pu + ev.frame.t * pv)) continue;
+            sum += std::exp(-(pu * pu + pv * pv) / ev.heroBeta2) / (Pi * ev.heroBeta2) * h * h;
+        }
+    return sum;
+}
+
+TEST(FsdGeometry, AnalyticSphereOutlineAndDiskRim) {
+    // A sphere's outline (a circle in every projection) and a tilted disk's rim (an ellipse) enter
+    // the mask as polygons of the curve's area: the covered mass matches a grid sum over the exact
+    // curve to the grid's resolution.
+    fsd::Settings s;
+    s.enabled = true;
+    const double beta2 = std::pow(3 * Um, 2);
+    {
+        auto scene = Build("Shape \"sphere\" \"ball\" { radius = 20 um }\n");
+        ASSERT_TRUE(scene);
+        fsd::Occluders occ(*scene);
+        fsd::Event ev;
+        const SpectralGenRay g = FsdGr(Vec3(21 * Um, 2 * Um, -100 * Um), Vec3(0, 0, 1), Lambda, beta2, 0);
+        ASSERT_EQ(fsd::FindEvent(*scene, occ, g, Infinity, nullptr, s, &ev), fsd::Search::Event);
+        // The nearest approach is at the sphere's equator, z = 0.
+        EXPECT_NEAR(ev.t, 100 * Um, 1e-3 * Um);
+        const double ref = GridMass(ev, [](const Vec3 &x) { return x.x * x.x + x.y * x.y < std::pow(20 * Um, 2); });
+        EXPECT_NEAR(ev.coveredFraction, ref, 3e-3) << ev.coveredFraction << " vs " << ref;
+        EXPECT_GT(ref, 0.2);
+    }
+    {
+        // A disk of radius 15 µm tilted by 40° about x (normal in the y–z plane), centred at z = 0.
+        auto scene = Build("Shape \"disk\" \"lid\" { radius = 15 um  to_world = rotate(40 deg, [1 0 0]) }\n");
+        ASSERT_TRUE(scene);
+        fsd::Occluders occ(*scene);
+        fsd::Event ev;
+        const SpectralGenRay g = FsdGr(Vec3(2 * Um, 11 * Um, -100 * Um), Vec3(0, 0, 1), Lambda, beta2, 0);
+        ASSERT_EQ(fsd::FindEvent(*scene, occ, g, Infinity, nullptr, s, &ev), fsd::Search::Event);
+        // Projected along z the rim is the ellipse x² + (y/cos40°)² < r².
+        const double c = std::cos(40 * Pi / 180), r = 15 * Um;
+        const double ref = GridMass(ev, [&](const Vec3 &x) { return x.x * x.x + std::pow(x.y / c, 2) < r * r; });
+        EXPECT_NEAR(ev.coveredFraction, ref, 3e-3) << ev.coveredFraction << " vs " << ref;
+        EXPECT_GT(ref, 0.2);
+        EXPECT_LT(ref, 0.8);
     }
 }
 

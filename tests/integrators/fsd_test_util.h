@@ -8,8 +8,12 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "core/math.h"
 #include "core/render/genray.h"
+#include "core/render/scene.h"
+#include "parser/parser.h"
 
 namespace phasor::test {
 
@@ -92,6 +96,27 @@ inline std::string FsdScene(const std::string &shapes, double lambdaNm = 500) {
        << "Integrator \"grt\" \"grt\" {}\n"
        << "Render { detector = @s  integrator = @grt  spp = 1 }\n";
     return os.str();
+}
+
+/// FsdScene(shapes, λ) built; a failed build is a test failure (with the diagnostics) and null.
+inline std::unique_ptr<Scene> BuildFsdScene(const std::string &shapes, double lambdaNm = 500) {
+    Diagnostics diag;
+    auto desc = ParseSceneString(FsdScene(shapes, lambdaNm), "fsd.wscene", DefineList{}, diag);
+    std::unique_ptr<Scene> scene;
+    if (desc) scene = Scene::Build(*desc, diag);
+    std::ostringstream os;
+    diag.Print(os);
+    EXPECT_TRUE(scene) << os.str();
+    return scene;
+}
+
+/// One carried wavelength λ [m] (a line spectrum).
+inline SampledWavelengths OneWavelength(double lambda) {
+    SampledWavelengths wl;
+    wl.lambda.fill(lambda);
+    wl.pdf.fill(1);
+    wl.delta = true;
+    return wl;
 }
 
 /// A GR at `o` travelling along `d` with one wavelength (λ in metres) and footprint β², ρ there.

@@ -23,16 +23,7 @@ using namespace test;
 constexpr double Um = 1e-6;
 constexpr double Lambda = 0.5e-6;
 
-std::unique_ptr<Scene> Build(const std::string &shapes) {
-    Diagnostics diag;
-    auto desc = ParseSceneString(FsdScene(shapes), "fsd.wscene", DefineList{}, diag);
-    std::unique_ptr<Scene> scene;
-    if (desc) scene = Scene::Build(*desc, diag);
-    std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(scene) << os.str();
-    return scene;
-}
+std::unique_ptr<Scene> Build(const std::string &shapes) { return BuildFsdScene(shapes); }
 
 std::string AperturePlate(const std::string &openings) {
     return "Material \"aperture\" \"ap\" { " + openings +
@@ -45,10 +36,7 @@ double WorstDifference(const Scene &meshes, const Scene &plate, const Vec3 &o, d
     const fsd::Occluders occ(meshes);
     fsd::Settings st;
     st.enabled = true;
-    SampledWavelengths wl;
-    wl.lambda.fill(Lambda);
-    wl.pdf.fill(1);
-    wl.delta = true;
+    const SampledWavelengths wl = OneWavelength(Lambda);
     SpectralGenRay g = FsdGr(o * Um, Vec3(0, 0, 1), Lambda, std::pow(beta0 * Um, 2), 0);
     fsd::Event ev;
     EXPECT_EQ(fsd::FindEvent(meshes, occ, g, Infinity, nullptr, st, &ev), fsd::Search::Event);

@@ -401,7 +401,8 @@ Search FindEvent(const Scene &scene, const Occluders &occ, const SpectralGenRay 
         const double rEnd = IntegrationRadius(g, t1, s);
         const Vec3 c = g.o + g.d * (0.5 * (t + t1));
         const double radius = std::sqrt(0.25 * (t1 - t) * (t1 - t) + rEnd * rEnd);
-        // The primitive nearest to the mean ray in this part.
+        // The primitives this ball holds, each at its nearest approach to the rest of the axis
+        // [t, tStop] (a sphere met by the ball's end is nearest at its equator, further on).
         double bestDist = Infinity, bestTau = 0;
         accel.ForEachNear(c, radius, [&](unsigned si, unsigned prim) {
             if (!occ.Contains(si) || shapes[si] == exclude) return;
@@ -409,22 +410,22 @@ Search FindEvent(const Scene &scene, const Occluders &occ, const SpectralGenRay 
             double tau = t, dist = Infinity;
             if (const TriangleMesh *mesh = shape->Mesh()) {
                 const uint32_t *idx = &mesh->indices[3 * std::size_t(prim)];
-                dist = AxisTriangle(g.o, g.d, t, t1, mesh->positions[idx[0]], mesh->positions[idx[1]],
+                dist = AxisTriangle(g.o, g.d, t, tStop, mesh->positions[idx[0]], mesh->positions[idx[1]],
                                     mesh->positions[idx[2]], &tau);
             } else if (const auto *sphere = dynamic_cast<const AnalyticSphere *>(shape)) {
-                tau = std::clamp(Dot(sphere->Center() - g.o, g.d), t, t1);
+                tau = std::clamp(Dot(sphere->Center() - g.o, g.d), t, tStop);
                 dist = std::max(0.0, Length(g.o + g.d * tau - sphere->Center()) - sphere->Radius());
             } else if (const auto *disk = dynamic_cast<const AnalyticDisk *>(shape)) {
-                if (auto h = disk->Intersect(axis, t, t1)) {
+                if (auto h = disk->Intersect(axis, t, tStop)) {
                     tau = *h;
                     dist = 0;
                 } else {
                     for (int k = 0; k < 64; ++k) {
                         double ss, tt;
-                        const double dd = SegmentSegment(g.o + g.d * t, g.o + g.d * t1,
+                        const double dd = SegmentSegment(g.o + g.d * t, g.o + g.d * tStop,
                                                           disk->RimPoint(2 * Pi * k / 64),
                                                           disk->RimPoint(2 * Pi * (k + 1) / 64), &ss, &tt);
-                        if (dd < dist) dist = dd, tau = t + ss * (t1 - t);
+                        if (dd < dist) dist = dd, tau = t + ss * (tStop - t);
                     }
                 }
             }
