@@ -1088,4 +1088,16 @@ Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec
     return Trapezoid(Orient(q, g, false), y0, y1, a0, piece.loB, b0, piece.hiB);
 }
 
+Complex IntegrateTrapezoid(const PlateGaussian &g, double y0, double y1, double a0, double a1, double b0,
+                           double b1) {
+    // The expansion centre: the middle of the trapezoid's bounding box inside the D13 box (as
+    // IntegratePiece does for its trapezoids).
+    const double ya = std::max(y0, -g.hy), yb = std::min(y1, g.hy);
+    if (!(yb > ya)) return 0;
+    const double xa = std::max(std::min(a0 + a1 * ya, a0 + a1 * yb), -g.hx);
+    const double xb = std::min(std::max(b0 + b1 * ya, b0 + b1 * yb), g.hx);
+    const Quadratic q = xb > xa ? Expand(g, xa, xb, ya, yb) : Expand(g, 0, 0, ya, yb);
+    return Trapezoid(Orient(q, g, false), y0, y1, a0, a1, b0, b1);
+}
+
 }  // namespace phasor

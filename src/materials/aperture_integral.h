@@ -159,4 +159,11 @@ Complex IntegrateWavelet(const PlateGaussian &g, const PixelWavelet &w, const Ap
 /// PlateGaussian); the residual is their third-order term over the piece.
 Complex IntegratePiece(const PlateGaussian &g, const MaskPiece &piece, const Vec2 &origin);
 
+/// The same integrand over the trapezoid {y ∈ [y0, y1], x ∈ [a0 + a1·y, b0 + b1·y]} (coordinates
+/// relative to the hit point) ∩ the window, always in closed form along x (to far × hx) and by
+/// Gauss–Legendre along y (to hy) — also for rectangles, so that complementary sets of trapezoids
+/// (a region and the rest of the box, used by free-space diffraction, docs/fsd.md) are cut by the
+/// same window and their integrals add up to the box's exactly.
+Complex IntegrateTrapezoid(const PlateGaussian &g, double y0, double y1, double a0, double a1, double b0, double b1);
+
 }  // namespace phasor

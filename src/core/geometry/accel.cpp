@@ -289,6 +289,38 @@ std::optional<SurfaceInteraction> Accel::IntersectSurface(const Ray &ray, double
     return shapes_[hit->shapeIndex]->Interaction(ray, hit->t, hit->prim, hit->b1, hit->b2);
 }
 
+namespace {
+
+struct NearQuery {
+    const std::function<void(unsigned, unsigned)> *f;
+};
+
+bool NearCallback(RTCPointQueryFunctionArguments *args) {
+    const auto *q = static_cast<const NearQuery *>(args->userPtr);
+    (*q->f)(args->geomID, args->primID);
+    return false;  // the query radius is not changed
+}
+
+}  // namespace
+
+void Accel::ForEachNear(const Vec3 &center, double radius,
+                        const std::function<void(unsigned shapeIndex, unsigned prim)> &f) const {
+    if (!(radius >= 0) || !std::isfinite(radius)) return;
+    FtzDazScope ftz;
+    RTCPointQuery q;
+    q.x = float(center.x);
+    q.y = float(center.y);
+    q.z = float(center.z);
+    q.time = 0;
+    // Float rounding of the centre and radius: widen by a relative margin (conservative).
+    const double pad = 1e-6 * (std::abs(center.x) + std::abs(center.y) + std::abs(center.z) + radius);
+    q.radius = std::nextafter(ToFloat(radius + pad), INFINITY);
+    RTCPointQueryContext ctx;
+    rtcInitPointQueryContext(&ctx);
+    NearQuery nq{&f};
+    rtcPointQuery(impl_->scene, &q, &ctx, NearCallback, &nq);
+}
+
 std::size_t Accel::RawIntersectCount(const std::vector<Ray> &rays) const {
     FtzDazScope ftz;
     std::size_t hits = 0;

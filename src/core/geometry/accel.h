@@ -3,6 +3,7 @@
 // include Embree, accel.cpp is the only translation unit that does.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -31,6 +32,11 @@ class Accel {
     std::optional<Hit> Intersect(const Ray &ray, double tMin = 0, double tMax = Infinity) const;
     /// True if anything is hit with t in (tMin, tMax). Thread-safe.
     bool Occluded(const Ray &ray, double tMin, double tMax) const;
+    /// Calls f(shapeIndex, prim) for every primitive whose bounding box Embree finds within
+    /// `radius` [m] of `center` (an rtcPointQuery ball query; analytic shapes count as one
+    /// primitive, 0). Conservative: the caller tests the primitive itself. Thread-safe.
+    void ForEachNear(const Vec3 &center, double radius,
+                     const std::function<void(unsigned shapeIndex, unsigned prim)> &f) const;
     /// Intersect + Shape::Interaction.
     std::optional<SurfaceInteraction> IntersectSurface(const Ray &ray, double tMin = 0,
                                                        double tMax = Infinity) const;

@@ -4,6 +4,7 @@
 // geometry.
 #pragma once
 
+#include <cmath>
 #include <optional>
 #include <string>
 
@@ -53,6 +54,12 @@ class AnalyticDisk : public Shape {
     double Area() const override { return area_; }
     ShapeSample Sample(const Vec2 &u) const override;  // uniform by area
     std::string ToString() const override;
+
+    double Radius() const { return radius_; }
+    /// The point of the rim at angle φ [rad] (world space).
+    Vec3 RimPoint(double phi) const { return toWorld_.Point(Vec3(radius_ * std::cos(phi), radius_ * std::sin(phi), 0)); }
+    const Vec3 &Normal() const { return normal_; }
+    Vec3 Center() const { return toWorld_.Point(Vec3(0, 0, 0)); }
 
   private:
     double radius_;

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <set>
 #include <cstdlib>
 #include <thread>
 
@@ -342,6 +343,55 @@ TEST(Accel, LargeMeshBuild) {
     std::printf("subdivide %.2f s, BVH build %.2f s, %.2f Mrays/s (1 thread, %zu hits)\n", S(t1 - t0).count(),
                 S(t2 - t1).count(), rays.size() / S(t4 - t3).count() / 1e6, hits);
     EXPECT_GT(hits, rays.size() / 2);
+}
+
+}  // namespace
+}  // namespace phasor
+
+namespace phasor {
+namespace {
+
+// Distance from p to triangle (a, b, c), brute force on a barycentric grid refined by projection
+// (enough to decide whether the triangle meets a ball whose radius is not within 1e-3 of it).
+double PointTriangleDistance(const Vec3 &p, const Vec3 &a, const Vec3 &b, const Vec3 &c) {
+    double best = Infinity;
+    const int n = 200;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; i + j <= n; ++j) {
+            const double u = double(i) / n, v = double(j) / n;
+            best = std::min(best, Length(a + (b - a) * u + (c - a) * v - p));
+        }
+    return best;
+}
+
+TEST(Accel, BallQueryFindsEveryPrimitiveWithinTheRadius) {
+    // ForEachNear is conservative: every triangle and analytic shape that meets the ball is
+    // reported (it may report more); a ball far from everything reports nothing.
+    TestScene sc(Vec3(0, 0, 0), 60, 4, 17);
+    Accel accel(sc.shapes);
+    TestRng rng(5);
+    for (int q = 0; q < 40; ++q) {
+        const Vec3 c = RandomInBox(rng, Vec3(-3, -3, -3), Vec3(3, 3, 3));
+        const double r = 0.2 + 1.2 * rng.Uniform();
+        std::set<std::pair<unsigned, unsigned>> found;
+        accel.ForEachNear(c, r, [&](unsigned s, unsigned p) { found.insert({s, p}); });
+        for (std::size_t t = 0; t < sc.mesh.TriangleCount(); ++t) {
+            const double d = PointTriangleDistance(c, sc.mesh.positions[3 * t], sc.mesh.positions[3 * t + 1],
+                                                   sc.mesh.positions[3 * t + 2]);
+            if (d < r * (1 - 1e-3)) {
+                EXPECT_TRUE(found.count({0u, unsigned(t)})) << "triangle " << t;
+            }
+        }
+        for (std::size_t k = 0; k < sc.spheres.size(); ++k) {
+            const double d = Length(sc.spheres[k].first - c) - sc.spheres[k].second;
+            if (d < r * (1 - 1e-3)) {
+                EXPECT_TRUE(found.count({unsigned(k + 1), 0u})) << "sphere " << k;
+            }
+        }
+    }
+    int far = 0;
+    accel.ForEachNear(Vec3(100, 100, 100), 1, [&](unsigned, unsigned) { ++far; });
+    EXPECT_EQ(far, 0);
 }
 
 }  // namespace
