@@ -2,6 +2,7 @@
 // phasor — the shared generalized-ray path sampler (gr_path.h): the helpers of its estimate.
 #include "integrators/gr_path.h"
 
+#include "core/render/lobe_average.h"
 #include "core/render/registry.h"
 
 namespace phasor::grpath {
@@ -100,17 +101,34 @@ bool GrPathSampler::UniformLobe(const NearDeltaLobe &lobe, const SampledWaveleng
 }
 
 SampledSpectrum GrPathSampler::MeasureThroughLobe(const Scene &scene, const SpectralGenRay &g,
-                                                  const SurfaceInteraction &si, const NearDeltaLobe &lobe,
-                                                  const SampledWavelengths &wl, PathStats &stats) {
+                                                  const SurfaceInteraction &si, const ScatterQuery &q,
+                                                  const NearDeltaLobe &lobe, const SampledWavelengths &wl,
+                                                  PathStats &stats) {
     // A lobe whose direction or index differs between the carried wavelengths (dispersive) is
     // measured per wavelength along that wavelength's own direction.
     if (lobe.weight.IsZero()) return SampledSpectrum(0.0);
-    if (UniformLobe(lobe, wl)) return lobe.weight * MeasureClosedForm(scene, AlongLobe(g, si, lobe, 0), &si, wl, stats);
+    const bool uniform = UniformLobe(lobe, wl);
     SampledSpectrum v(0.0);
-    for (int i = 0; i < wl.Count(); ++i)
-        if (lobe.weight[i] > 0)
-            v[i] = lobe.weight[i] * MeasureClosedForm(scene, AlongLobe(g, si, lobe, i), &si, wl, stats)[i];
+    for (int i = 0; i < (uniform ? 1 : wl.Count()); ++i) {
+        if (!uniform && !(lobe.weight[i] > 0)) continue;
+        const SpectralGenRay out = AlongLobe(g, si, lobe, i);
+        for (const Light *light : scene.Lights()) {
+            if (!light->MeasuredInClosedForm()) continue;
+            auto m = MeasureOne(scene, *light, out, &si, wl, stats);
+            if (!m) continue;
+            const SampledSpectrum a = ThroughLobeWeight(si, q, g, lobe, *m, uniform ? -1 : i);
+            if (uniform) v += a * m->value;
+            else v[i] += a[i] * m->value[i];
+        }
+    }
     return v;
+}
+
+SampledSpectrum GrPathSampler::ThroughLobeWeight(const SurfaceInteraction &si, const ScatterQuery &q,
+                                                 const SpectralGenRay &g, const NearDeltaLobe &lobe,
+                                                 const GrMeasurement &m, int wavelength) {
+    return AverageLobeWeight(*si.material, q, lobe, MeasurementEnsemble(si.shading, g, lobe, m.wi, m.profile),
+                             LobeTransfer::Radiance, wavelength);
 }
 
 void GrPathSampler::FootprintSample::Remember(const ScatterQuery &query, const SurfaceInteraction &hit,

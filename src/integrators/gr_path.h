@@ -82,11 +82,9 @@ struct Event {
     Vec3 travel;
     /// The distance the light travels to get there (Infinity for lights at infinity).
     double dist = Infinity;
-    /// Per carried wavelength, the angular variance [rad²] of the Gaussian window through which a
-    /// closed form measured the light (Detector, ThroughLobe: the GR's σ_k²/k², D14); Infinity where
-    /// the detector integrates every direction of its acceptance (Incidence, LobeIncidence) or the
-    /// path sampled the light.
-    std::array<double, NumWavelengths> window = [] { std::array<double, NumWavelengths> a; a.fill(Infinity); return a; }();
+    /// The light's angular profile as the closed form integrated it (ThroughLobe, LobeIncidence; about
+    /// −travel, or its own centre): the ensemble the event's lobe is averaged over (theory §0 D15).
+    AngularProfile profile;
 };
 
 /// Where a detector sample sits, for the polarisation frame of a forward solve.
@@ -154,11 +152,19 @@ class GrPathSampler {
                                     int i);
     /// True if the lobe's direction and index are the same at every carried wavelength.
     static bool UniformLobe(const NearDeltaLobe &lobe, const SampledWavelengths &wl);
-    /// k²·M of the closed-form sources seen through one listed lobe, times its weight a_j (D14).
+    /// k²·M of the closed-form sources seen through one listed lobe of query q at si, times the
+    /// lobe's weight averaged over the plane waves each measurement integrates (ThroughLobeWeight).
     static SampledSpectrum MeasureThroughLobe(const Scene &scene, const SpectralGenRay &g,
-                                              const SurfaceInteraction &si, const NearDeltaLobe &lobe,
-                                              const SampledWavelengths &wl, PathStats &stats);
-
+                                              const SurfaceInteraction &si, const ScatterQuery &q,
+                                              const NearDeltaLobe &lobe, const SampledWavelengths &wl,
+                                              PathStats &stats);
+    /// ⟨a_j⟩ for a closed-form measurement `m` through listed lobe `lobe` of query q (the GR g arriving
+    /// at si): the lobe's weight averaged over the product of the measurement's light profile and the
+    /// outgoing GR's angular spectrum (theory §0 D15, core/render/lobe_average.h); for `wavelength`
+    /// only when ≥ 0.
+    static SampledSpectrum ThroughLobeWeight(const SurfaceInteraction &si, const ScatterQuery &q,
+                                             const SpectralGenRay &g, const NearDeltaLobe &lobe,
+                                             const GrMeasurement &m, int wavelength);
   private:
     /// A sample of a footprint-aware kernel (theory §9) waiting for the distance to what its ray
     /// hits: the kernel's response depends on the incident wave's curvature (EvalFrom), and its
@@ -264,6 +270,7 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
                     e.wavelength = c.wavelength;
                     e.travel = c.travel;
                     e.dist = c.dist;
+                    e.profile = c.profile;
                     report(e);
                 };
                 const LobeIncidence::ModeOf mode = [&](const Light *l, const Vec3 &p) {
@@ -293,7 +300,6 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
                 e.ensemble = light == sceneLight;
                 e.travel = -m->wi;
                 e.dist = m->dist;
-                for (int i = 0; i < physical.count; ++i) e.window[std::size_t(i)] = physical.At(i).AngularVariance();
                 report(e);
             }
         } else {
@@ -422,9 +428,10 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
                             const Light *light = sink.Measured(sceneLight, si->p, wl);
                             auto m = MeasureOne(scene, *light, out, &*si, wl, stats);
                             if (!m) continue;
+                            const SampledSpectrum a = ThroughLobeWeight(*si, q, g, lobe, *m, uniform ? -1 : i);
                             SampledSpectrum v(0.0);
-                            if (uniform) v = lobe.weight * m->value;
-                            else v[i] = lobe.weight[i] * m->value[i];
+                            if (uniform) v = a * m->value;
+                            else v[i] = a[i] * m->value[i];
                             if (v.IsZero()) continue;
                             L += T * v;
                             Event e;
@@ -440,12 +447,12 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
                             e.wavelength = uniform ? -1 : i;
                             e.travel = -m->wi;
                             e.dist = m->dist;
-                            for (int j = 0; j < out.count; ++j) e.window[std::size_t(j)] = out.At(j).AngularVariance();
+                            e.profile = m->profile;
                             report(e);
                         }
                     }
                 } else {
-                    L += T * MeasureThroughLobe(scene, g, *si, lobe, wl, stats);
+                    L += T * MeasureThroughLobe(scene, g, *si, q, lobe, wl, stats);
                 }
             }
             measured = true;
@@ -457,6 +464,10 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
 
         // One term of the Eq. 22 mixture: the GR keeps β, ρ; its mean direction turns and |k|
         // follows the medium (S6.4).
+        // A sampled near-delta lobe keeps its weight at the GR's mean direction (theory §0 D15): the
+        // detector's own direction sampling integrates the GR's spectrum over what follows (measured
+        // by the mean ray: emitters, escapes, NEE after a later continuous lobe), so averaging the
+        // lobe over the spectrum as well would smooth it twice (docs/accuracy.md).
         auto bs = mat->Sample(q, sampler.Get1D(), sampler.Get2D());
         if (!bs || bs->weight.IsZero()) break;
         // A dispersive lobe is followed at the hero wavelength only (D10). The companions are

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/render/light.h"
+#include "core/render/lobe_average.h"
 #include "core/render/material.h"
 
 namespace phasor {
@@ -24,9 +25,10 @@ constexpr int MaxHalvings = 40;    // of a step that leaves the shape (0.25 rad 
 /// The state at one detector direction: the hit, the lobe's exit direction and the source.
 struct LobeState {
     SurfaceInteraction si;
-    std::array<double, NumWavelengths> weight{};  // a_j(λ_i) of the lobe at this hit
-    GrIncidence inc;                               // the light at p (towards the source: inc.wi)
-    Vec3 wo;                                       // the lobe's exit direction at wavelength `i` (world)
+    NearDeltaLobe lobe;   // the lobe as listed at this hit (weight a_j(λ_i), indices, directions)
+    Vec3 dir;             // the detector direction that reaches it
+    GrIncidence inc;      // the light at p (towards the source: inc.wi)
+    Vec3 wo;              // the lobe's exit direction at wavelength `i` (world)
 };
 
 /// What is solved: one light through one lobe (by id) of one shape, at carried wavelength `i`
@@ -43,22 +45,32 @@ struct LobeTarget {
 
     /// The state along direction `dir` from o; false if the ray does not reach the shape first, the
     /// lobe is not listed there, or no light arrives at p.
+    /// The GR as it meets the surface at si along dir: the detector's footprint, placed at the hit
+    /// (a source that varies in space, a Gaussian beam, is seen through the pixel's own footprint).
+    SpectralGenRay AtHit(const SurfaceInteraction &si, const Vec3 &dir) const {
+        SpectralGenRay gp = g;
+        gp.o = si.p;
+        gp.d = dir;
+        return gp;
+    }
+    /// The kernel query of that GR (its pointers refer to si and gp).
+    ScatterQuery Query(const SurfaceInteraction &si, const SpectralGenRay &gp) const {
+        ScatterQuery q;
+        q.wi = si.shading.ToLocal(-gp.d);
+        q.wl = &wl;
+        q.rayOptics = false;
+        q.tex = TextureEvalContext(si, std::sqrt(g.beta2[0]));
+        q.gr = &gp;
+        q.si = &si;
+        return q;
+    }
+
     bool Evaluate(const Vec3 &dir, LobeState *st, PathStats &stats) const {
         ++stats.rays;
         auto si = scene.Intersect(Ray{o, dir});
         if (!si || si->shape != shape || !si->material) return false;
-        // The GR as it meets the surface: the detector's footprint, placed at the hit (a source
-        // that varies in space, a Gaussian beam, is seen through the pixel's own footprint).
-        SpectralGenRay gp = g;
-        gp.o = si->p;
-        gp.d = dir;
-        ScatterQuery q;
-        q.wi = si->shading.ToLocal(-dir);
-        q.wl = &wl;
-        q.rayOptics = false;
-        q.tex = TextureEvalContext(*si, std::sqrt(g.beta2[0]));
-        q.gr = &gp;
-        q.si = &*si;
+        const SpectralGenRay gp = AtHit(*si, dir);
+        const ScatterQuery q = Query(*si, gp);
         NearDeltaLobes lobes;
         si->material->ListNearDelta(q, lobes);
         const NearDeltaLobe *lobe = nullptr;
@@ -68,7 +80,8 @@ struct LobeTarget {
         auto inc = light->IncidenceOnGR(gp, wl);
         if (!inc) return false;
         st->si = *si;
-        for (int k = 0; k < wl.Count(); ++k) st->weight[k] = lobe->weight[k];
+        st->lobe = *lobe;
+        st->dir = dir;
         st->inc = *inc;
         st->wo = si->shading.ToWorld(lobe->wo[i]);
         return true;
@@ -230,11 +243,22 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                     const bool blocked = std::isinf(st.inc.dist) ? scene.OccludedDirection(st.si, s)
                                                                  : scene.Occluded(st.si, st.si.p + s * st.inc.dist);
                     if (blocked) continue;
-                    // (1): E_det = a_j·E_p/|det ∂r/∂u|, arriving at o from the hit.
+                    // (1): E_det = a_j·E_p/|det ∂r/∂u|, arriving at o from the hit — with a_j averaged
+                    // over the light's angular profile, each plane wave weighted by the lobe's irradiance
+                    // transfer relative to the central one's, which |det| holds (theory §0 D15).
+                    const SpectralGenRay gp = target.AtHit(st.si, st.dir);
+                    const ScatterQuery q = target.Query(st.si, gp);
+                    LobeEnsemble ensemble;
+                    for (LobeEnsemble::Wave &w : ensemble.wave) {
+                        w.source = st.si.shading.ToLocal(st.inc.wi);
+                        w.profile = st.inc.profile;
+                    }
+                    const SampledSpectrum a = AverageLobeWeight(*st.si.material, q, st.lobe, ensemble,
+                                                                LobeTransfer::Irradiance, uniform ? -1 : i);
                     GrIncidence inc;
                     inc.irradiance = SampledSpectrum(0.0);
                     for (int k = 0; k < wl.Count(); ++k)
-                        if (uniform || k == i) inc.irradiance[k] = st.weight[k] * st.inc.irradiance[k] / absDet;
+                        if (uniform || k == i) inc.irradiance[k] = a[k] * st.inc.irradiance[k] / absDet;
                     inc.wi = Normalize(st.si.p - ds.ray.o);
                     inc.dist = Length(st.si.p - ds.ray.o) + st.inc.dist;
                     inc.angularVariance = st.inc.angularVariance;
@@ -255,6 +279,7 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                         c.wavelength = uniform ? -1 : i;
                         c.travel = -s;
                         c.dist = st.inc.dist;
+                        c.profile = st.inc.profile;
                         (*report)(c);
                     }
                 }

@@ -76,14 +76,16 @@ inline std::optional<GrMeasurement> MeasureDistantGR(const SpectralGenRay &g, co
     });
     m.wi = -s;
     m.dist = Infinity;
+    if (disc && alpha > 0) m.profile = AngularProfile::Disc(std::sin(alpha));
+    else if (!disc && omega > 0) m.profile = AngularProfile::Gaussian(omega);
     return m;
 }
 
 /// D4a for a light at infinity: the exact own-frame integral of the plane-wave measurement over the
 /// hemisphere about s, E·(1 − e^{−β²k²}) (theory §0 D4); a distant source's angular profile only
-/// widens the arrival directions (angularVariance += Ω).
+/// widens the arrival directions (angularVariance += Ω) and is reported as `profile` (D15).
 inline GrIncidence DistantIncidence(const SpectralGenRay &g, const Vec3 &s, const SampledSpectrum &e,
-                                    double omega) {
+                                    double omega, const AngularProfile &profile = {}) {
     GrIncidence inc;
     inc.irradiance = SampledSpectrum(0.0);
     for (int i = 0; i < g.count; ++i) {
@@ -94,6 +96,7 @@ inline GrIncidence DistantIncidence(const SpectralGenRay &g, const Vec3 &s, cons
     inc.wi = -s;
     inc.dist = Infinity;
     inc.angularVariance = g0.AngularVariance() + omega;
+    inc.profile = profile;
     return inc;
 }
 

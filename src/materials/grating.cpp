@@ -94,6 +94,7 @@
 
 #include "core/diagnostics.h"
 #include "core/numerics/bessel.h"
+#include "core/render/lobe_average.h"
 #include "core/render/registry.h"
 #include "materials/smooth_surface.h"
 
@@ -375,6 +376,47 @@ double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, double pe
     return (transmitted ? orders->transmitted : orders->reflected).Energy(j);
 }
 
+double GratingMaterial::OrderEnergy(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec2 &unitShift,
+                                    double nIn, double nOut, bool transmitted, int j, Vec3 *wo,
+                                    GratingOrders *scratch) const {
+    if (!NearDeltaDirection(q.wi, nIn, nOut, unitShift * double(j), q.wl->lambda[i], transmitted, wo)) return 0;
+    return SourceEfficiency(q, i, period, g, *wo, transmitted, j, scratch);
+}
+
+SampledSpectrum GratingMaterial::LobeWeight(const ScatterQuery &q, int lobe) const {
+    SampledSpectrum out(0.0);
+    const bool transmitted = lobe >= TransmittedId / 2;
+    const int j = transmitted ? lobe - TransmittedId : lobe;
+    if (q.wi.z == 0 || (transmitted && !transmission_) || std::abs(j) > (q.rayOptics ? 0 : maxOrder_)) return out;
+    const double period = period_.Eval(q.tex);
+    const Vec3 g = GratingVector(q);
+    const Vec2 unitShift = Vec2(g.x, g.y) * (2 * Pi / period);
+    const bool inside = transmission_ && q.wi.z < 0;
+    GratingOrders scratch;
+    for (int i = 0; i < q.wl->Count(); ++i) {
+        const double nSub = surface_->SubstrateIndex(q.wl->lambda[i]).real();
+        const double nIn = inside ? nSub : q.etaOutside, nOut = transmitted ? (inside ? q.etaOutside : nSub) : nIn;
+        Vec3 wo;
+        const double e = OrderEnergy(q, i, period, g, unitShift, nIn, nOut, transmitted, j, &wo, &scratch);
+        out[i] = transmitted ? e * Sqr(nIn / nOut) : e;  // (η_i/η_t)²: radiance, as listed
+    }
+    return out;
+}
+
+double GratingMaterial::AngularBandwidth(const ScatterQuery &q, double kappaMax) const {
+    // J_j(m)² oscillates twice per π of m, and m = k₀h·√(n² − κ²) (reflection; transmission: half of
+    // the difference of two such roots) changes by k₀h·κ/√(n² − κ²) per unit κ; plus the substrate's.
+    const double lambda = q.wl->lambda[0], k0 = 2 * Pi / lambda;
+    const bool inside = transmission_ && q.wi.z < 0;
+    const double nSub = surface_->SubstrateIndex(lambda).real();
+    const double nIn = inside ? nSub : q.etaOutside;
+    const double root = std::sqrt(std::max(nIn * nIn - kappaMax * kappaMax, 1e-6));
+    double relief = 2 * k0 * height_ * kappaMax / root;
+    if (transmission_) relief += k0 * height_ * kappaMax / std::sqrt(std::max(nSub * nSub - kappaMax * kappaMax, 1e-6));
+    return HeroToShortest(*q.wl) *
+           (relief + surface_->Bandwidth(lambda, q.etaOutside, kappaMax, inside, q.tex, LobeAverageTolerance));
+}
+
 void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const {
     if (q.wi.z == 0) return;
     if (listingCache.Matches(id_, q)) {
@@ -406,10 +448,8 @@ void GratingMaterial::ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) 
             int lit = -1;  // the first wavelength where the lobe carries light
             for (int i = 0; i < count; ++i) {
                 const std::size_t s = std::size_t(i);
-                const double nOut = transmitted ? nFar[s] : nWi[s];
-                if (!NearDeltaDirection(q.wi, nWi[s], nOut, unitShift * double(j), q.wl->lambda[i], transmitted, &wo[s]))
-                    continue;
-                energy[s] = SourceEfficiency(q, i, period, g, wo[s], transmitted, j, &scratch);
+                energy[s] = OrderEnergy(q, i, period, g, unitShift, nWi[s], transmitted ? nFar[s] : nWi[s], transmitted,
+                                        j, &wo[s], &scratch);
                 if (energy[s] > 0 && lit < 0) lit = i;
             }
             if (lit < 0) continue;

@@ -109,6 +109,13 @@ class GratingMaterial final : public Material {
 
     unsigned Capabilities(const ScatterQuery &) const override { return CapNearDelta; }
     void ListNearDelta(const ScatterQuery &q, NearDeltaLobes &out) const override;
+    /// Order `lobe`'s weight alone (its direction from the vector grating equation, its efficiency
+    /// at that source direction), without listing the other orders.
+    SampledSpectrum LobeWeight(const ScatterQuery &q, int lobe) const override;
+    /// The rate of J_j(m(κ))² (twice that of m = k₀h·√(n² − κ²)) plus the substrate's (theory §0 D15).
+    /// The renormalisation over the propagating orders jumps where an order appears; there the
+    /// average converges only algebraically.
+    double AngularBandwidth(const ScatterQuery &q, double kappaMax) const override;
     /// Reflected orders carry a coated substrate's coherence terms.
     bool HasCoherenceTerms() const override;
     /// The grating vector ĝ: the groove direction (`angle`) + 90°.
@@ -132,6 +139,10 @@ class GratingMaterial final : public Material {
     /// The source's orders are left in *orders.
     double SourceEfficiency(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec3 &source,
                             bool transmitted, int j, GratingOrders *orders) const;
+    /// Order j's direction *wo from q.wi at wavelength slot i (indices nIn → nOut) and its energy
+    /// efficiency there (SourceEfficiency); 0 if it does not propagate.
+    double OrderEnergy(const ScatterQuery &q, int i, double period, const Vec3 &g, const Vec2 &unitShift, double nIn,
+                       double nOut, bool transmitted, int j, Vec3 *wo, GratingOrders *scratch) const;
 
     FloatTexture period_;  // Λ [m], > 0
     double height_ = 0;    // h, peak-to-peak [m]

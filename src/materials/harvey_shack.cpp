@@ -70,6 +70,7 @@
 
 #include "core/diagnostics.h"
 #include "core/render/material.h"
+#include "core/render/lobe_average.h"
 #include "core/render/registry.h"
 #include "materials/fresnel.h"
 #include "materials/k_correlation_psd.h"
@@ -259,6 +260,17 @@ class HarveyShackMaterial final : public Material {
     bool ConservesEnergyPerIncidentDirection() const override { return true; }
     /// The specular lobe carries a coated substrate's coherence terms.
     bool HasCoherenceTerms() const override { return surface_->LayerCount() > 0; }
+    /// The specular lobe's α_spec(κ)·F(κ): the coated substrate's bandwidth plus the rate of
+    /// ln α_spec = −(2kσ_h)²(1 − κ²/n²), 8k²σ_h²κ/n² per unit κ (theory §0 D15).
+    double AngularBandwidth(const ScatterQuery &q, double kappaMax) const override {
+        const bool inside = q.wi.z < 0 && transparent_;
+        const double lambda = q.wl->lambda[0];
+        const double n = inside ? surface_->SubstrateIndex(lambda).real() : q.etaOutside;
+        const double k0 = 2 * Pi / lambda;
+        return HeroToShortest(*q.wl) *
+               (surface_->Bandwidth(lambda, q.etaOutside, kappaMax, inside, q.tex, LobeAverageTolerance) +
+                8 * k0 * k0 * sigma_ * sigma_ * kappaMax);
+    }
 
     std::string ToString() const override {
         std::ostringstream os;

@@ -170,6 +170,9 @@ class MixMaterial final : public Material {
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
     bool HasCoherenceTerms() const override { return a_->HasCoherenceTerms() || b_->HasCoherenceTerms(); }
+    double AngularBandwidth(const ScatterQuery &q, double kappaMax) const override {
+        return std::max(a_->AngularBandwidth(q, kappaMax), b_->AngularBandwidth(q, kappaMax));
+    }
     /// a's reference direction, else b's.
     std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override {
         const std::optional<double> a = a_->ReferenceAngle(tex);

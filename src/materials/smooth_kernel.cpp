@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/diagnostics.h"
+#include "core/render/lobe_average.h"
 #include "materials/fresnel.h"
 
 namespace phasor {
@@ -174,6 +175,11 @@ std::optional<LobeResponse> SmoothKernel::EvalLobe(const ScatterQuery &q, int lo
         if (r.coherence.any) r.coherence.shear[i] = surface_.ShearVector(lambda, q.etaOutside, q.wi, inside, q.tex);
     }
     return r;
+}
+
+double SmoothKernel::AngularBandwidth(const ScatterQuery &q, double kappaMax) const {
+    return HeroToShortest(*q.wl) *
+           surface_.Bandwidth(q.wl->lambda[0], q.etaOutside, kappaMax, FromInside(q), q.tex, LobeAverageTolerance);
 }
 
 std::string SmoothKernel::Describe(const std::string &name) const {

@@ -62,6 +62,9 @@ class SmoothKernel : public Material {
     /// file) and, for a coated surface, its coherence terms.
     std::optional<LobeResponse> EvalLobe(const ScatterQuery &q, int lobe, const Vec3 &wo) const override;
     const SmoothSurface *Surface() const override { return &surface_; }
+    /// The coating's LayerStackBandwidth (its fringes' rate in κ, theory §0 D15; bare: the Fresnel
+    /// coefficients' branch points only), at the hero and scaled to the shortest carried wavelength.
+    double AngularBandwidth(const ScatterQuery &q, double kappaMax) const override;
     /// A coated surface reports the coating's coherence terms (EvalLobe).
     bool HasCoherenceTerms() const override { return surface_.LayerCount() > 0; }
     bool Transmits() const { return transmits_; }

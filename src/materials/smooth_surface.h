@@ -88,6 +88,12 @@ class SmoothSurface {
     Vec2 ShearVector(double lambda, double etaOutside, const Vec3 &wi, bool fromInside,
                      const TextureEvalContext &tex) const;
 
+    /// Material::AngularBandwidth of the surface for light arriving with tangential wave-vector
+    /// κ = kappa (units of k₀) from the outside (index etaOutside) or, if fromInside, from the
+    /// substrate: LayerStackBandwidth at vacuum wavelength lambda, tolerance tol (theory §0 D15).
+    double Bandwidth(double lambda, double etaOutside, double kappa, bool fromInside, const TextureEvalContext &tex,
+                     double tol) const;
+
     std::string ToString() const;
 
   private:

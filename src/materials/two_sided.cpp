@@ -203,6 +203,9 @@ class TwoSidedMaterial final : public Material {
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
     bool HasCoherenceTerms() const override { return front_->HasCoherenceTerms() || back_->HasCoherenceTerms(); }
+    double AngularBandwidth(const ScatterQuery &q, double kappaMax) const override {
+        return std::max(front_->AngularBandwidth(q, kappaMax), back_->AngularBandwidth(q, kappaMax));
+    }
     /// The front face's reference direction (the side the shading frame describes).
     std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override {
         return front_->ReferenceAngle(tex);

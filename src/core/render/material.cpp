@@ -34,6 +34,14 @@ Vec3 LobeSAxis(const Vec3 &wi, const Vec3 &wo) {
     return Vec3(0, 1, 0);
 }
 
+SampledSpectrum Material::LobeWeight(const ScatterQuery &q, int lobe) const {
+    NearDeltaLobes lobes;
+    ListNearDelta(q, lobes);
+    for (const NearDeltaLobe &l : lobes)
+        if (l.id == lobe) return l.weight;
+    return SampledSpectrum(0.0);
+}
+
 std::optional<LobeResponse> Material::EvalContinuousLobes(const ScatterQuery &q, const Vec3 &wo) const {
     ContinuousLobeIds ids;
     ContinuousLobes(q, ids);

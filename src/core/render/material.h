@@ -259,6 +259,23 @@ class Material {
     /// surface, thin_film, multilayer); false promises that none does (checked by the contract
     /// suite), which lets a polarised integrator skip evaluating lobes whose response cannot matter.
     virtual bool HasCoherenceTerms() const { return false; }
+    /// How fast the efficiencies a_j of the near-delta lobes may vary with the direction the light
+    /// arrives from (theory §0 D15, core/render/lobe_average.h): a bound B [rad per unit of κ] such
+    /// that the m-th derivative of a_j with respect to κ, the tangential wave-vector of the arrival
+    /// direction in units of k₀ = 2π/λ (n·sinθ in the light's medium; the Snell invariant), is at
+    /// most B^m·sup|a_j| for κ ≤ kappaMax, at every carried wavelength — a band-limited model: a
+    /// film's fringes oscillate at 2k₀·d·dq/dκ (q = √(n² − κ²)) per round trip, a grating's
+    /// J_j(m)² at 2·dm/dκ. 0 (the default) declares an efficiency that is smooth on the scale of a
+    /// radian (Fresnel reflection away from grazing and critical angles).
+    virtual double AngularBandwidth(const ScatterQuery &q, double kappaMax) const {
+        (void)q;
+        (void)kappaMax;
+        return 0;
+    }
+    /// Listed lobe `lobe`'s weight a_j(λ) per carried wavelength for the query, as ListNearDelta
+    /// lists it (0 where it is not listed). The default lists every lobe; kernels with many lobes
+    /// (gratings) answer one directly.
+    virtual SampledSpectrum LobeWeight(const ScatterQuery &q, int lobe) const;
     /// The kernel's reference direction in the tangent plane at `tex`, as an angle [rad]
     /// counter-clockwise from the shading frame's x axis (dp/du) — a grating's grating vector — or
     /// nullopt for a kernel without one (isotropic). `phasor probe` measures azimuths from it.
