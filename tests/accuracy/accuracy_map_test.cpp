@@ -56,7 +56,8 @@ TEST(AccuracyMap, Films) {
 }
 
 // The pixel's size does not matter to a sensor that integrates the source over its directions (D4a):
-// a pixel of σ = 0.3 µm (a wide angular spectrum) reads the same average.
+// a pixel of σ = 0.3 µm reads the same average — given an acceptance that holds its wide angular
+// spectrum (σ_θ = 1/(√2·k·σ) = 0.22 rad at 600 nm: with 20° it reads 10 % less, the cone's fraction).
 TEST(AccuracyMap, FilmsUnderFinePixels) {
     std::vector<FilmCase> cases;
     for (double d : {3e-6, 30e-6})
@@ -66,6 +67,7 @@ TEST(AccuracyMap, FilmsUnderFinePixels) {
             c.thetaDeg = theta;
             c.radiusDeg = 2;
             c.sigma = 0.3e-6;
+            c.acceptanceDeg = 90;
             cases.push_back(c);
         }
     Check([&](AccuracyMap &m) { AddFilmCells(m, cases, Integrators, 0.01); });
