@@ -22,6 +22,7 @@
 #include <mutex>
 #include <vector>
 
+#include "core/render/lobe_average.h"
 #include "core/render/path_common.h"
 #include "integrators/lobe_incidence.h"
 
@@ -194,6 +195,13 @@ template <class Sink>
 SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, SampledWavelengths &wl, Sampler &sampler,
                                         PathStats &stats, Sink &sink) const {
     constexpr bool rec = Sink::Records;
+    // Lobe averages whose quadrature hit its cap (theory §4.11) during this sample, counted for the
+    // render's warnings (the sink's solves included).
+    struct CappedAverages {
+        PathStats &stats;
+        long long before = LobeAverageCost().capped;
+        ~CappedAverages() { stats.counters.Add(RenderEvent::LobeAverageCapped, LobeAverageCost().capped - before); }
+    } cappedAverages{stats};
     auto ds = scene.GetDetector().GenerateGR(x, y, stats.sample, sampler, wl);
     if (!ds) return SampledSpectrum(0.0);
     SpectralGenRay g;

@@ -129,9 +129,9 @@ struct FilmCase {
     }
     /// The scale below which an error is not taken relative to the reference: sup PerWave over the
     /// film's fringe — the largest value over the source's directions in the plane of incidence (±2
-    /// radii) and over one fringe of thickness at the central direction. lobe_average.h bounds its
-    /// quadrature's remainder by LobeAverageTolerance = 1e-4 of that sup: at a dark fringe (R ≈ 1e-10
-    /// for 30 µm at normal incidence) 1 % of the reference is below what any stated bound resolves.
+    /// radii) and over one fringe of thickness at the central direction. lobe_average.h's rules
+    /// meet LobeAverageTolerance = 1e-4 of that sup per axis (an average: 3e-4): at a dark fringe
+    /// (R ≈ 1e-10 for 30 µm at normal incidence) 1 % of the reference is below any stated bound.
     double FringePeak() const {
         const double theta = Radians(thetaDeg), reach = 2 * Radians(source == "plane_wave" ? 0 : radiusDeg);
         double m = 0;
@@ -164,7 +164,7 @@ inline double RenderFilm(const FilmCase &c, const std::string &integrator) {
 }
 
 /// The film's error: a cell passes when |value − reference| is within `tolerance` of the reference
-/// or within lobe_average.h's stated bound, LobeAverageTolerance = 1e-4 of the fringe's peak (at a
+/// or within LobeAverageTolerance = 1e-4 of the fringe's peak (a third of lobe_average.h's bound; at a
 /// dark fringe, R ≈ 1e-10 for 30 µm at normal incidence, 1 % of R is 1e-12: no bound resolves it).
 inline void AddFilmCells(AccuracyMap &map, const std::vector<FilmCase> &cases, const std::vector<std::string> &integrators,
                          double tolerance, const std::string &family = "films") {

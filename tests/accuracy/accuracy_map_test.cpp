@@ -182,6 +182,49 @@ TEST(AccuracyMap, MeanDirectionFilmsFail) {
     EXPECT_GE(m.Failures(), int(m.cells.size()) / 3) << "the map must catch the mean-direction evaluation";
 }
 
+// Outside the proven envelope the render says so: a rule that needs more nodes than the cap of 256
+// per axis to meet its bound (a thick film under a wide source) is counted
+// (RenderEvent::LobeAverageCapped, printed as a warning by `phasor render`). Prints where the cap
+// starts at 45° and 70° and the error of those cells against the reference (unproven there, but 256
+// Gauss–Legendre nodes per axis still resolve a few hundred radians of phase; the sensor's
+// acceptance is widened where its cone, not the average, would cut a 10° disc).
+TEST(AccuracyMap, CappedAveragesAreCounted) {
+    auto run = [](double thickness, double radiusDeg, double thetaDeg, double *error) {
+        FilmCase c;
+        c.thickness = thickness;
+        c.radiusDeg = radiusDeg;
+        c.thetaDeg = thetaDeg;
+        // 40° at 45° keeps the sensor's cone from cutting a 10° disc; at 70° the direct light is 40°
+        // off the sensor's axis, so 20° (and discs up to 5°).
+        c.acceptanceDeg = thetaDeg < 60 ? 40 : 20;
+        auto scene = BuildValidation(ValidationScene("film_source.wscene"), c.Defines(), "gr");
+        EXPECT_TRUE(scene);
+        if (!scene) return -1LL;
+        Film film(1, 1, scene->GetDetector().Response());
+        RenderOptions opt;
+        opt.spp = 1;
+        const RenderStats st = scene->GetIntegrator().Render(*scene, film, opt);
+        if (error) {
+            const Image img = film.Resolve();
+            const double ref = c.Reference();
+            *error = std::abs(img.At(0, 0, img.ChannelIndex("intensity")) - ref) / ref;
+        }
+        return st.counters[RenderEvent::LobeAverageCapped];
+    };
+    EXPECT_EQ(run(10e-6, 5, 45, nullptr), 0) << "a 10 µm film under a 5° disc is within the proven bound";
+    EXPECT_GT(run(3e-3, 10, 45, nullptr), 0) << "a 3 mm film under a 10° disc is not";
+    for (double theta : {45.0, 70.0})
+        for (double d : {10e-6, 30e-6, 100e-6})
+            for (double r : {2.0, 5.0, 10.0}) {
+                if (theta > 60 && r > 5) continue;
+                double e = 0;
+                const long long n = run(d, r, theta, &e);
+                std::printf("MEASURED %g um film under a %g deg disc at %g deg: %s, error %.2g relative\n", d * 1e6, r,
+                            theta, n > 0 ? "capped" : "within the bound", e);
+                if (n > 0) EXPECT_LT(e, 1e-3) << "capped but still close";
+            }
+}
+
 // Written last (gtest runs a file's tests in order): the map as CSV and as a heat map.
 TEST(AccuracyMap, WriteTheMap) {
     ASSERT_FALSE(Map().cells.empty());
