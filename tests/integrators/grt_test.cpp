@@ -132,20 +132,33 @@ struct GlintCase {
 
 /// ⟨R⟩ of the plate (n = 0.2 + 3.4i) over the plane waves the glint's closed form integrates (theory §0
 /// D15): the GR's window N(0, σ²) about the mirrored GR direction `dr` times the source's profile
-/// about `toSource` (a Gaussian of Ω = α²/4, or the disc of radius α), by the midpoint rule over the
-/// window's ±6σ (48² points: spectrally accurate for the Gaussian; the disc's edge cuts it at ~σ/8).
+/// about `toSource` (a Gaussian of Ω = α²/4, or the disc of radius α), by the midpoint rule (48²
+/// points) over the product's support: for a Gaussian profile the product Gaussian's ±6 std about
+/// its mean, for a disc the disc (when it is narrower than the window) or the window's ±6σ.
 double EnsembleR(const Vec3 &dr, const Vec3 &toSource, double sigma, const GlintCase &c) {
-    const Frame f = Frame::FromNormal(dr);
+    const bool gaussian = std::string(c.profile) == "gaussian";
+    const double omega = c.radius * c.radius / 4;
+    Vec3 centre = dr;
+    double half = 6 * sigma;
+    if (gaussian) {
+        const double v = 1 / (1 / (sigma * sigma) + 1 / omega);
+        centre = Normalize(dr * (v / (sigma * sigma)) + toSource * (v / omega));
+        half = 6 * std::sqrt(v);
+    } else if (c.radius < 6 * sigma) {
+        centre = toSource;
+        half = c.radius;
+    }
+    const Frame f = Frame::FromNormal(centre);
     double sum = 0, norm = 0;
     const int n = 48;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
-            const double ux = (-6 + 12 * (i + 0.5) / n) * sigma, uy = (-6 + 12 * (j + 0.5) / n) * sigma;
-            const Vec3 w = Normalize(dr + f.s * ux + f.t * uy);
+            const double ux = (-1 + 2 * (i + 0.5) / n) * half, uy = (-1 + 2 * (j + 0.5) / n) * half;
+            const Vec3 w = Normalize(centre + f.s * ux + f.t * uy);
             const double g2 = std::max(0.0, 1 - Sqr(Dot(w, toSource)));  // sin² of the angle to the source
-            double p = std::string(c.profile) == "gaussian" ? std::exp(-0.5 * g2 / (c.radius * c.radius / 4))
-                                                            : (g2 <= Sqr(std::sin(c.radius)) ? 1.0 : 0.0);
-            p *= std::exp(-0.5 * (ux * ux + uy * uy) / (sigma * sigma));
+            const double d2 = std::max(0.0, 1 - Sqr(Dot(w, dr)));        // and to the window's axis
+            double p = gaussian ? std::exp(-0.5 * g2 / omega) : (g2 <= Sqr(std::sin(c.radius)) ? 1.0 : 0.0);
+            p *= std::exp(-0.5 * d2 / (sigma * sigma));
             sum += p * FresnelComplex(std::abs(w.z), 1.0, Complex(0.2, 3.4));
             norm += p;
         }
