@@ -13,6 +13,10 @@ Commands (each reads CSV only; none reads images):
                column per series, optionally abs_diff (drawn dotted, magnified by --diff-scale).
   convergence  error against samples per pixel and against time, one curve per run (`compare`).
                CSV: run,spp,seconds,rmse[,...]
+  accuracy-map the accuracy map (tests/accuracy, docs/accuracy.md): one heat map per family of
+               approximations, a cell per (row, column + integrator), coloured by error/tolerance on a
+               log scale centred on 1 (green within tolerance, red beyond; failing cells crossed).
+               CSV: family,row,column,integrator,value,reference,error,tolerance.
   disc-map     a value over the projected hemisphere (sinθcosφ, sinθsinφ) on the unit disc — one
                disc per name in an optional first column `disc` (e.g. reflection, transmission),
                all on one colour scale (dB/log/linear) with a colour bar — and markers (`phasor
@@ -368,6 +372,58 @@ def figure_disc_map(args):
     return fig
 
 
+def figure_accuracy_map(args):
+    header, rows = read_csv(args.data)
+    need = ["family", "row", "column", "integrator", "error", "tolerance"]
+    missing = [c for c in need if c not in header]
+    if missing:
+        raise PlotError(f"'{args.data}': missing column(s) {', '.join(missing)}")
+    col = {name: header.index(name) for name in need}
+    families = {}  # family → (row labels, column labels, {(row, column): ratio}) in order of appearance
+    for line, r in enumerate(rows, start=2):
+        fam = r[col["family"]]
+        rlabels, clabels, cells = families.setdefault(fam, ([], [], {}))
+        rl, cl = r[col["row"]], r[col["column"]] + " | " + r[col["integrator"]]
+        if rl not in rlabels:
+            rlabels.append(rl)
+        if cl not in clabels:
+            clabels.append(cl)
+        err = number(r[col["error"]], args.data, line)
+        tol = number(r[col["tolerance"]], args.data, line)
+        cells[(rl, cl)] = err / tol if tol > 0 else math.inf
+    if not families:
+        raise PlotError(f"'{args.data}': no cells")
+    cmap = matplotlib.colormaps["RdYlGn_r"].copy()
+    cmap.set_bad("#dddddd")
+    norm = mcolors.LogNorm(vmin=1e-3, vmax=1e3)  # centred on error = tolerance
+    # Each panel: its rows plus room for the column labels below it (they are long).
+    longest = max(len(c) for f in families.values() for c in f[1])
+    heights = [0.14 * len(f[0]) + 0.45 + 0.055 * longest for f in families.values()]
+    widest = max(len(f[1]) for f in families.values())
+    width = args.width or int(max(900, 300 + 13 * widest))
+    fig, axes = plt.subplots(len(families), 1, figsize=(width / 100, sum(heights) + 0.8), dpi=100, squeeze=False,
+                             gridspec_kw={"height_ratios": heights}, layout="constrained")
+    for ax, (fam, (rlabels, clabels, cells)) in zip(axes[:, 0], families.items()):
+        grid = np.full((len(rlabels), len(clabels)), np.nan)
+        for (rl, cl), v in cells.items():
+            grid[rlabels.index(rl), clabels.index(cl)] = max(v, 1e-3)
+        ax.imshow(np.ma.masked_invalid(grid), cmap=cmap, norm=norm, aspect="auto", interpolation="nearest")
+        bad = np.argwhere(np.nan_to_num(grid) > 1)
+        for i, j in bad:
+            ax.plot([j], [i], marker="x", color="black", markersize=5, markeredgewidth=1.2)
+        ax.set_yticks(range(len(rlabels)))
+        ax.set_yticklabels(rlabels, fontsize=6)
+        ax.set_xticks(range(len(clabels)))
+        ax.set_xticklabels(clabels, fontsize=5, rotation=90)
+        failed = len(bad)
+        ax.set_title(f"{fam}: {len(cells)} cells, {failed} beyond tolerance", fontsize=9)
+    fig.suptitle(args.title)
+    bar = fig.colorbar(matplotlib.cm.ScalarMappable(norm=norm, cmap=cmap), ax=list(axes[:, 0]), fraction=0.02, pad=0.01,
+                       aspect=40)
+    bar.set_label("error / tolerance")
+    return fig
+
+
 # ---- command line -------------------------------------------------------------------------------
 
 
@@ -394,6 +450,10 @@ def parse_args(argv):
     common(p, 1200, 500)
     p.add_argument("--metric", default="rmse", help="the CSV column to plot (rmse, rel_mse, max_error)")
     p.set_defaults(figure=figure_convergence)
+
+    p = sub.add_parser("accuracy-map", help="the accuracy map: error/tolerance per cell, one heat map per family")
+    common(p, 0, 600)  # width 0: from the number of columns; the height follows the rows
+    p.set_defaults(figure=figure_accuracy_map)
 
     p = sub.add_parser("disc-map", help="a value over the projected hemisphere (one disc per 'disc' name)")
     common(p, 0, 520)  # width 0: from the number of discs

@@ -2,6 +2,7 @@
 // phasor — the shared generalized-ray path sampler (gr_path.h): the helpers of its estimate.
 #include "integrators/gr_path.h"
 
+#include "core/render/lobe_average.h"
 #include "core/render/registry.h"
 
 namespace phasor::grpath {
@@ -67,6 +68,13 @@ bool GrPathSampler::UniformLobe(const NearDeltaLobe &lobe, const SampledWaveleng
     for (int i = 1; i < wl.Count(); ++i)
         uniform = uniform && lobe.wo[i] == lobe.wo[0] && lobe.Eta(i) == lobe.Eta(0);
     return uniform;
+}
+
+SampledSpectrum GrPathSampler::ThroughLobeWeight(const SurfaceInteraction &si, const PreparedKernel &k,
+                                                 const SpectralGenRay &g, const NearDeltaLobe &lobe,
+                                                 const GrMeasurement &m, int wavelength) {
+    return AverageLobeWeight(*si.material, k, lobe, MeasurementEnsemble(si.shading, g, lobe, m.wi, m.profile),
+                             LobeTransfer::Radiance, wavelength);
 }
 
 }  // namespace phasor::grpath

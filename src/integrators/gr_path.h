@@ -27,6 +27,7 @@
 #include <mutex>
 #include <vector>
 
+#include "core/render/lobe_average.h"
 #include "core/render/path_common.h"
 #include "integrators/lobe_incidence.h"
 
@@ -93,11 +94,9 @@ struct Event {
     Vec3 travel;
     /// The distance the light travels to get there (Infinity for lights at infinity).
     double dist = Infinity;
-    /// Per carried wavelength, the angular variance [rad²] of the Gaussian window through which a
-    /// closed form measured the light (Detector, ThroughLobe: the GR's σ_k²/k², D14); Infinity where
-    /// the detector integrates every direction of its acceptance (Incidence, LobeIncidence) or the
-    /// path sampled the light.
-    std::array<double, NumWavelengths> window = [] { std::array<double, NumWavelengths> a; a.fill(Infinity); return a; }();
+    /// The light's angular profile as the closed form integrated it (ThroughLobe, LobeIncidence; about
+    /// −travel, or its own centre): the ensemble the event's lobe is averaged over (theory §0 D15).
+    AngularProfile profile;
 };
 
 /// The Sink interface (a template parameter of GrPathSampler::Estimate):
@@ -154,6 +153,13 @@ class GrPathSampler {
                                     int i);
     /// True if the lobe's direction and index are the same at every carried wavelength.
     static bool UniformLobe(const NearDeltaLobe &lobe, const SampledWavelengths &wl);
+    /// ⟨a_j⟩ for a closed-form measurement `m` through listed lobe `lobe` of k (the kernel prepared
+    /// at si for the GR g arriving there): the lobe's weight averaged over the product of the
+    /// measurement's light profile and the outgoing GR's angular spectrum (theory §0 D15,
+    /// core/render/lobe_average.h); for `wavelength` only when ≥ 0.
+    static SampledSpectrum ThroughLobeWeight(const SurfaceInteraction &si, const PreparedKernel &k,
+                                             const SpectralGenRay &g, const NearDeltaLobe &lobe,
+                                             const GrMeasurement &m, int wavelength);
 
   private:
     int maxDepth_, rrDepth_, lightSamples_;
@@ -194,12 +200,12 @@ class PathEstimate {
     /// False if the path ends here.
     bool Continue(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
 
-    /// Σ over the closed-form lights of what the GR `out` measures from `from` (MeasureOne; from the
-    /// surface `si` when it leaves one), each light's term reported through event(light, measured,
-    /// m) (an Event, or nullopt to report nothing).
-    template <class MakeEvent>
+    /// Σ over the closed-form lights of their terms value(m), m what the GR `out` measures of each
+    /// from `from` (MeasureOne; from the surface `si` when it leaves one), each light's term reported
+    /// through event(light, ensemble, m, term) (an Event, or nullopt to report nothing).
+    template <class Value, class MakeEvent>
     SampledSpectrum ClosedForm(const SpectralGenRay &out, const SurfaceInteraction *si, const Vec3 &from,
-                               MakeEvent &&event);
+                               Value &&value, MakeEvent &&event);
     /// Reports the event `make()` builds, if the sink records.
     template <class Make>
     void Report(Make &&make) {
@@ -245,6 +251,13 @@ SampledSpectrum GrPathSampler::Estimate(const Scene &scene, int x, int y, Sample
 
 template <class Sink>
 SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
+    // Lobe averages whose quadrature hit its cap (theory §4.11) during this sample, counted for the
+    // render's warnings (the sink's solves included).
+    struct CappedAverages {
+        PathStats &stats;
+        long long before = LobeAverageCost().capped;
+        ~CappedAverages() { stats.counters.Add(RenderEvent::LobeAverageCapped, LobeAverageCost().capped - before); }
+    } cappedAverages{stats_};
     ds_ = scene_.GetDetector().GenerateGR(x, y, stats_.sample, sampler_, wl_);
     if (!ds_) return SampledSpectrum(0.0);
     g_.o = ds_->ray.o;
@@ -311,7 +324,9 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
 template <class Sink>
 void PathEstimate<Sink>::MeasureAtDetector() {
     if (!ds_->integratesIncidence) {
-        const SampledSpectrum m = ClosedForm(g_, nullptr, g_.o, [&](const Light *light, bool ensemble, const GrMeasurement &mi) {
+        const SampledSpectrum m = ClosedForm(
+            g_, nullptr, g_.o, [](const GrMeasurement &mi) { return mi.value; },
+            [&](const Light *light, bool ensemble, const GrMeasurement &mi, const SampledSpectrum &) {
             Event e;
             e.kind = EventKind::Detector;
             e.value = T_ * mi.value;
@@ -319,8 +334,6 @@ void PathEstimate<Sink>::MeasureAtDetector() {
             e.ensemble = ensemble;
             e.travel = -mi.wi;
             e.dist = mi.dist;
-            const SpectralGenRay physical = g_.TimeReversed();
-            for (int i = 0; i < physical.count; ++i) e.window[std::size_t(i)] = physical.At(i).AngularVariance();
             return std::optional<Event>(e);
         });
         L_ += T_ * m;
@@ -366,6 +379,7 @@ void PathEstimate<Sink>::MeasureAtDetector() {
                 e.wavelength = c.wavelength;
                 e.travel = c.travel;
                 e.dist = c.dist;
+                e.profile = c.profile;
                 return std::optional<Event>(e);
             });
         };
@@ -449,36 +463,36 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
         for (int i = 0; i < (uniform ? 1 : wl_.Count()) && !lobe.weight.IsZero(); ++i) {
             if (!uniform && !(lobe.weight[i] > 0)) continue;
             const SpectralGenRay out = GrPathSampler::AlongLobe(g_, si, lobe, i);
-            // a_j·M per light: the lobe's weight (per wavelength along a dispersive lobe's own direction).
-            auto weighted = [&](const SampledSpectrum &mi) {
+            // a_j·M per light, a_j averaged over the plane waves that light's measurement integrates
+            // (ThroughLobeWeight; per wavelength along a dispersive lobe's own direction).
+            auto weighted = [&](const GrMeasurement &mi) {
+                const SampledSpectrum a = GrPathSampler::ThroughLobeWeight(si, k, g_, lobe, mi, uniform ? -1 : i);
                 SampledSpectrum w(0.0);
-                if (uniform) w = lobe.weight * mi;
-                else w[i] = lobe.weight[i] * mi[i];
+                if (uniform) w = a * mi.value;
+                else w[i] = a[i] * mi.value[i];
                 return w;
             };
-            const SampledSpectrum m =
-                ClosedForm(out, &si, si.p, [&](const Light *light, bool ensemble, const GrMeasurement &mi) -> std::optional<Event> {
-                    const SampledSpectrum w = weighted(mi.value);
-                    if (w.IsZero()) return std::nullopt;
-                    Event e;
-                    e.kind = EventKind::ThroughLobe;
-                    e.value = T_ * w;
-                    e.prefix = depth;
-                    e.light = light;
-                    e.ensemble = ensemble;
-                    e.at = &si;
-                    e.gr = &g_;
-                    e.kernel = &k;
-                    e.lobe = lobe.id;
-                    e.woLocal = lobe.wo[i];
-                    e.wavelength = uniform ? -1 : i;
-                    e.travel = -mi.wi;
-                    e.dist = mi.dist;
-                    for (int j = 0; j < out.count; ++j) e.window[std::size_t(j)] = out.At(j).AngularVariance();
-                    return e;
-                });
-            if (uniform) v = lobe.weight * m;
-            else v[i] = lobe.weight[i] * m[i];
+            v += ClosedForm(out, &si, si.p, weighted,
+                            [&](const Light *light, bool ensemble, const GrMeasurement &mi,
+                                const SampledSpectrum &w) -> std::optional<Event> {
+                                if (w.IsZero()) return std::nullopt;
+                                Event e;
+                                e.kind = EventKind::ThroughLobe;
+                                e.value = T_ * w;
+                                e.prefix = depth;
+                                e.light = light;
+                                e.ensemble = ensemble;
+                                e.at = &si;
+                                e.gr = &g_;
+                                e.kernel = &k;
+                                e.lobe = lobe.id;
+                                e.woLocal = lobe.wo[i];
+                                e.wavelength = uniform ? -1 : i;
+                                e.travel = -mi.wi;
+                                e.dist = mi.dist;
+                                e.profile = mi.profile;
+                                return e;
+                            });
         }
         L_ += T_ * v;
     }
@@ -491,7 +505,10 @@ bool PathEstimate<Sink>::Continue(const SurfaceInteraction &si, const PreparedKe
     // hit (only delta lights), it would contribute nothing.
     if (depth + 1 == paths_.MaxDepth() && scene_.HittableEmitters().empty()) return false;
     // One term of the Eq. 22 mixture: the GR keeps β, ρ; its mean direction turns and |k|
-    // follows the medium (S6.4).
+    // follows the medium (S6.4). A sampled near-delta lobe keeps its weight at the GR's mean
+    // direction (theory §0 D15): the detector's own direction sampling integrates the GR's spectrum
+    // over what follows (measured by the mean ray: emitters, escapes, NEE after a later continuous
+    // lobe), so averaging the lobe over the spectrum as well would smooth it twice (docs/accuracy.md).
     auto bs = k.Sample(sampler_.Get1D(), sampler_.Get2D());
     if (!bs || bs->weight.IsZero()) return false;
     // A dispersive lobe is followed at the hero wavelength only (D10). The companions are dropped
@@ -525,16 +542,17 @@ bool PathEstimate<Sink>::Continue(const SurfaceInteraction &si, const PreparedKe
 }
 
 template <class Sink>
-template <class MakeEvent>
+template <class Value, class MakeEvent>
 SampledSpectrum PathEstimate<Sink>::ClosedForm(const SpectralGenRay &out, const SurfaceInteraction *si,
-                                               const Vec3 &from, MakeEvent &&event) {
+                                               const Vec3 &from, Value &&value, MakeEvent &&event) {
     SampledSpectrum sum(0.0);
     for (const Light *sceneLight : scene_.ClosedFormLights()) {
         const Light *light = sink_.Measured(sceneLight, from, wl_);
         auto m = GrPathSampler::MeasureOne(scene_, *light, out, si, wl_, stats_);
         if (!m) continue;
-        sum += m->value;
-        Report([&] { return event(sceneLight, light == sceneLight, *m); });
+        const SampledSpectrum v = value(*m);
+        sum += v;
+        Report([&] { return event(sceneLight, light == sceneLight, *m, v); });
     }
     return sum;
 }

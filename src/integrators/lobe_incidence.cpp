@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "core/render/light.h"
+#include "core/render/lobe_average.h"
 #include "core/render/material.h"
 
 namespace phasor {
@@ -24,9 +25,10 @@ constexpr int MaxHalvings = 40;    // of a step that leaves the shape (0.25 rad 
 /// The state at one detector direction: the hit, the lobe's exit direction and the source.
 struct LobeState {
     SurfaceInteraction si;
-    std::array<double, NumWavelengths> weight{};  // a_j(λ_i) of the lobe at this hit
-    GrIncidence inc;                               // the light at p (towards the source: inc.wi)
-    Vec3 wo;                                       // the lobe's exit direction at wavelength `i` (world)
+    NearDeltaLobe lobe;   // the lobe as listed at this hit (weight a_j(λ_i), indices, directions)
+    Vec3 dir;             // the detector direction that reaches it
+    GrIncidence inc;      // the light at p (towards the source: inc.wi)
+    Vec3 wo;              // the lobe's exit direction at wavelength `i` (world)
 };
 
 /// What is solved: one light through one lobe (by id) of one shape, at carried wavelength `i`
@@ -42,31 +44,42 @@ struct LobeTarget {
     const SampledWavelengths &wl;
     ScratchBuffer &scratch;     // each trial kernel is prepared here and dropped after Evaluate
 
+    /// The GR as it meets the surface at si along dir: the detector's footprint, placed at the hit
+    /// (a source that varies in space, a Gaussian beam, is seen through the pixel's own footprint).
+    SpectralGenRay AtHit(const SurfaceInteraction &si, const Vec3 &dir) const {
+        SpectralGenRay gp = g;
+        gp.o = si.p;
+        gp.d = dir;
+        return gp;
+    }
+    /// The kernel query of that GR (its pointers refer to si and gp).
+    ScatterQuery Query(const SurfaceInteraction &si, const SpectralGenRay &gp) const {
+        ScatterQuery q;
+        q.wi = si.shading.ToLocal(-gp.d);
+        q.wl = &wl;
+        q.rayOptics = false;
+        q.tex = TextureEvalContext(si, std::sqrt(g.beta2[0]));
+        q.gr = &gp;
+        q.si = &si;
+        return q;
+    }
+
     /// The state along direction `dir` from o; false if the ray does not reach the shape first, the
     /// lobe is not listed there, or no light arrives at p.
     bool Evaluate(const Vec3 &dir, LobeState *st, PathStats &stats) const {
         ++stats.rays;
         auto si = scene.Intersect(Ray{o, dir});
         if (!si || si->shape != shape || !si->material) return false;
-        // The GR as it meets the surface: the detector's footprint, placed at the hit (a source
-        // that varies in space, a Gaussian beam, is seen through the pixel's own footprint).
-        SpectralGenRay gp = g;
-        gp.o = si->p;
-        gp.d = dir;
-        ScatterQuery q;
-        q.wi = si->shading.ToLocal(-dir);
-        q.wl = &wl;
-        q.rayOptics = false;
-        q.tex = TextureEvalContext(*si, std::sqrt(g.beta2[0]));
-        q.gr = &gp;
-        q.si = &*si;
+        const SpectralGenRay gp = AtHit(*si, dir);
+        const ScatterQuery q = Query(*si, gp);
         const ScratchBuffer::Mark mark = scratch.Save();
         const NearDeltaLobe *lobe = si->material->Prepare(q, scratch).FindLobe(id);
         std::optional<GrIncidence> inc;
         if (lobe && lobe->weight[i] > 0) inc = light->IncidenceOnGR(gp, wl);
         if (inc) {
             st->si = *si;
-            for (int k = 0; k < wl.Count(); ++k) st->weight[k] = lobe->weight[k];
+            st->lobe = *lobe;
+            st->dir = dir;
             st->inc = *inc;
             st->wo = si->shading.ToWorld(lobe->wo[i]);
         }
@@ -235,11 +248,24 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                     const bool blocked = std::isinf(st.inc.dist) ? scene.OccludedDirection(st.si, s)
                                                                  : scene.Occluded(st.si, st.si.p + s * st.inc.dist);
                     if (blocked) continue;
-                    // (1): E_det = a_j·E_p/|det ∂r/∂u|, arriving at o from the hit.
+                    // (1): E_det = a_j·E_p/|det ∂r/∂u|, arriving at o from the hit — with a_j averaged
+                    // over the light's angular profile, each plane wave weighted by the lobe's irradiance
+                    // transfer relative to the central one's, which |det| holds (theory §0 D15).
+                    const SpectralGenRay gp = target.AtHit(st.si, st.dir);
+                    LobeEnsemble ensemble;
+                    for (LobeEnsemble::Wave &w : ensemble.wave) {
+                        w.source = st.si.shading.ToLocal(st.inc.wi);
+                        w.profile = st.inc.profile;
+                    }
+                    const ScratchBuffer::Mark hitMark = scratch.Save();
+                    const PreparedKernel &k = st.si.material->Prepare(target.Query(st.si, gp), scratch);
+                    const SampledSpectrum a = AverageLobeWeight(*st.si.material, k, st.lobe, ensemble,
+                                                                LobeTransfer::Irradiance, uniform ? -1 : i);
+                    scratch.Rewind(hitMark);
                     GrIncidence inc;
                     inc.irradiance = SampledSpectrum(0.0);
                     for (int k = 0; k < wl.Count(); ++k)
-                        if (uniform || k == i) inc.irradiance[k] = st.weight[k] * st.inc.irradiance[k] / absDet;
+                        if (uniform || k == i) inc.irradiance[k] = a[k] * st.inc.irradiance[k] / absDet;
                     inc.wi = Normalize(st.si.p - ds.ray.o);
                     inc.dist = Length(st.si.p - ds.ray.o) + st.inc.dist;
                     inc.angularVariance = st.inc.angularVariance;
@@ -260,6 +286,7 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                         c.wavelength = uniform ? -1 : i;
                         c.travel = -s;
                         c.dist = st.inc.dist;
+                        c.profile = st.inc.profile;
                         (*report)(c);
                     }
                 }

@@ -63,6 +63,7 @@ class LobeIncidence {
         int wavelength = -1;
         Vec3 travel;                       // world direction in which the light arrives at p
         double dist = Infinity;            // p to the light (Infinity for lights at infinity)
+        AngularProfile profile;            // the light's angular profile at p (GrIncidence::profile)
     };
     using Report = std::function<void(const Contribution &)>;
     /// Replaces a light by the one to measure from p (sample_solve's coherent modes).

@@ -19,30 +19,27 @@
 // an optional ideal linear polariser acts in the detector's frame (DetectorPolarization), and the
 // film keeps S0 (= `intensity`) and, with `stokes = true`, S0..S3.
 //
-// Coherence (docs/sample_solve.md; theory §0 D5, §5.3). The beam's K is the angular covariance of
-// the source ensemble that the event integrates analytically: a `distant` source measured in closed
-// form (D4a at a sensor plane, D14 through listed lobes, a camera looking at it) keeps its profile's
-// Ω (Light::Coherence); every other event has picked one coherent mode of its source — a point of
-// an area light, a direction of a distant source chosen by NEE or by an escaping ray, a point or
-// spot light, a plane wave, a laser — and the Monte Carlo average over those samples is the
-// ensemble average (the van Cittert–Zernike washing-out of fringes then comes out of the sampling;
-// weighting a sampled mode by its source's coherence as well would count it twice). K survives
-// near-delta lobes (with the anamorphic factor of refraction and grating orders) and is reset at a
-// continuous lobe (a diffuse or rough point is a new, sampled, coherent secondary source; theory
-// §4.7's "more physical choice"). A lobe with coherence terms (a coated surface, thin_film,
-// multilayer: LobeCoherence) responds with μR_coh + (1 − μ)R_incoh, μ = exp(−½k₀²·Δ⊥ᵀKΔ⊥), Δ the
-// lateral shear of its two interfering waves projected on the incident beam (theory §4.4, D5).
+// Partial coherence (docs/sample_solve.md; theory §0 D15). A closed-form measurement integrates a
+// light's angular profile (a `distant` disc or Gaussian; a beam's spectrum) through the measuring
+// GR's angular spectrum; every interaction whose response varies with direction answers for that
+// ensemble of plane waves its Mueller matrix *averaged* over it (core/render/lobe_average.h; per
+// polarisation, not a scalar μ mixing coherent and incoherent sums): the measured lobe over the
+// profile × the GR's spectrum, exactly as `grt` weighs it; sampled vertices respond at the GR's mean
+// direction, as in `grt` (the detector's direction sampling integrates the spectrum there). So S0 is
+// `grt`'s estimate, and the fully coherent transport below converges to it (it draws the plane waves
+// one at a time); Stokes components come from the averaged matrices. Of a chain of near-delta
+// vertices only the measured lobe is averaged (exact when the sampled ones vary little over the
+// ensemble; docs/accuracy.md).
 //
-// force_coherent = true is the fully coherent transport of Fig. S10: μ ≡ 1, and a source ensemble
-// is never integrated analytically — each closed-form measurement of a `distant` source measures one
+// force_coherent = true is the fully coherent transport of Fig. S10: a source ensemble is never
+// integrated analytically — each closed-form measurement of a `distant` source measures one
 // coherent plane wave whose direction is drawn from the source's profile (a mode, irradiance
-// L/pdf), so both solves converge to the same image (to O(α²) of the source's angular radius and,
-// where interference terms are weighted by μ, to D5's Gaussian-vs-disc O(v⁴)); the fully coherent
-// one needs more samples.
+// L/pdf), and the measured lobe responds at that direction: the same image in the mean, noisier.
 //
 // Scalar parts. `aperture` (footprint-aware, scalar Kirchhoff diffraction) passes the polarisation
 // unchanged. Kernels without a Jones matrix (diffuse: a depolariser) give their Mueller matrix.
 #include "core/render/beam.h"
+#include "core/render/lobe_average.h"
 #include "core/render/registry.h"
 #include "integrators/gr_path.h"
 #include "lights/closed_form.h"
@@ -93,9 +90,9 @@ class SampleSolveIntegrator final : public PixelIntegrator {
             [] {
                 std::vector<ParamSpec> p = grpath::PathParams();
                 p.push_back(P::Bool("force_coherent",
-                                    "fully coherent transport (Fig. S10): mu = 1, and distant sources measured in "
-                                    "closed form as one coherent plane wave drawn from their profile per measurement "
-                                    "(same image, more noise)")
+                                    "fully coherent transport (Fig. S10): distant sources measured in closed form as "
+                                    "one coherent plane wave drawn from their profile per measurement (same image, "
+                                    "more noise)")
                                 .Default(Value::Bool(false)));
                 return p;
             }()};
@@ -181,7 +178,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
         /// (local), relative to its M00; `scalar`: the vertex passes polarisation unchanged
         /// (footprint-aware kernels).
         void Interact(PltBeam &beam, const SurfaceInteraction &si, const Vec3 &wi, const Vec3 &wo,
-                      const std::optional<LobeResponse> &r, bool nearDelta, bool scalar) const {
+                      const std::optional<LobeResponse> &r, bool scalar) const {
             const Vec3 out = si.shading.ToWorld(wi);
             const Vec3 sAxis = si.shading.ToWorld(LobeSAxis(wi, wo));
             beam.d = -si.shading.ToWorld(wo);  // the light arrives along −wo
@@ -195,20 +192,33 @@ class SampleSolveIntegrator final : public PixelIntegrator {
                 if (!r) continue;  // zero
                 const double n = r->mueller[i].m[0][0];
                 if (!(n > 0)) continue;
-                Mueller mi = r->mueller[i];
-                if (r->coherence.any && !forceCoherent) {
-                    // theory §4.4: μR_coh + (1 − μ)R_incoh, μ at the two waves' shear (D5).
-                    const Vec2 sh = r->coherence.shear[i];
-                    const double mu = beam.MutualCoherence(si.shading.ToWorld(Vec3(sh.x, sh.y, 0)), 2 * Pi / wl.lambda[i], i);
-                    mi = mi * mu + r->coherence.incoherent[i] * (1 - mu);
-                }
-                m[std::size_t(i)] = ReciprocalMueller(mi) * (1 / n);
+                m[std::size_t(i)] = ReciprocalMueller(r->mueller[i]) * (1 / n);
             }
-            const double scale = std::abs(wi.z) > 0 ? std::abs(wo.z) / std::abs(wi.z) : 1;
-            beam.Interact(sAxis, out, m, scale, !nearDelta || scalar);
+            beam.Interact(sAxis, out, m);
         }
 
-        /// Vertex v's sampled lobe's response (computed once per sample) and whether it is scalar.
+        /// The response of an event's own near-delta lobe of k (the kernel prepared at the event's
+        /// hit): averaged over the plane waves the closed form integrated (theory §0 D15) — the
+        /// light's profile through the GR's spectrum for D14 (ThroughLobe, as
+        /// GrPathSampler::ThroughLobeWeight), the light's profile weighted by the lobe's irradiance
+        /// transfer at a sensor plane (LobeIncidence, as lobe_incidence.cpp). Every average answers at
+        /// the lobe's hero direction (a dispersive companion's own differs).
+        std::optional<LobeResponse> EventLobe(const grpath::Event &e, const PreparedKernel &k) const {
+            const Material &mat = *e.at->material;
+            const NearDeltaLobe *l = k.FindLobe(e.lobe);
+            if (!l) return std::nullopt;
+            if (e.kind == grpath::EventKind::ThroughLobe)
+                return AverageLobeResponse(mat, k, e.lobe, MeasurementEnsemble(e.at->shading, *e.gr, *l, -e.travel, e.profile));
+            LobeEnsemble ensemble;
+            for (LobeEnsemble::Wave &w : ensemble.wave) {
+                w.source = e.at->shading.ToLocal(-e.travel);
+                w.profile = e.profile;
+            }
+            return AverageLobeResponse(mat, k, e.lobe, ensemble, LobeTransfer::Irradiance);
+        }
+
+        /// Vertex v's sampled lobe's response (computed once per sample, at the GR's mean direction,
+        /// as grt weighs it) and whether it is scalar.
         const VertexResponse &ResponseAt(const std::vector<grpath::Vertex> &path, int v) {
             if (vertices.size() < path.size()) {
                 const std::size_t n = std::max<std::size_t>({8, 2 * vertices.size(), path.size()});
@@ -248,31 +258,22 @@ class SampleSolveIntegrator final : public PixelIntegrator {
         }
 
         /// True if the forward solve's S0 is the event's scalar value exactly, without a polariser
-        /// or Stokes output: no coherence term can act (a coherent beam, or no lobe that has
-        /// one before the beam's coherence is reset), and between depolarisers at most one
-        /// interaction couples S0 and polarisation (a single one acting on unpolarised light gives
-        /// S0 = M00, its weight). Only the path vertices' (cached) responses are looked at: the
-        /// event's own interaction is counted as coupling, and its response is never computed here.
-        bool ScalarSuffices(const grpath::Event &e, const std::vector<grpath::Vertex> &path, bool partial) {
-            if (e.at && partial && e.at->material->HasCoherenceTerms()) return false;
-            bool coherenceAlive = partial && e.kind != grpath::EventKind::DirectLight;
+        /// or Stokes output: between depolarisers at most one interaction couples S0 and
+        /// polarisation (a single one acting on unpolarised light gives S0 = M00, its weight; every
+        /// response here is the one `grt` weighted the path with, averaged where it averaged). Only
+        /// the path vertices' (cached) responses are looked at: the event's own interaction is
+        /// counted as coupling, and its response is never computed here.
+        bool ScalarSuffices(const grpath::Event &e, const std::vector<grpath::Vertex> &path) {
             int coupling = e.at ? 1 : 0;
             for (int v = e.prefix - 1; v >= 0; --v) {
-                const grpath::Vertex &vx = path[std::size_t(v)];
                 const VertexResponse &vr = ResponseAt(path, v);
                 const std::optional<LobeResponse> &r = vr.response;
-                if (vr.scalar) {
-                    coherenceAlive = false;
-                    continue;
-                }
+                if (vr.scalar) continue;
                 if (!r) return false;
                 if (Depolarizes(*r, wl.Count())) {
                     coupling = 0;
-                    coherenceAlive = false;
                     continue;
                 }
-                if (coherenceAlive && r->coherence.any) return false;
-                if (!(vx.bs.flags & ScatterNearDelta)) coherenceAlive = false;
                 if (!Decoupled(*r, wl.Count()) && ++coupling >= 2) return false;
             }
             return true;
@@ -280,15 +281,11 @@ class SampleSolveIntegrator final : public PixelIntegrator {
 
         void OnEvent(const grpath::Event &e, const std::vector<grpath::Vertex> &path, const DetectorGrSample &ds) {
             const Detector &det = scene.GetDetector();
-            // Where the light first interacts (for its coherence there).
-            const Vec3 first = e.at ? e.at->p : e.prefix > 0 ? path[std::size_t(e.prefix - 1)].si.p : ds.ray.o;
-            const double omega = e.ensemble && e.light && !forceCoherent ? e.light->Coherence(first).omega : 0;
-            if (!det.Polarization().Any() && ScalarSuffices(e, path, omega > 0)) {
+            if (!det.Polarization().Any() && ScalarSuffices(e, path)) {
                 stokes[0] += e.value;  // unpolarised detection of an uncoupled chain: grt's value
                 return;
             }
-            PltBeam beam = PltBeam::Source(e.travel, wl.Count(), omega);
-            for (int i = 0; i < wl.Count(); ++i) beam.SetWindow(i, e.window[std::size_t(i)]);
+            PltBeam beam = PltBeam::Source(e.travel, wl.Count());
             if (std::isfinite(e.dist)) beam.Propagate(e.dist);
             if (e.at) {
                 // The kernel at the event's interaction: the vertex's, or prepared for the hit a
@@ -298,22 +295,16 @@ class SampleSolveIntegrator final : public PixelIntegrator {
                 const Vec3 &wi = k.Query().wi;
                 if (e.kind == grpath::EventKind::DirectLight) {
                     const bool scalar = e.at->material->IsFootprintAware() && !e.rayOptics;
-                    Interact(beam, *e.at, wi, e.woLocal, scalar ? std::nullopt : k.EvalContinuousLobes(e.woLocal), false,
-                             scalar);
+                    Interact(beam, *e.at, wi, e.woLocal, scalar ? std::nullopt : k.EvalContinuousLobes(e.woLocal), scalar);
                 } else {
-                    // EvalLobe answers at the lobe's hero direction (a dispersive companion's own differs).
-                    std::optional<LobeResponse> r;
-                    const NearDeltaLobe *lobe = e.wavelength > 0 ? k.FindLobe(e.lobe) : nullptr;
-                    if (e.wavelength <= 0 || lobe) r = k.EvalLobe(e.lobe, lobe ? lobe->wo[0] : e.woLocal);
-                    Interact(beam, *e.at, wi, e.woLocal, r, true, false);
+                    Interact(beam, *e.at, wi, e.woLocal, EventLobe(e, k), false);
                 }
             }
             for (int v = e.prefix - 1; v >= 0; --v) {
                 const grpath::Vertex &vx = path[std::size_t(v)];
                 const VertexResponse &vr = ResponseAt(path, v);
                 beam.Propagate(Length(vx.si.p - (v + 1 < int(path.size()) ? path[std::size_t(v + 1)].si.p : vx.si.p)));
-                Interact(beam, vx.si, vx.kernel->Query().wi, vx.bs.wo, vr.response, (vx.bs.flags & ScatterNearDelta) != 0,
-                         vr.scalar);
+                Interact(beam, vx.si, vx.kernel->Query().wi, vx.bs.wo, vr.response, vr.scalar);
             }
             const Vec3 x = det.PolarizationX(ds);
             const std::optional<double> &pol = det.Polarization().polarizer;

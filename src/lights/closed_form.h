@@ -45,6 +45,8 @@ inline std::optional<GrMeasurement> MeasureDistantGR(const SpectralGenRay &g, co
     });
     m.wi = -s;
     m.dist = Infinity;
+    if (disc && alpha > 0) m.profile = AngularProfile::Disc(std::sin(alpha));
+    else if (!disc && omega > 0) m.profile = AngularProfile::Gaussian(omega);
     return m;
 }
 
@@ -54,15 +56,17 @@ inline std::optional<GrMeasurement> MeasureDistantGR(const SpectralGenRay &g, co
 /// own-frame integral of the plane-wave measurement over the propagating hemisphere alone,
 /// E·(1 − e^{−β²k²}), leaves out the states labelled beyond it (19 % of E for a pixel of pitch
 /// λ/2). A distant source's angular profile only widens the arrival directions
-/// (angularVariance += Ω), which the sensor's acceptance and aim fractions use.
+/// (angularVariance += Ω), which the sensor's acceptance and aim fractions use,
+/// and is reported as `profile` (the plane waves a lobe's weight is averaged over, D15).
 inline GrIncidence DistantIncidence(const SpectralGenRay &g, const Vec3 &s, const SampledSpectrum &e,
-                                    double omega) {
+                                    double omega, const AngularProfile &profile = {}) {
     GrIncidence inc;
     inc.irradiance = e;
     const GenRay g0 = g.At(0);
     inc.wi = -s;
     inc.dist = Infinity;
     inc.angularVariance = g0.AngularVariance() + omega;
+    inc.profile = profile;
     return inc;
 }
 

@@ -154,7 +154,10 @@ class DistantLight final : public Light {
     }
     std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
                                              const SampledWavelengths &wl) const override {
-        return DistantIncidence(g, dir_, Emission(wl), disc_ ? alpha_ * alpha_ / 4 : omega_);
+        const AngularProfile profile = IsDelta() ? AngularProfile{}
+                                       : disc_  ? AngularProfile::Disc(std::sin(alpha_))
+                                                : AngularProfile::Gaussian(omega_);
+        return DistantIncidence(g, dir_, Emission(wl), disc_ ? alpha_ * alpha_ / 4 : omega_, profile);
     }
     LightCoherence Coherence(const Vec3 &) const override {
         return LightCoherence{-dir_, disc_ ? alpha_ * alpha_ / 4 : omega_};

@@ -190,6 +190,8 @@ class GaussianBeamLight final : public Light, public CoherentSource {
             g, Emission(wl), [&](const GenRay &gi) { return MeasureGaussianBeam(gi, Beam(gi.k), 1.0); });
         m.wi = -dir_;
         m.dist = Infinity;
+        const GenRay g0 = g.At(0);
+        m.profile = GaussianBeamOverlapProfile(g0, Beam(g0.k));
         return m;
     }
     std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
@@ -209,6 +211,7 @@ class GaussianBeamLight final : public Light, public CoherentSource {
             if (i == 0) {
                 local = Normalize(dir_ + r * (b.rho / (b.k * b.beta2)));
                 inc.angularVariance = gi.AngularVariance() + 0.5 / (b.beta2 * b.k * b.k);
+                inc.profile = GaussianBeamIncidenceProfile(gi, b);
             }
         }
         inc.wi = -local;

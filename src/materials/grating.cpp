@@ -91,6 +91,7 @@
 
 #include "core/diagnostics.h"
 #include "core/numerics/bessel.h"
+#include "core/render/lobe_average.h"
 #include "core/render/registry.h"
 #include "materials/smooth_surface.h"
 #include "materials/validity.h"
@@ -351,6 +352,7 @@ class GratingMaterial::Prepared final : public PreparedKernel {
     }
 
     std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override;
+    double AngularBandwidth(double kappaMax) const override;
 
   private:
     void List(const ScatterQuery &q, int maxOrder, LobeList &out) const;
@@ -361,6 +363,23 @@ class GratingMaterial::Prepared final : public PreparedKernel {
 
 const PreparedKernel &GratingMaterial::Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const {
     return *scratch.New<Prepared>(*this, q, scratch);
+}
+
+double GratingMaterial::Prepared::AngularBandwidth(double kappaMax) const {
+    // J_j(m)² oscillates twice per π of m, and m = k₀h·√(n² − κ²) (reflection; transmission: half of
+    // the difference of two such roots) changes by k₀h·κ/√(n² − κ²) per unit κ; plus the substrate's.
+    const GratingMaterial &m = *m_;
+    const ScatterQuery &q = q_;
+    const double lambda = q.wl->lambda[0], k0 = 2 * Pi / lambda;
+    const bool inside = m.transmission_ && q.wi.z < 0;
+    const double nSub = site_.substrate[0].real();
+    const double nIn = inside ? nSub : q.etaOutside;
+    const double root = std::sqrt(std::max(nIn * nIn - kappaMax * kappaMax, 1e-6));
+    double relief = 2 * k0 * m.height_ * kappaMax / root;
+    if (m.transmission_)
+        relief += k0 * m.height_ * kappaMax / std::sqrt(std::max(nSub * nSub - kappaMax * kappaMax, 1e-6));
+    return HeroToShortest(*q.wl) * (relief + m.surface_->Bandwidth(lambda, q.etaOutside, kappaMax, inside,
+                                                                      site_.thickness, LobeAverageTolerance));
 }
 
 void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeList &out) const {

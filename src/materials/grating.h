@@ -108,7 +108,10 @@ class GratingMaterial final : public Material, public ReferenceDirection {
     /// order +1 shifts the tangential wave vector, by 2π/Λ.
     Vec3 GratingVector(const ScatterQuery &q) const;
 
-    /// Lists the orders (see grating.cpp, "Lobes"); EvalLobe gives an order's Jones matrix.
+    /// Lists the orders (see grating.cpp, "Lobes"); EvalLobe gives an order's Jones matrix;
+    /// AngularBandwidth: the rate of J_j(m(κ))² (twice that of m = k₀h·√(n² − κ²)) plus the
+    /// substrate's (theory §0 D15). The renormalisation over the propagating orders jumps where an
+    /// order appears; there the average converges only algebraically.
     const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override;
     /// Reflected orders carry a coated substrate's coherence terms.
     bool HasCoherenceTerms() const override;

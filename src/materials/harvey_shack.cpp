@@ -70,6 +70,7 @@
 
 #include "core/diagnostics.h"
 #include "core/render/material.h"
+#include "core/render/lobe_average.h"
 #include "core/render/registry.h"
 #include "materials/fresnel.h"
 #include "materials/k_correlation_psd.h"
@@ -200,7 +201,6 @@ class HarveyShackMaterial final : public Material {
     bool ConservesEnergyPerIncidentDirection() const override { return true; }
     /// The specular lobe carries a coated substrate's coherence terms.
     bool HasCoherenceTerms() const override { return surface_->LayerCount() > 0; }
-
     std::string ToString() const override {
         std::ostringstream os;
         os << "HarveyShackMaterial[ sigma_h = " << sigma_ << " m, correlation_t = " << corrT_
@@ -362,6 +362,18 @@ class HarveyShackMaterial final : public Material {
             for (int i = 0; i < l_.count; ++i) lobe_.nIn[i] = lobe_.nOut[i] = l_.n[i];
             lobe_.prob = l_.pSpec;
             lobes_ = std::span<const NearDeltaLobe>(&lobe_, 1);
+        }
+
+        /// The specular lobe's α_spec(κ)·F(κ): the coated substrate's bandwidth plus the rate of
+        /// ln α_spec = −(2kσ_h)²(1 − κ²/n²), 8k²σ_h²κ/n² per unit κ (theory §0 D15).
+        double AngularBandwidth(double kappaMax) const override {
+            const HarveyShackMaterial &m = *m_;
+            const bool inside = q_.wi.z < 0 && m.transparent_;
+            const double lambda = q_.wl->lambda[0];
+            const double k0 = 2 * Pi / lambda;
+            return HeroToShortest(*q_.wl) *
+                   (m.surface_->Bandwidth(lambda, q_.etaOutside, kappaMax, inside, l_.thickness, LobeAverageTolerance) +
+                    8 * k0 * k0 * m.sigma_ * m.sigma_ * kappaMax);
         }
 
         std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {

@@ -136,6 +136,39 @@ StackResponse LayerStackResponse(double lambda, Complex nIncident, Complex cosIn
     return out;
 }
 
+double LayerStackBandwidth(double lambda, Complex nIncident, Complex cosIncident, std::span<const Layer> layers,
+                           Complex nSubstrate, double tol) {
+    const double k0 = 2 * Pi / lambda;
+    const double kappa = std::abs((nIncident * std::sqrt(1.0 - cosIncident * cosIncident)).real());
+    // The branch points of the half-spaces' √(n² − κ²) (grazing, critical angle).
+    double envelope = 0;
+    for (const Complex n : {nIncident, nSubstrate}) envelope += kappa / std::max(std::abs(n * n - kappa * kappa), 1e-9);
+    if (layers.empty()) return envelope;
+    const std::size_t count = layers.size();
+    const Media m(nIncident, cosIncident, layers, nSubstrate);
+    double phase = 0;
+    for (std::size_t j = 1; j <= count; ++j)
+        phase += 2 * k0 * layers[j - 1].thickness * kappa / std::max(std::abs(m.n[j] * m.cosT[j]), 1e-9);
+    // ρ_j from the recursion of LayerStackResponse: the ratio of the series 1/(1 + r_{j−1,j}Γ_j e^{2iδ_j}).
+    const Complex i(0, 1);
+    FresnelCoefficients face = FresnelAmplitudes(m.n[count], m.cosT[count], m.n[count + 1], m.cosT[count + 1]);
+    Complex gs = face.rs, gp = face.rp;
+    double ratio = 0;
+    for (std::size_t j = count; j-- > 0;) {
+        face = FresnelAmplitudes(m.n[j], m.cosT[j], m.n[j + 1], m.cosT[j + 1]);
+        const Complex phaseFactor = std::exp(i * k0 * m.n[j + 1] * m.cosT[j + 1] * layers[j].thickness);
+        const Complex round = phaseFactor * phaseFactor;
+        const Complex xs = face.rs * gs * round, xp = face.rp * gp * round;
+        ratio = std::max({ratio, std::abs(xs), std::abs(xp)});
+        gs = (face.rs + gs * round) / (1.0 + xs);
+        gp = (face.rp + gp * round) / (1.0 + xp);
+    }
+    double harmonics = 1;
+    if (ratio >= 1) harmonics = 64;
+    else if (ratio > tol) harmonics = std::min(64.0, std::ceil(std::log(tol) / std::log(ratio)));
+    return harmonics * phase + envelope;
+}
+
 IncoherentStackResponse LayerStackIncoherent(double lambda, Complex nIncident, Complex cosIncident,
                                              std::span<const Layer> layers, Complex nSubstrate) {
     if (layers.empty()) {

@@ -44,6 +44,20 @@ struct StackResponse {
 StackResponse LayerStackResponse(double lambda, Complex nIncident, Complex cosIncident,
                                  std::span<const Layer> layers, Complex nSubstrate);
 
+/// How fast the stack's response may oscillate with the tangential wave-vector κ = n₀·sinθ₀ (in
+/// units of k₀ = 2π/λ) about this wave, as PreparedKernel::AngularBandwidth defines it (theory §0 D15):
+///   B = H·Σ_j 2k₀·d_j·κ/|q_j| + Σ_{m ∈ {0, N+1}} κ/|n_m² − κ²|,   q_j = √(n_j² − κ²),
+/// the round-trip phase rate of every layer (|dδ_j/dκ| = k₀d_jκ/|q_j|, also the decay rate of an
+/// evanescent layer), times H harmonics — the multiple reflections inside layer j form a geometric
+/// series of ratio ρ_j = |r_{j,j−1}·Γ_j·e^{2iδ_j}| (Rouard's recursion, Γ_j the reflection of what lies
+/// below), so harmonic m is ≤ ρ^m with ρ = max_j ρ_j (max over s and p) and H = ⌈ln tol/ln ρ⌉
+/// (between 1 and 64) — plus the rate of the Fresnel coefficients' square roots near grazing
+/// incidence and the critical angle (1/distance to their branch points). Evaluated at this wave
+/// (cosIncident); the phase term increases with κ, so at the largest κ of an ensemble it bounds the
+/// whole ensemble.
+double LayerStackBandwidth(double lambda, Complex nIncident, Complex cosIncident, std::span<const Layer> layers,
+                           Complex nSubstrate, double tol);
+
 /// The incoherent response of a stack (the ray-optics limit, theory §0 D8, §4.4–4.5: "a film's
 /// incoherent sum"): inside every layer in which the wave propagates, the multiply reflected waves are
 /// summed in power instead of in amplitude — what a stack of layers thicker than the light's

@@ -123,12 +123,12 @@ class MixMaterial final : public Material, public ReferenceDirection {
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
     bool HasCoherenceTerms() const override { return a_->HasCoherenceTerms() || b_->HasCoherenceTerms(); }
-    /// a's reference direction, else b's.
     /// Lobe 2j is a's lobe j, 2j + 1 is b's (MixId).
     std::string LobeName(int id) const override {
         const int child = id >= 0 ? id / 2 : -((-id + 1) / 2);  // floor(id / 2)
         return (id - 2 * child == 0 ? "a: " + a_->LobeName(child) : "b: " + b_->LobeName(child));
     }
+    /// a's reference direction, else b's.
     std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override {
         const std::optional<double> a = ReferenceAngleOf(*a_, tex);
         return a ? a : ReferenceAngleOf(*b_, tex);
@@ -191,6 +191,10 @@ class MixMaterial final : public Material, public ReferenceDirection {
                 for (int id : b_->ContinuousLobes()) continuous_.Add(MixId(id, true));
         }
 
+        /// The larger of the prepared children's.
+        double AngularBandwidth(double kappaMax) const override {
+            return std::max(a_ ? a_->AngularBandwidth(kappaMax) : 0.0, b_ ? b_->AngularBandwidth(kappaMax) : 0.0);
+        }
         std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
             const bool isB = (lobe & 1) != 0;
             const double share = isB ? w_ : 1 - w_;

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "core/diagnostics.h"
+#include "core/render/lobe_average.h"
 #include "materials/fresnel.h"
 
 namespace phasor {
@@ -71,6 +72,10 @@ class SmoothKernel::Prepared final : public PreparedKernel {
     }
 
     std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override;
+    double AngularBandwidth(double kappaMax) const override {
+        return HeroToShortest(*q_.wl) * k_->surface_.Bandwidth(q_.wl->lambda[0], q_.etaOutside, kappaMax,
+                                                              k_->FromInside(q_), thickness_, LobeAverageTolerance);
+    }
 
   private:
     /// Fills lobe_ as the header describes; returns how many lobes it lists.

@@ -57,7 +57,9 @@ class SmoothKernel : public Material {
     /// transmitting surface, lobe 1 (Snell's law, weight T(λ)·(η_i/η_t)², not listed under total
     /// internal reflection at the hero); a lobe that carries nothing at every wavelength is not
     /// listed. EvalLobe: the Jones / Mueller response of lobe 0 or 1 towards its hero direction (see
-    /// the top of the file) and, for a coated surface, its coherence terms.
+    /// the top of the file) and, for a coated surface, its coherence terms. AngularBandwidth: the
+    /// coating's LayerStackBandwidth (its fringes' rate in κ, theory §0 D15; bare: the Fresnel
+    /// coefficients' branch points only), at the hero and scaled to the shortest carried wavelength.
     const PreparedKernel &Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const override;
     /// A coated surface reports the coating's coherence terms (EvalLobe).
     bool HasCoherenceTerms() const override { return surface_.LayerCount() > 0; }

@@ -107,6 +107,17 @@ double SmoothSurface::Shear(double lambda, double etaOutside, double cosI, bool 
     });
 }
 
+double SmoothSurface::Bandwidth(double lambda, double etaOutside, double kappa, bool fromInside,
+                                const double *thickness, double tol) const {
+    const Complex substrate = SubstrateIndex(lambda), outside(etaOutside, 0);
+    const Complex incident = fromInside ? substrate : outside;
+    // cosθ in the incident medium for this κ (complex beyond grazing: the bound then still holds).
+    const Complex cosI = std::sqrt(1.0 - Complex(kappa * kappa, 0) / (incident * incident));
+    return WithLayers(lambda, fromInside, thickness, [&](std::span<const Layer> layers) {
+        return LayerStackBandwidth(lambda, incident, cosI, layers, fromInside ? outside : substrate, tol);
+    });
+}
+
 std::string SmoothSurface::ToString() const {
     std::ostringstream os;
     os << "substrate = " << substrate_->ToString();

@@ -92,6 +92,13 @@ class SmoothSurface {
                      const TextureEvalContext &tex) const;
     Vec2 ShearVector(double lambda, double etaOutside, const Vec3 &wi, bool fromInside, const double *thickness) const;
 
+    /// PreparedKernel::AngularBandwidth of the surface for light arriving with tangential wave-vector
+    /// κ = kappa (units of k₀) from the outside (index etaOutside) or, if fromInside, from the
+    /// substrate, with the layers' thicknesses at the hit (Thicknesses; nullptr for a bare surface):
+    /// LayerStackBandwidth at vacuum wavelength lambda, tolerance tol (theory §0 D15).
+    double Bandwidth(double lambda, double etaOutside, double kappa, bool fromInside, const double *thickness,
+                     double tol) const;
+
     std::string ToString() const;
 
   private:

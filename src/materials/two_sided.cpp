@@ -219,6 +219,8 @@ class TwoSidedMaterial final : public Material, public ReferenceDirection {
             lobes_ = mirrored.Lobes();
         }
 
+        /// The side's child's (mirroring keeps κ).
+        double AngularBandwidth(double kappaMax) const override { return child_->AngularBandwidth(kappaMax); }
         std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override {
             if (!below_) return child_->EvalLobe(lobe, wo);
             std::optional<LobeResponse> r = child_->EvalLobe(lobe, Mirror(wo));

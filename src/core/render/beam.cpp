@@ -40,54 +40,28 @@ Vec3 PerpendicularTo(const Vec3 &d, const Vec3 &hint) {
     return Frame::FromNormal(d).s;
 }
 
-PltBeam PltBeam::Source(const Vec3 &travel, int count, double omega) {
+PltBeam PltBeam::Source(const Vec3 &travel, int count) {
     PltBeam b;
     b.count = count;
     for (int i = 0; i < NumWavelengths; ++i) b.S[std::size_t(i)] = Stokes{i < count ? 1.0 : 0.0, 0, 0, 0};
     b.d = Normalize(travel);
     b.t = Frame::FromNormal(b.d).s;
-    b.K = Sym2::Isotropic(omega);
     return b;
 }
 
 void PltBeam::Propagate(double length) { dist += length; }
 
 void PltBeam::RotateFrame(const Vec3 &newT) {
-    const double psi = AngleAbout(t, newT, d);
-    const Mueller r = Mueller::Rotation(-psi);
+    const Mueller r = Mueller::Rotation(-AngleAbout(t, newT, d));
     for (int i = 0; i < count; ++i) S[std::size_t(i)] = r * S[std::size_t(i)];
-    // Coordinates in the new basis: v' = Q·v, Q = [[c, s], [−s, c]]; K' = Q K Qᵀ.
-    const double c = std::cos(psi), s = std::sin(psi);
-    const double q[2][2] = {{c, s}, {-s, c}};
-    const double k[2][2] = {{K.xx, K.xy}, {K.xy, K.yy}};
-    double r2[2][2] = {};
-    for (int a = 0; a < 2; ++a)
-        for (int b = 0; b < 2; ++b)
-            for (int m = 0; m < 2; ++m)
-                for (int n = 0; n < 2; ++n) r2[a][b] += q[a][m] * k[m][n] * q[b][n];
-    K = Sym2{r2[0][0], 0.5 * (r2[0][1] + r2[1][0]), r2[1][1]};
     t = newT;
 }
 
-void PltBeam::SetWindow(int i, double windowVariance) {
-    const double omega = K.xx;
-    share[std::size_t(i)] = !(omega > 0) || !(windowVariance < Infinity) ? 1.0 : windowVariance / (omega + windowVariance);
-}
-
-double PltBeam::MutualCoherence(const Vec3 &v, double k0, int i) const {
-    if (K.IsZero()) return 1;
-    const Vec3 y = Cross(d, t);
-    return std::exp(-0.5 * k0 * k0 * share[std::size_t(i)] * K.Quadratic(Dot(v, t), Dot(v, y)));
-}
-
-void PltBeam::Interact(const Vec3 &s, const Vec3 &out, const std::array<Mueller, NumWavelengths> &m,
-                       double inPlaneScale, bool resetCoherence) {
+void PltBeam::Interact(const Vec3 &s, const Vec3 &out, const std::array<Mueller, NumWavelengths> &m) {
     RotateFrame(PerpendicularTo(d, s));
     for (int i = 0; i < count; ++i) S[std::size_t(i)] = m[std::size_t(i)] * S[std::size_t(i)];
     d = Normalize(out);
     t = PerpendicularTo(d, s);
-    if (resetCoherence) K = Sym2{};
-    else K = Sym2{K.xx, K.xy * inPlaneScale, K.yy * inPlaneScale * inPlaneScale};
 }
 
 Stokes PltBeam::Measure(int i, const Vec3 &x, const std::optional<double> &polarizer) const {

@@ -168,6 +168,42 @@ double MeasureGaussianBeam(const GenRay &g, const GenRay &beam, double power) {
     return power * Normal2Full(drT.x, dkT.x, c.rr, c.rk, c.kk) * Normal2Full(drT.y, dkT.y, c.rr, c.rk, c.kk);
 }
 
+AngularProfile GaussianBeamOverlapProfile(const GenRay &g, const GenRay &beam) {
+    AngularProfile p;
+    if (Dot(beam.d, g.d) <= 0) return p;
+    GenRay s = beam;
+    s.k = g.k;
+    const double z = Dot(g.o - beam.o, g.d) / Dot(beam.d, g.d);
+    s.Propagate(z);
+    const Frame f = g.TransverseFrame();
+    const Vec3 dr = s.o - g.o;  // the beam's mean relative to the GR's: (Δr, Δk)
+    const Vec2 drT(Dot(dr, f.s), Dot(dr, f.t));
+    const Vec2 dkT = Vec2(Dot(beam.d, f.s), Dot(beam.d, f.t)) * g.k;
+    const GrCovariance a = g.Covariance(), b = s.Covariance();
+    // Per axis: posterior covariance P = (A⁻¹ + B⁻¹)⁻¹ = A(A + B)⁻¹B, mean P·B⁻¹·Δu = A(A + B)⁻¹Δu.
+    const GrCovariance c = a + b;
+    const double det = c.Det();
+    if (!(det > 0)) return p;
+    // (A + B)⁻¹ = [[kk, −rk], [−rk, rr]]/det; P_kk = (A(A+B)⁻¹B)_kk.
+    const double i_rr = c.kk / det, i_rk = -c.rk / det, i_kk = c.rr / det;
+    // M = A·(A+B)⁻¹ (2×2, rows of A times the inverse).
+    const double m_kr = a.rk * i_rr + a.kk * i_rk, m_kk = a.rk * i_rk + a.kk * i_kk;
+    const double pkk = m_kr * b.rk + m_kk * b.kk;
+    const Vec2 meanK = drT * m_kr + dkT * m_kk;
+    const Vec3 dir = g.d + (f.s * meanK.x + f.t * meanK.y) / g.k;
+    p = AngularProfile::Gaussian(std::max(pkk, 0.0) / (g.k * g.k), true);
+    p.centre = Normalize(dir);
+    return p;
+}
+
+AngularProfile GaussianBeamIncidenceProfile(const GenRay &g, const GenRay &beamAtG) {
+    const double b2 = beamAtG.beta2, rho = beamAtG.rho, g2 = g.beta2, k = beamAtG.k;
+    const double var = (0.5 / b2 + rho * rho * g2 / (2 * b2 * (b2 + g2))) / (k * k);
+    AngularProfile p = AngularProfile::Gaussian(var);
+    p.localized = true;
+    return p;
+}
+
 double DiscGaussianProbability(double offset, double radius, double sigma) {
     if (radius <= 0) return 0;
     if (!(sigma > 0)) return offset <= radius ? 1.0 : 0.0;

@@ -170,6 +170,34 @@ struct GaussianBeamGeometry {
     Complex Field(const Vec3 &p, double k, double zRef = 0) const;
 };
 
+/// The angular profile of the plane waves a closed-form measurement integrates, about its central
+/// direction (theory §0 D14, D15), in direction cosines transverse to that direction: what a lobe's
+/// efficiency is averaged over (core/render/lobe_average.h).
+///   * Delta: one direction (a plane wave, a point or spot light; a Gaussian beam whose local
+///     spread the measurement's own window already holds);
+///   * Disc: uniform over a disc of radius `radius` = sin α (a `distant` disc);
+///   * Gaussian: N(0, variance·I) (a `distant` Gaussian; a Gaussian beam's local spectrum).
+/// `windowed`: the profile already includes the measuring GR's angular window (a beam's overlap
+/// with the GR, a product of Gaussians), which must not be applied again.
+struct AngularProfile {
+    enum class Kind { Delta, Disc, Gaussian };
+    Kind kind = Kind::Delta;
+    double radius = 0;    // Disc [direction cosine]
+    double variance = 0;  // Gaussian, per axis [rad²]
+    bool windowed = false;
+    /// The profile's centre as a unit direction of travel (world), if it is not the measurement's
+    /// own central direction (a beam's overlap with a GR peaks between their axes); zero: that one.
+    Vec3 centre;
+    /// A light of finite cross-section (a beam): each plane wave's whole power crosses a surface
+    /// wider than it, with the obliquity of its own direction (lobe_average.h, LobeTransfer). False
+    /// for lights that fill the surface (plane waves, distant sources).
+    bool localized = false;
+    static AngularProfile Disc(double r) { return {Kind::Disc, r, 0, false, Vec3(), false}; }
+    static AngularProfile Gaussian(double v, bool windowed = false) {
+        return {Kind::Gaussian, 0, v, windowed, Vec3(), false};
+    }
+};
+
 // ---- Closed-form measurements (Eq. 24, theory §2.4) ------------------------------------------
 // `g` is always the *physical* GR (d = direction of light flow, ρ > 0 diverging along it). The
 // returned M is the phase-space overlap ∫∫ 𝒲_s g in the source's units times m² (M = L/k² for a
@@ -197,6 +225,16 @@ double MeasurePointSource(const GenRay &g, const Vec3 &p, double intensity);
 /// M = P·Π_axes N₂(Δu; 0, Σ_g + Σ_s), evaluated in the plane ⊥ g.d through g.o (the beam is
 /// propagated to that plane along its axis; paraxial, axes nearly parallel).
 double MeasureGaussianBeam(const GenRay &g, const GenRay &beam, double power);
+/// The plane waves the overlap of MeasureGaussianBeam integrates (theory §0 D15): the wave-vector
+/// marginal of the product of the two phase-space Gaussians, per axis Σ = (Σ_g⁻¹ + Σ_s⁻¹)⁻¹ with its
+/// mean, as a windowed Gaussian profile (variance Σ_kk/k², centre the mean's direction of travel).
+AngularProfile GaussianBeamOverlapProfile(const GenRay &g, const GenRay &beam);
+/// The plane waves a sensor-plane GR g integrating a beam over all its directions (D4a) sees at g.o:
+/// the beam's wave vectors there weighted by the GR's spatial footprint — per axis a Gaussian of
+/// variance [1/(2β²) + ρ²β_g²/(2β²(β² + β_g²))]/k² (β, ρ the beam's at g's axial position) about the
+/// direction `local` (the beam's local wavefront normal). Not windowed (the detector integrates the
+/// GR's own spread out).
+AngularProfile GaussianBeamIncidenceProfile(const GenRay &g, const GenRay &beamAtG);
 
 // ---- What closed-form sources deliver to a GR (used by lights, detectors and `grt`) ------------
 
@@ -206,6 +244,8 @@ struct GrMeasurement {
     SampledSpectrum value;   // k²·M [W/m²/sr per spectral unit of the light's spectrum]
     Vec3 wi;                 // unit direction from the GR's origin towards the source
     double dist = Infinity;  // distance to the source (Infinity for sources at infinity)
+    /// The plane waves M integrates, about −wi's direction of travel (the hero's; see AngularProfile).
+    AngularProfile profile;
 };
 
 /// D4a: a closed-form source integrated over every direction of a GR at its waist,
@@ -217,6 +257,9 @@ struct GrIncidence {
     Vec3 wi;                     // unit mean direction towards the source
     double dist = Infinity;
     double angularVariance = 0;  // per-axis variance of the arrival direction about wi [rad²]
+    /// The source's own angular profile about wi (without the GR's spread, which the detector
+    /// integrates out): what a lobe's efficiency is averaged over (D15).
+    AngularProfile profile;
 };
 
 /// P(|X| ≤ radius) for X ~ N₂(μ, σ²I) with |μ| = offset (the Rice CDF, i.e. 1 − Marcum Q₁):

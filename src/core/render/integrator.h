@@ -55,6 +55,9 @@ enum class RenderEvent {
     /// ray cannot reach those through a specular surface, so their light behind it is missing
     /// (theory §9 item 5).
     SpecularAfterSpreadFree,
+    /// A lobe's angular-spectrum average (theory §0 D15, core/render/lobe_average.h) needed more
+    /// quadrature nodes than its cap: its stated bound does not hold there.
+    LobeAverageCapped,
     Count
 };
 struct RenderEventInfo {

@@ -279,6 +279,18 @@ class PreparedKernel {
     /// Σ over ContinuousLobes of EvalLobe towards wo (the Mueller sum; a Jones matrix only when
     /// exactly one lobe answers; no coherence terms); nullopt if none answers.
     std::optional<LobeResponse> EvalContinuousLobes(const Vec3 &wo) const;
+    /// How fast the efficiencies a_j of the near-delta lobes may vary with the direction the light
+    /// arrives from (theory §0 D15, core/render/lobe_average.h): a bound B [rad per unit of κ] such
+    /// that the m-th derivative of a_j with respect to κ, the tangential wave-vector of the arrival
+    /// direction in units of k₀ = 2π/λ (n·sinθ in the light's medium; the Snell invariant), is at
+    /// most B^m·sup|a_j| for κ ≤ kappaMax, at every carried wavelength — a band-limited model: a
+    /// film's fringes oscillate at 2k₀·d·dq/dκ (q = √(n² − κ²)) per round trip, a grating's
+    /// J_j(m)² at 2·dm/dκ. 0 (the default) declares an efficiency that is smooth on the scale of a
+    /// radian (Fresnel reflection away from grazing and critical angles).
+    virtual double AngularBandwidth(double kappaMax) const {
+        (void)kappaMax;
+        return 0;
+    }
 
   protected:
     /// Keeps q without its `gr` and `si` (see above). Kernels set caps_, lobes_ and continuous_.

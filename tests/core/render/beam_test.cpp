@@ -46,7 +46,7 @@ TEST(PltBeam, FrameRotationMatchesTheFieldAndComposes) {
         const Vec3 x0 = PerpendicularTo(d, RandomUnit(rng)), x1 = PerpendicularTo(d, RandomUnit(rng)),
                    x2 = PerpendicularTo(d, RandomUnit(rng));
         const CVec3 e = Add(Scale(x0, RandomComplex(rng)), Scale(Cross(d, x0), RandomComplex(rng)));
-        PltBeam b = PltBeam::Source(d, 1, 0);
+        PltBeam b = PltBeam::Source(d, 1);
         b.t = x0;
         b.S[0] = StokesIn(e, x0, d);
         b.RotateFrame(x1);
@@ -122,10 +122,10 @@ TEST(PltBeam, InterfaceReflectionMatchesTheFieldReference) {
         const CVec3 e = Add(Scale(t0, RandomComplex(rng)), Scale(Cross(kIn, t0), RandomComplex(rng)));
         const CVec3 eOut = Add(Scale(s, rs * Dot(e, s)), Scale(pOut, rp * Dot(e, pIn)));
         for (double sign : {1.0, -1.0}) {
-            PltBeam b = PltBeam::Source(kIn, 1, 0);
+            PltBeam b = PltBeam::Source(kIn, 1);
             b.t = t0;
             b.S[0] = StokesIn(e, t0, kIn);
-            b.Interact(s * sign, kOut, ms, 1, false);
+            b.Interact(s * sign, kOut, ms);
             const Vec3 x = PerpendicularTo(kOut, RandomUnit(rng));
             ExpectStokesNear(b.Measure(0, x, std::nullopt), StokesIn(eOut, x, kOut), 1e-12 * b.S[0][0], "reflection");
         }
@@ -133,62 +133,23 @@ TEST(PltBeam, InterfaceReflectionMatchesTheFieldReference) {
     // Linear at 45° → elliptical by the Fresnel phases.
     const Vec3 n(0, 0, 1), kIn = Normalize(Vec3(1, 0, -1)), kOut = Normalize(Vec3(1, 0, 1));
     const Vec3 s = Normalize(Cross(n, kIn));
-    PltBeam b = PltBeam::Source(kIn, 1, 0);
+    PltBeam b = PltBeam::Source(kIn, 1);
     b.t = s;
     b.S[0] = Stokes{1, 0, 1, 0};
-    b.Interact(s, kOut, ms, 1, false);
+    b.Interact(s, kOut, ms);
     const double aOut = 0.5 * (std::norm(rs) + std::norm(rp));
     EXPECT_NEAR(b.S[0][0], aOut, 1e-14);
     EXPECT_NEAR(b.S[0][3] / b.S[0][0], -(rs * std::conj(rp)).imag() / aOut, 1e-14);
     EXPECT_NEAR(b.S[0][2] / b.S[0][0], (rs * std::conj(rp)).real() / aOut, 1e-14);
 }
 
-// μ(v) = exp(−½k₀²v⊥ᵀKv⊥) (theory §0 D5), invariant under frame rotations; the in-plane spread
-// scales at a near-delta lobe; a continuous lobe resets the beam to a coherent mode.
-TEST(PltBeam, MutualCoherenceAndItsTransport) {
-    const double k0 = 2 * Pi / 550e-9, omega = 4e-6;
-    PltBeam b = PltBeam::Source(Vec3(0, 0, -1), 1, omega);
-    const Vec3 v(3e-6, -1e-6, 7e-6);  // the z part is along d: projected away
-    const double expected = std::exp(-0.5 * k0 * k0 * omega * (9e-12 + 1e-12));
-    EXPECT_NEAR(b.MutualCoherence(v, k0, 0), expected, 1e-14);
-    b.RotateFrame(Normalize(Vec3(1, 2, 0)));
-    EXPECT_NEAR(b.MutualCoherence(v, k0, 0), expected, 1e-14);
-    // Anisotropic after an interaction whose in-plane factor is 0.5: K = diag(Ω, Ω/4) in (s, d × s).
-    std::array<Mueller, NumWavelengths> id;
-    id.fill(Mueller::Identity());
-    const Vec3 s(0, 1, 0), out = Normalize(Vec3(1, 0, -1));
-    b.Interact(s, out, id, 0.5, false);
-    const Vec3 p = Cross(out, s);
-    EXPECT_NEAR(b.MutualCoherence(s * 2e-6, k0, 0), std::exp(-0.5 * k0 * k0 * omega * 4e-12), 1e-14);
-    EXPECT_NEAR(b.MutualCoherence(p * 2e-6, k0, 0), std::exp(-0.5 * k0 * k0 * omega / 4 * 4e-12), 1e-14);
-    b.Interact(s, Vec3(0, 0, 1), id, 1, true);
-    EXPECT_EQ(b.MutualCoherence(p * 1e-3, k0, 0), 1.0);
-    // A source with Ω = 0 is coherent everywhere; unpolarised; the distance accumulates.
-    PltBeam c = PltBeam::Source(Vec3(1, 0, 0), 4, 0);
-    EXPECT_EQ(c.MutualCoherence(Vec3(0, 1, 1), k0, 0), 1.0);
+// A source is unpolarised at every wavelength; the distance accumulates.
+TEST(PltBeam, SourceIsUnpolarisedAndPropagationCountsTheDistance) {
+    PltBeam c = PltBeam::Source(Vec3(1, 0, 0), 4);
     for (int i = 0; i < 4; ++i) EXPECT_EQ(DegreeOfPolarization(c.S[std::size_t(i)]), 0.0);
     c.Propagate(2.5);
     c.Propagate(0.5);
     EXPECT_DOUBLE_EQ(c.dist, 3.0);
-}
-
-// A measurement through a Gaussian angular window Ω_w sees the source's profile times it: the
-// ensemble's variance is Ω·Ω_w/(Ω + Ω_w) (a product of Gaussians), per carried wavelength.
-TEST(PltBeam, WindowNarrowsTheEnsemble) {
-    const double k0 = 2 * Pi / 550e-9, omega = 2.25e-4;
-    PltBeam b = PltBeam::Source(Vec3(0, 0, -1), 3, omega);
-    b.SetWindow(0, 1e-5);
-    b.SetWindow(1, Infinity);
-    b.SetWindow(2, omega);
-    const Vec3 v(5e-6, 0, 0);
-    auto mu = [&](double o) { return std::exp(-0.5 * k0 * k0 * o * 25e-12); };
-    EXPECT_NEAR(b.MutualCoherence(v, k0, 0), mu(omega * 1e-5 / (omega + 1e-5)), 1e-14);
-    EXPECT_NEAR(b.MutualCoherence(v, k0, 1), mu(omega), 1e-14);
-    EXPECT_NEAR(b.MutualCoherence(v, k0, 2), mu(omega / 2), 1e-14);
-    // A coherent mode stays coherent whatever the window.
-    PltBeam c = PltBeam::Source(Vec3(0, 0, -1), 1, 0);
-    c.SetWindow(0, 1e-5);
-    EXPECT_EQ(c.MutualCoherence(v, k0, 0), 1.0);
 }
 
 }  // namespace

@@ -1,0 +1,303 @@
+// SPDX-License-Identifier: Apache-2.0
+// phasor — a lobe's efficiency averaged over an angular ensemble (lobe_average.h).
+#include "core/render/lobe_average.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <vector>
+
+#include "core/numerics/ensemble_quadrature.h"
+#include "core/scratch_buffer.h"
+
+namespace phasor {
+
+namespace {
+
+constexpr double Tolerance = LobeAverageTolerance;
+/// A rate every efficiency has at least [rad per unit of the direction cosines]: the smooth
+/// envelope of Fresnel coefficients, power factors and Jacobians (curvature O(1) per rad²).
+constexpr double EnvelopeRate = 2;
+
+std::atomic<bool> disabledForTesting{false};
+thread_local LobeAverageCounters counters;
+
+/// The coordinates of one wavelength's ensemble: u = direction cosines transverse to `a` (the
+/// profile's centre) in the basis (e1, e2), e1 in the plane of `a` and the normal, pointing away
+/// from the normal (|ω.xy| grows along +x).
+struct EnsembleFrame {
+    Vec3 a, e1, e2;
+    explicit EnsembleFrame(const Vec3 &centre) : a(centre) {
+        const Vec3 t(a.x, a.y, 0);
+        Vec3 e = t - a * Dot(t, a);
+        if (LengthSquared(e) < 1e-24) e = Vec3(1, 0, 0) - a * a.x;  // along the normal: any direction
+        if (LengthSquared(e) < 1e-24) e = Vec3(0, 1, 0) - a * a.y;
+        e1 = Normalize(e);
+        e2 = Cross(a, e1);
+    }
+    Vec3 Direction(const Vec2 &u) const {
+        return e1 * u.x + e2 * u.y + a * std::sqrt(std::max(0.0, 1 - LengthSquared(u)));
+    }
+    Vec2 Coordinates(const Vec3 &w) const { return Vec2(Dot(w, e1), Dot(w, e2)); }
+};
+
+/// The query direction wi′ whose lobe (indices nIn → nOut, tangential shift) points at ω at
+/// wavelength λ (the vector grating equation inverted), on wi's side; false if none propagates.
+bool QueryDirection(const Vec3 &omega, const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda,
+                    Vec3 *out) {
+    const double k = lambda / (2 * Pi);
+    const Vec2 xy = (Vec2(omega.x, omega.y) * (-nOut) + shift * k) / nIn;
+    const double s2 = LengthSquared(xy);
+    if (!(s2 < 1)) return false;
+    *out = Vec3(xy.x, xy.y, std::copysign(std::sqrt(1 - s2), wi.z));
+    return true;
+}
+
+/// The lobe's direction for a query at wi′ (forward vector grating equation), at the hero.
+Vec3 LobeDirection(const Vec3 &wiPrime, const NearDeltaLobe &l, double lambda) {
+    const Vec2 xy = (Vec2(wiPrime.x, wiPrime.y) * (-l.nIn[0]) + l.shift * (lambda / (2 * Pi))) / l.nOut[0];
+    const double z = std::sqrt(std::max(0.0, 1 - LengthSquared(xy)));
+    const bool transmitted = (l.flags & ScatterTransmission) != 0;
+    return Vec3(xy.x, xy.y, (transmitted ? -1.0 : 1.0) * std::copysign(z, wiPrime.z));
+}
+
+/// (n_out/n_in)²·|cosθ_o|/|cosθ_i|: the irradiance a plane wave from ω delivers through the lobe per
+/// unit irradiance, up to the lobe's efficiency (LobeTransfer::Irradiance).
+double IrradianceTransfer(const Vec3 &omega, const Vec3 &wiPrime, double nIn, double nOut) {
+    return Sqr(nOut / nIn) * std::abs(omega.z) / std::max(std::abs(wiPrime.z), 1e-300);
+}
+
+/// The transfer of a plane wave from ω relative to the ensemble's centre (LobeTransfer::Irradiance):
+/// the lobe's irradiance transfer, and for a localized light (a beam narrower than the surface: every
+/// plane wave's whole power crosses it) the obliquity |cosθ_ω|/|cosθ_centre| with which that power
+/// crosses the surface — what the sensor's pixels, mapped onto the surface along the ensemble's
+/// central direction, collect of it in total.
+double RelativeTransfer(const Vec3 &omega, const Vec3 &wiPrime, const NearDeltaLobe &l, int i,
+                        const LobeEnsemble::Wave &w, const Vec3 &wi) {
+    double t = IrradianceTransfer(omega, wiPrime, l.nIn[i], l.nOut[i]) / IrradianceTransfer(w.source, wi, l.nIn[i], l.nOut[i]);
+    if (w.profile.localized) t *= std::abs(omega.z) / std::max(std::abs(w.source.z), 1e-300);
+    return t;
+}
+
+/// The ensemble shape of one wave in its frame.
+EnsembleShape ShapeOf(const LobeEnsemble::Wave &w, const EnsembleFrame &f) {
+    EnsembleShape s;
+    switch (w.profile.kind) {
+    case AngularProfile::Kind::Delta: s.profile = EnsembleShape::Profile::Delta; break;
+    case AngularProfile::Kind::Disc:
+        s.profile = EnsembleShape::Profile::Disc;
+        s.radius = w.profile.radius;
+        break;
+    case AngularProfile::Kind::Gaussian:
+        s.profile = EnsembleShape::Profile::Gaussian;
+        s.variance = w.profile.variance;
+        break;
+    }
+    if (std::isfinite(w.windowVariance) && !w.profile.windowed) {
+        s.windowCentre = f.Coordinates(w.windowAxis);
+        s.windowVariance = w.windowVariance;
+    }
+    return s;
+}
+
+/// Rates (R_x, R_y) of a lobe's efficiency over a box of ensemble coordinates: the kernel's bandwidth
+/// B (per unit of |ω.xy|) times the largest derivative of s = |ω.xy| along each axis, plus the
+/// rate of the phase's curvature √(B·(∂²s + (∂s)²/s)) (the chirp near normal incidence, where
+/// ∂s vanishes) and the envelope's rate.
+struct RateBound {
+    const PreparedKernel &k;
+    const EnsembleFrame &f;
+    double nOut;  // index of the light's medium (κ = nOut·s)
+    Vec2 operator()(const EnsembleBox &b) const {
+        constexpr int N = 5;
+        double grad[N][N][2], smax = 0;
+        Vec2 g1(0, 0);
+        for (int i = 0; i < N; ++i)
+            for (int j = 0; j < N; ++j) {
+                Vec2 u(b.lo.x + (b.hi.x - b.lo.x) * i / (N - 1), b.lo.y + (b.hi.y - b.lo.y) * j / (N - 1));
+                const double l = Length(u);
+                if (l > 0.999) u = u * (0.999 / l);
+                const double z = std::sqrt(1 - LengthSquared(u));
+                const Vec3 w = f.Direction(u);
+                const Vec3 dx = f.e1 - f.a * (u.x / z), dy = f.e2 - f.a * (u.y / z);
+                const double s = std::hypot(w.x, w.y);
+                smax = std::max(smax, s);
+                for (int c = 0; c < 2; ++c) {
+                    const Vec3 &d = c == 0 ? dx : dy;
+                    const double ds = s > 1e-12 ? (w.x * d.x + w.y * d.y) / s : std::hypot(d.x, d.y);
+                    grad[i][j][c] = ds;
+                    g1[c] = std::max(g1[c], std::abs(ds));
+                }
+            }
+        Vec2 g2(0, 0);
+        const double hx = (b.hi.x - b.lo.x) / (N - 1), hy = (b.hi.y - b.lo.y) / (N - 1);
+        for (int i = 0; i + 1 < N; ++i)
+            for (int j = 0; j + 1 < N; ++j) {
+                if (hx > 0) g2.x = std::max(g2.x, std::abs(grad[i + 1][j][0] - grad[i][j][0]) / hx);
+                if (hy > 0) g2.y = std::max(g2.y, std::abs(grad[i][j + 1][1] - grad[i][j][1]) / hy);
+            }
+        const double B = nOut * k.AngularBandwidth(std::min(nOut * smax, nOut));
+        const double sRef = std::max(smax, 1e-6);
+        Vec2 r;
+        for (int c = 0; c < 2; ++c) r[c] = B * g1[c] + std::sqrt(B * (g2[c] + g1[c] * g1[c] / sRef)) + EnvelopeRate;
+        return r;
+    }
+};
+
+/// Wavelengths that share one rule with wavelength i: the same ensemble and a lobe whose map
+/// between ω and wi′ does not depend on λ.
+bool SameMap(const NearDeltaLobe &l, int i, int j) {
+    return l.shift == Vec2(0, 0) && l.nIn[i] == l.nIn[j] && l.nOut[i] == l.nOut[j] && l.wo[i] == l.wo[j];
+}
+
+/// Calls visit(ω, wi′, weight) for every node of wavelength i's rule (wi′ invalid nodes are
+/// skipped, their weight still counted in the returned normalisation); returns Σ weights.
+template <typename Visit>
+double ForEachNode(const PreparedKernel &k, const NearDeltaLobe &l, const LobeEnsemble::Wave &w, int i, Visit &&visit) {
+    const ScatterQuery &q = k.Query();
+    const EnsembleFrame f(w.source);
+    const EnsembleShape shape = ShapeOf(w, f);
+    thread_local std::vector<EnsembleNode> nodes;
+    const RateBound rates{k, f, l.nOut[i]};
+    const EnsembleRuleInfo info = BuildEnsembleRule(shape, rates, Tolerance, nodes);
+    ++counters.rules;
+    counters.capped += info.capped;
+    double norm = 0;
+    for (const EnsembleNode &n : nodes) {
+        norm += n.w;
+        const Vec3 omega = f.Direction(n.p);
+        Vec3 wiPrime;
+        if (!QueryDirection(omega, q.wi, l.nIn[i], l.nOut[i], l.shift, q.wl->lambda[i], &wiPrime)) continue;
+        visit(omega, wiPrime, n.w, nodes.size() == 1);
+    }
+    return norm;
+}
+
+/// m prepared for the hit's query with wi′ in place of wi, in this thread's buffer for nodes (reset
+/// here: valid until the next node). The hit's own kernel lives in the integrator's buffer.
+const PreparedKernel &PrepareAt(const Material &m, const PreparedKernel &k, const Vec3 &wiPrime) {
+    thread_local ScratchBuffer scratch;
+    scratch.Reset();
+    ScatterQuery qn = k.Query();
+    qn.wi = wiPrime;
+    return m.Prepare(qn, scratch);
+}
+
+}  // namespace
+
+LobeEnsemble MeasurementEnsemble(const Frame &shading, const SpectralGenRay &g, const NearDeltaLobe &lobe,
+                                 const Vec3 &toLight, const AngularProfile &profile) {
+    LobeEnsemble e;
+    // A profile with its own centre (a beam's overlap with the GR) is centred there.
+    const Vec3 source = shading.ToLocal(LengthSquared(profile.centre) > 0 ? -profile.centre : toLight);
+    for (int i = 0; i < g.count; ++i) {
+        LobeEnsemble::Wave &w = e.wave[std::size_t(i)];
+        w.source = source;
+        w.profile = profile;
+        w.windowAxis = lobe.wo[std::size_t(i)];
+        const double k = g.k[std::size_t(i)] * lobe.Eta(i);
+        w.windowVariance = 0.5 * (1 + Sqr(g.rho[std::size_t(i)])) / (g.beta2[std::size_t(i)] * k * k);
+    }
+    return e;
+}
+
+SampledSpectrum AverageLobeWeight(const Material &m, const PreparedKernel &k, const NearDeltaLobe &lobe,
+                                  const LobeEnsemble &e, LobeTransfer transfer, int wavelength) {
+    const ScatterQuery &q = k.Query();
+    SampledSpectrum out(0.0);
+    ++counters.averages;
+    const int count = q.wl->Count();
+    if (disabledForTesting.load(std::memory_order_relaxed)) {
+        for (int i = 0; i < count; ++i)
+            if (wavelength < 0 || i == wavelength) out[i] = lobe.weight[i];
+        return out;
+    }
+    std::array<bool, NumWavelengths> done{};
+    for (int i = 0; i < count; ++i) {
+        if ((wavelength >= 0 && i != wavelength) || done[std::size_t(i)]) continue;
+        // The wavelengths this rule serves.
+        std::array<int, NumWavelengths> group{};
+        int members = 0;
+        for (int j = i; j < count; ++j)
+            if (j == i || (wavelength < 0 && !done[std::size_t(j)] && SameMap(lobe, i, j) &&
+                           e.wave[std::size_t(j)] == e.wave[std::size_t(i)])) {
+                group[std::size_t(members++)] = j;
+                done[std::size_t(j)] = true;
+            }
+        const LobeEnsemble::Wave &w = e.wave[std::size_t(i)];
+        std::array<double, NumWavelengths> sum{};
+        const double norm = ForEachNode(k, lobe, w, i, [&](const Vec3 &omega, const Vec3 &wiPrime, double weight, bool single) {
+            SampledSpectrum a(0.0);
+            if (single && SameDirection(omega, lobe.wo[std::size_t(i)], 1e-12)) {
+                a = lobe.weight;  // the lobe's own direction: its listed weight
+            } else {
+                if (const NearDeltaLobe *l = PrepareAt(m, k, wiPrime).FindLobe(lobe.id)) a = l->weight;
+                ++counters.evaluations;
+            }
+            const double t = transfer == LobeTransfer::Irradiance ? RelativeTransfer(omega, wiPrime, lobe, i, w, q.wi) : 1.0;
+            for (int k = 0; k < members; ++k) sum[std::size_t(k)] += weight * t * a[group[std::size_t(k)]];
+        });
+        for (int k = 0; k < members; ++k) out[group[std::size_t(k)]] = norm > 0 ? sum[std::size_t(k)] / norm : 0;
+    }
+    return out;
+}
+
+std::optional<LobeResponse> AverageLobeResponse(const Material &m, const PreparedKernel &k, int lobeId,
+                                                const LobeEnsemble &e, LobeTransfer transfer) {
+    const ScatterQuery &q = k.Query();
+    const NearDeltaLobe *lobe = k.FindLobe(lobeId);
+    if (!lobe) return std::nullopt;
+    ++counters.averages;
+    if (disabledForTesting.load(std::memory_order_relaxed)) return k.EvalLobe(lobeId, lobe->wo[0]);
+    const int count = q.wl->Count();
+    LobeResponse out;
+    bool jones = true;  // every rule had one node, with a Jones matrix
+    std::array<bool, NumWavelengths> done{};
+    for (int i = 0; i < count; ++i) {
+        if (done[std::size_t(i)]) continue;
+        std::array<int, NumWavelengths> group{};
+        int members = 0;
+        for (int j = i; j < count; ++j)
+            if (j == i || (!done[std::size_t(j)] && SameMap(*lobe, i, j) && e.wave[std::size_t(j)] == e.wave[std::size_t(i)])) {
+                group[std::size_t(members++)] = j;
+                done[std::size_t(j)] = true;
+            }
+        std::array<Mueller, NumWavelengths> sum{};
+        std::optional<LobeResponse> only;  // the single node's response (keeps its Jones matrix)
+        int nodes = 0;
+        const LobeEnsemble::Wave &w = e.wave[std::size_t(i)];
+        const double norm = ForEachNode(k, *lobe, w, i, [&](const Vec3 &omega, const Vec3 &wiPrime, double weight, bool single) {
+            std::optional<LobeResponse> r =
+                PrepareAt(m, k, wiPrime).EvalLobe(lobeId, LobeDirection(wiPrime, *lobe, q.wl->lambda[0]));
+            ++counters.evaluations;
+            if (!r) return;
+            ++nodes;
+            if (single) only = r;
+            const double t = transfer == LobeTransfer::Irradiance ? RelativeTransfer(omega, wiPrime, *lobe, i, w, q.wi) : 1.0;
+            for (int k = 0; k < members; ++k) {
+                const std::size_t s = std::size_t(group[std::size_t(k)]);
+                sum[std::size_t(k)] = sum[std::size_t(k)] + r->mueller[s] * (weight * t);
+            }
+        });
+        for (int k = 0; k < members; ++k) {
+            const std::size_t s = std::size_t(group[std::size_t(k)]);
+            out.mueller[s] = norm > 0 ? sum[std::size_t(k)] * (1 / norm) : Mueller::Zero();
+            if (only && nodes == 1) out.jones[s] = only->jones[s];
+        }
+        jones = jones && nodes == 1 && only && only->hasJones;
+    }
+    out.hasJones = jones;
+    return out;
+}
+
+double HeroToShortest(const SampledWavelengths &wl) {
+    double shortest = wl.lambda[0];
+    for (int i = 1; i < wl.Count(); ++i) shortest = std::min(shortest, wl.lambda[i]);
+    return 1.1 * wl.lambda[0] / shortest;
+}
+
+LobeAverageCounters &LobeAverageCost() { return counters; }
+
+void SetLobeAverageDisabledForTesting(bool disabled) { disabledForTesting.store(disabled); }
+
+}  // namespace phasor
