@@ -94,7 +94,6 @@ struct CompareRun {
     std::optional<CompareMetrics> metrics;    // against the reference (not for the reference)
     std::optional<ConsistencyTest> test;      // against the reference's noise (same physics only)
     bool comparable = true;                   // same physics as the reference
-    std::vector<std::string> warnings;        // everything the run warned about (scene, render)
     /// Notes about this integrator on this scene for the page (e.g. what it cannot see); empty
     /// unless someone fills it — the table shows them.
     std::vector<std::string> messages;
