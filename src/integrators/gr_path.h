@@ -194,7 +194,8 @@ class PathEstimate {
     void DirectLight(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
     /// D14 through every listed near-delta lobe at the vertex: delta and small sources (plane waves,
     /// lasers, point and spot lights, the sun) measured in closed form along each lobe, weighted by
-    /// its a_j; a dispersive lobe per carried wavelength along its own direction.
+    /// its a_j averaged over the plane waves each measurement integrates (ThroughLobeWeight, D15);
+    /// a dispersive lobe per carried wavelength along its own direction.
     void ThroughListedLobes(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
     /// Samples one lobe at the vertex and turns the GR into it (theory §3.3, S6.4); Russian roulette.
     /// False if the path ends here.
@@ -327,15 +328,15 @@ void PathEstimate<Sink>::MeasureAtDetector() {
         const SampledSpectrum m = ClosedForm(
             g_, nullptr, g_.o, [](const GrMeasurement &mi) { return mi.value; },
             [&](const Light *light, bool ensemble, const GrMeasurement &mi, const SampledSpectrum &) {
-            Event e;
-            e.kind = EventKind::Detector;
-            e.value = T_ * mi.value;
-            e.light = light;
-            e.ensemble = ensemble;
-            e.travel = -mi.wi;
-            e.dist = mi.dist;
-            return std::optional<Event>(e);
-        });
+                Event e;
+                e.kind = EventKind::Detector;
+                e.value = T_ * mi.value;
+                e.light = light;
+                e.ensemble = ensemble;
+                e.travel = -mi.wi;
+                e.dist = mi.dist;
+                return std::optional<Event>(e);
+            });
         L_ += T_ * m;
         return;
     }
