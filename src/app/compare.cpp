@@ -40,19 +40,20 @@ using Clock = std::chrono::steady_clock;
 // over the pixel (detector.h StratifiedPixelSample) that a stopped render would only partly visit.
 constexpr int TimeModeSpp = (1 << 25) + 1;
 
-// Sets `stop` when the time budget is spent (budget > 0) or a stop signal arrived, polling every
+// Sets `stop` when the time budget is spent (budget > 0) or a stop was requested, polling every
 // 5 ms from its own thread, so that a render is stopped within a pixel's batch of the deadline.
 // Extend moves the deadline (time spent on snapshots does not count against the budget).
 class Watchdog {
   public:
-    explicit Watchdog(double budget)
+    Watchdog(double budget, const std::atomic<bool> *stopRequest)
         : start_(Clock::now()),
           deadline_(start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget))) {
-        thread_ = std::thread([this, budget] {
+        thread_ = std::thread([this, budget, stopRequest] {
             std::unique_lock<std::mutex> lock(mutex_);
             while (!done_) {
                 cv_.wait_for(lock, std::chrono::milliseconds(5));
-                if (StopFlag().load() || (budget > 0 && Clock::now() >= deadline_)) stop_.store(true);
+                if ((stopRequest && stopRequest->load()) || (budget > 0 && Clock::now() >= deadline_))
+                    stop_.store(true);
             }
         });
     }
@@ -88,124 +89,43 @@ std::string FileStem(const std::string &name) {
     return s.empty() ? "run" : s;
 }
 
-// Every integrator a name may pick: the registry's plug-ins and the scene's named integrators.
-std::vector<std::string> IntegratorChoices(const SceneDesc &desc) {
-    std::vector<std::string> names = Registry<Integrator>::Names();
-    for (const SceneEntity &e : desc.entities)
-        if (e.keyword == "Integrator" && !e.name.empty() &&
-            std::find(names.begin(), names.end(), e.name) == names.end())
-            names.push_back(e.name);
-    return names;
-}
-
-// What the runs share: the reference when it is known before they render (an image, or the
-// reference run rendered first; then each snapshot is compared at once and its pixels dropped),
-// and the memory left for snapshots whose reference is not known yet.
-struct SnapshotContext {
-    const std::vector<double> *reference = nullptr;
-    double bytesLeft = 0;
-};
-
-// Renders one run (the scene already built for its integrator) and fills `run`.
+// Renders one run for the program: RenderCompareRun with the command line's options, a progress bar
+// and the run's messages on stderr.
 void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int index, int count, double budget,
                SnapshotContext &snap) {
     const Integrator &integrator = scene.GetIntegrator();
     const Detector &det = scene.GetDetector();
-    run.deterministic = integrator.Deterministic();
-    RenderOptions opt = OptionsFor(scene, o);
-    const bool timed = budget > 0 && !run.deterministic;  // rs takes no samples: it runs to the end
-    if (timed) opt.spp = TimeModeSpp;
-    run.sppRequested = opt.spp;
-    Watchdog watchdog(timed ? budget : 0);
-    opt.cancel = watchdog.Flag();
-
+    CompareRunSettings s;
+    s.options = OptionsFor(scene, o);
+    s.budget = budget;
+    s.scenePath = o.scene;
+    s.stop = &StopFlag();
+    const bool timed = budget > 0 && !integrator.Deterministic();
     const std::string label = "[" + std::to_string(index) + "/" + std::to_string(count) + "] " + run.name;
     const bool bar = !o.quiet && isatty(2);
-    std::function<void(int, int)> progress;
     if (bar)
-        progress = ProgressBar(label, run.deterministic, (long long)det.Width() * det.Height(), timed ? budget : 0);
-    if (!timed) opt.warn = [&](const std::string &w) { std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n"; };
-
-    Film film(det.Width(), det.Height(), det.Response());
-    // Snapshots of `intensity` at roughly geometric sample counts (×1.5), taken between passes;
-    // the time they take is left out of the times reported.
-    const auto start = Clock::now();
-    double snapshotCost = 0;
-    int next = 1;
-    const double pixels = double(det.Width()) * det.Height();
-    // (the reference run itself needs none)
-    const bool snapshots = !run.deterministic && !run.isReferenceRun;
-    opt.progress = [&](int done, int total) {
-        if (progress) progress(done, total);
-        if (!snapshots || run.snapshotsCut || done < next) return;
-        if (!snap.reference && snap.bytesLeft < pixels * sizeof(float)) {
-            run.snapshotsCut = true;
-            return;
-        }
-        const auto t0 = Clock::now();
-        const Image img = film.Resolve();
-        CompareSnapshot s;
-        s.spp = done;
-        s.seconds = std::chrono::duration<double>(t0 - start).count() - snapshotCost;
-        const std::vector<double> values = ChannelValues(img, "intensity");
-        if (snap.reference) {
-            s.metrics = ErrorMetrics(values, *snap.reference);
-        } else {
-            s.intensity.assign(values.begin(), values.end());
-            snap.bytesLeft -= pixels * sizeof(float);
-        }
-        run.snapshots.push_back(std::move(s));
-        next = std::max(done + 1, int(std::ceil(done * 1.5)));
-        const double cost = std::chrono::duration<double>(Clock::now() - t0).count();
-        snapshotCost += cost;
-        if (timed) watchdog.Extend(cost);
-    };
-
+        s.options.progress =
+            ProgressBar(label, integrator.Deterministic(), (long long)det.Width() * det.Height(), timed ? budget : 0);
+    if (!timed) s.options.warn = [&](const std::string &w) { std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n"; };
     RenderStats st;
     try {
-        st = integrator.Render(scene, film, opt);
+        st = RenderCompareRun(run, scene, s, snap);
     } catch (const Error &e) {
         if (bar) std::cerr << "\n";
-        run.status = CompareRun::Status::Failed;
-        run.error = e.Message();
         std::cerr << label << ": failed:\n";
         PrintError(e);
         return;
     }
     if (bar) std::cerr << "\n";
-    // Equal time: the time since the budget started (the watchdog's clock, which the deadline is
-    // on), so that a run stopped by its budget reports at least the budget; otherwise the render's own.
-    const double spent = timed ? std::chrono::duration<double>(Clock::now() - watchdog.Start()).count() : st.seconds;
-    run.seconds = std::max(0.0, spent - snapshotCost);
-    run.sppReached = st.sppReached;
-    run.work = st.work;
-    // A run stopped by its time budget is complete; one stopped by a signal is not.
-    const bool interrupted = st.cancelled && StopFlag().load();
-    if (!st.hasImage) {  // rs stopped before it had anything honest to show
-        run.status = CompareRun::Status::Interrupted;
+    if (!run.image) {  // rs stopped before it had anything honest to show
         std::cerr << label << ": interrupted (" << st.work << "); no image\n";
         return;
-    }
-    run.status = interrupted ? CompareRun::Status::Interrupted : CompareRun::Status::Done;
-    Image img = film.Resolve();
-    StampMetadata(img, scene, o.scene, opt, st);
-    if (timed) img.metadata["phasor:time_budget_seconds"] = std::to_string(budget);
-    run.intensity = ChannelValues(img, "intensity");
-    run.variance = img.ChannelIndex("variance") >= 0 ? ChannelValues(img, "variance") : std::vector<double>{};
-    if (snapshots && (run.snapshots.empty() || run.snapshots.back().spp != st.sppReached)) {
-        CompareSnapshot last;
-        last.spp = st.sppReached;
-        last.seconds = run.seconds;
-        if (snap.reference) last.metrics = ErrorMetrics(run.intensity, *snap.reference);
-        else last.intensity.assign(run.intensity.begin(), run.intensity.end());  // (the image is kept anyway)
-        run.snapshots.push_back(std::move(last));
     }
     if (run.snapshotsCut)
         std::cerr << "warning: " << run.name << ": the convergence plot stops at " << run.snapshots.back().spp
                   << " spp (its snapshots would not fit in memory; give --reference to compare them at once)\n";
-    run.image = std::move(img);
     if (!o.quiet) {
-        std::cerr << label << ": " << (interrupted ? "interrupted: " : "");
+        std::cerr << label << ": " << (run.status == CompareRun::Status::Interrupted ? "interrupted: " : "");
         if (run.deterministic)
             std::cerr << st.work;
         else
@@ -219,6 +139,101 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
 }
 
 }  // namespace
+
+std::vector<std::string> IntegratorChoices(const SceneDesc &desc) {
+    std::vector<std::string> names = Registry<Integrator>::Names();
+    for (const SceneEntity &e : desc.entities)
+        if (e.keyword == "Integrator" && !e.name.empty() &&
+            std::find(names.begin(), names.end(), e.name) == names.end())
+            names.push_back(e.name);
+    return names;
+}
+
+RenderStats RenderCompareRun(CompareRun &run, const Scene &scene, const CompareRunSettings &s, SnapshotContext &snap) {
+    const Integrator &integrator = scene.GetIntegrator();
+    const Detector &det = scene.GetDetector();
+    run.deterministic = integrator.Deterministic();
+    RenderOptions opt = s.options;
+    const double budget = s.budget;
+    const bool timed = budget > 0 && !run.deterministic;  // rs takes no samples: it runs to the end
+    if (timed) opt.spp = TimeModeSpp;
+    run.sppRequested = opt.spp;
+    Watchdog watchdog(timed ? budget : 0, s.stop);
+    opt.cancel = watchdog.Flag();
+
+    Film film(det.Width(), det.Height(), det.Response());
+    // Snapshots of `intensity` at roughly geometric sample counts (×1.5), taken between passes;
+    // the time they take is left out of the times reported.
+    const auto start = Clock::now();
+    double snapshotCost = 0;
+    int next = 1;
+    const double pixels = double(det.Width()) * det.Height();
+    // (the reference run itself needs none)
+    const bool snapshots = !run.deterministic && !run.isReferenceRun;
+    const std::function<void(int, int)> progress = s.options.progress;
+    opt.progress = [&](int done, int total) {
+        if (progress) progress(done, total);
+        if (!snapshots || run.snapshotsCut || done < next) return;
+        if (!snap.reference && snap.bytesLeft < pixels * sizeof(float)) {
+            run.snapshotsCut = true;
+            return;
+        }
+        const auto t0 = Clock::now();
+        const Image img = film.Resolve();
+        CompareSnapshot sn;
+        sn.spp = done;
+        sn.seconds = std::chrono::duration<double>(t0 - start).count() - snapshotCost;
+        const std::vector<double> values = ChannelValues(img, "intensity");
+        if (snap.reference) {
+            sn.metrics = ErrorMetrics(values, *snap.reference);
+        } else {
+            sn.intensity.assign(values.begin(), values.end());
+            snap.bytesLeft -= pixels * sizeof(float);
+        }
+        run.snapshots.push_back(std::move(sn));
+        next = std::max(done + 1, int(std::ceil(done * 1.5)));
+        const double cost = std::chrono::duration<double>(Clock::now() - t0).count();
+        snapshotCost += cost;
+        if (timed) watchdog.Extend(cost);
+    };
+
+    RenderStats st;
+    try {
+        st = integrator.Render(scene, film, opt);
+    } catch (const Error &e) {
+        run.status = CompareRun::Status::Failed;
+        run.error = e.Message();
+        throw;
+    }
+    // Equal time: the time since the budget started (the watchdog's clock, which the deadline is
+    // on), so that a run stopped by its budget reports at least the budget; otherwise the render's own.
+    const double spent = timed ? std::chrono::duration<double>(Clock::now() - watchdog.Start()).count() : st.seconds;
+    run.seconds = std::max(0.0, spent - snapshotCost);
+    run.sppReached = st.sppReached;
+    run.work = st.work;
+    // A run stopped by its time budget is complete; one stopped by a stop request is not.
+    const bool interrupted = st.cancelled && s.stop && s.stop->load();
+    if (!st.hasImage) {  // rs stopped before it had anything honest to show
+        run.status = CompareRun::Status::Interrupted;
+        return st;
+    }
+    run.status = interrupted ? CompareRun::Status::Interrupted : CompareRun::Status::Done;
+    Image img = film.Resolve();
+    StampMetadata(img, scene, s.scenePath, opt, st);
+    if (timed) img.metadata["phasor:time_budget_seconds"] = std::to_string(budget);
+    run.intensity = ChannelValues(img, "intensity");
+    run.variance = img.ChannelIndex("variance") >= 0 ? ChannelValues(img, "variance") : std::vector<double>{};
+    if (snapshots && (run.snapshots.empty() || run.snapshots.back().spp != st.sppReached)) {
+        CompareSnapshot last;
+        last.spp = st.sppReached;
+        last.seconds = run.seconds;
+        if (snap.reference) last.metrics = ErrorMetrics(run.intensity, *snap.reference);
+        else last.intensity.assign(run.intensity.begin(), run.intensity.end());  // (the image is kept anyway)
+        run.snapshots.push_back(std::move(last));
+    }
+    run.image = std::move(img);
+    return st;
+}
 
 int RunCompare(const CliOptions &o) {
     const CliOptions::CompareOptions &c = o.compare;

@@ -104,29 +104,27 @@ int Render(const CliOptions &o) {
     const Detector &det = scene->GetDetector();
     const Integrator &integrator = scene->GetIntegrator();
     const bool deterministic = integrator.Deterministic();
-    Film film(det.Width(), det.Height(), det.Response());
     const bool bar = !o.quiet && isatty(2);
     if (bar) opt.progress = ProgressBar("", deterministic, (long long)det.Width() * det.Height());
     opt.warn = [&](const std::string &w) { std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n"; };
     // The stop handlers stay installed until the outputs are written, so that a signal during
     // the writes cannot leave a temporary file behind.
     InstallStopHandlers(!o.quiet);
-    RenderStats st;
+    RenderResult result;
     try {
-        st = integrator.Render(*scene, film, opt);
+        result = RenderToImage(*scene, o.scene, opt);
     } catch (const Error &e) {
         if (bar) std::cerr << "\n";
         PrintError(e);
         return 1;
     }
     if (bar) std::fprintf(stderr, "\n");
-    if (!st.hasImage) {  // cancelled before anything honest could be written (rs)
+    const RenderStats &st = result.stats;
+    if (!result.image) {  // cancelled before anything honest could be written (rs)
         std::cerr << "interrupted: " << integrator.name << " " << st.work << "; no image written\n";
         return StoppedStatus();
     }
-
-    Image img = film.Resolve();
-    StampMetadata(img, *scene, o.scene, opt, st);
+    const Image &img = *result.image;
     // The EXR and the PNG are written all or nothing (core/image/output_file.h): if either fails,
     // neither appears (and earlier files of those names are left as they were).
     std::string shown, dopWritten;

@@ -66,17 +66,23 @@ std::optional<SceneDesc> ParseScene(const CliOptions &o, Diagnostics &diag) {
     return ParseSceneFile(o.scene, parse, diag);
 }
 
-std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Diagnostics &diag,
-                                  const std::string &integrator) {
+std::unique_ptr<Scene> BuildSceneQuietly(const std::string &scenePath, const SceneDesc &desc, Diagnostics &diag,
+                                         const std::string &integrator) {
     std::unique_ptr<Scene> scene;
     try {
         scene = Scene::Build(desc, diag, integrator);
     } catch (const std::bad_alloc &) {  // (what was allocated is released by now)
         scene.reset();
-        diag.Error(FileLoc{o.scene, 0, 0, 1},
+        diag.Error(FileLoc{scenePath, 0, 0, 1},
                    "out of memory while loading the scene (a scene takes about 60 bytes of memory per byte "
                    "of text, more for long inline lists: put large meshes in mesh files; docs/wscene.md §7)");
     }
+    return scene;
+}
+
+std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Diagnostics &diag,
+                                  const std::string &integrator) {
+    std::unique_ptr<Scene> scene = BuildSceneQuietly(o.scene, desc, diag, integrator);
     diag.Print(std::cerr, Colour());
     if (diag.HasErrors()) {
         std::cerr << diag.ErrorCount() << " error" << (diag.ErrorCount() == 1 ? "" : "s") << " in '" << o.scene
@@ -163,32 +169,51 @@ RenderOptions OptionsFor(const Scene &scene, const CliOptions &o) {
     return opt;
 }
 
+std::string ProgressText(const std::string &label, bool deterministic, long long pixels, double budgetSeconds,
+                         int done, int total, double t) {
+    const double frac = budgetSeconds > 0 ? std::min(1.0, t / budgetSeconds) : double(done) / total;
+    const int width = 30, filled = int(frac * width);
+    // rs counts its own steps (batches of field nodes) and has no sample rate.
+    char rate[48] = "";
+    if (!deterministic)
+        std::snprintf(rate, sizeof rate, "  %.2f Msamples/s", double(done) * pixels / std::max(t, 1e-9) * 1e-6);
+    char count[48];
+    if (budgetSeconds > 0 && !deterministic)
+        std::snprintf(count, sizeof count, "%d spp", done);
+    else
+        std::snprintf(count, sizeof count, "%d/%d %s", done, total, deterministic ? "steps" : "spp");
+    char line[512];
+    std::snprintf(line, sizeof line, "%s%s[%s%s] %3d%% %s  %s elapsed  %s %s%s   ", label.c_str(),
+                  label.empty() ? "" : " ", std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(),
+                  int(frac * 100), count, FormatDuration(t).c_str(), budgetSeconds > 0 ? "left" : "ETA",
+                  FormatDuration(budgetSeconds > 0 ? std::max(0.0, budgetSeconds - t)
+                                 : frac > 0        ? t / frac - t
+                                                   : 0)
+                      .c_str(),
+                  rate);
+    return line;
+}
+
 std::function<void(int, int)> ProgressBar(const std::string &label, bool deterministic, long long pixels,
                                           double budgetSeconds) {
     const auto start = std::chrono::steady_clock::now();
     return [=](int done, int total) {
         const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const double frac = budgetSeconds > 0 ? std::min(1.0, t / budgetSeconds) : double(done) / total;
-        const int width = 30, filled = int(frac * width);
-        // rs counts its own steps (batches of field nodes) and has no sample rate.
-        char rate[48] = "";
-        if (!deterministic)
-            std::snprintf(rate, sizeof rate, "  %.2f Msamples/s", double(done) * pixels / std::max(t, 1e-9) * 1e-6);
-        char count[48];
-        if (budgetSeconds > 0 && !deterministic)
-            std::snprintf(count, sizeof count, "%d spp", done);
-        else
-            std::snprintf(count, sizeof count, "%d/%d %s", done, total, deterministic ? "steps" : "spp");
-        std::fprintf(stderr, "\r%s%s[%s%s] %3d%% %s  %s elapsed  %s %s%s   ", label.c_str(), label.empty() ? "" : " ",
-                     std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(), int(frac * 100), count,
-                     FormatDuration(t).c_str(), budgetSeconds > 0 ? "left" : "ETA",
-                     FormatDuration(budgetSeconds > 0 ? std::max(0.0, budgetSeconds - t)
-                                    : frac > 0        ? t / frac - t
-                                                      : 0)
-                         .c_str(),
-                     rate);
+        std::fprintf(stderr, "\r%s",
+                     ProgressText(label, deterministic, pixels, budgetSeconds, done, total, t).c_str());
         std::fflush(stderr);
     };
+}
+
+RenderResult RenderToImage(const Scene &scene, const std::string &scenePath, const RenderOptions &opt) {
+    const Detector &det = scene.GetDetector();
+    Film film(det.Width(), det.Height(), det.Response());
+    RenderResult r;
+    r.stats = scene.GetIntegrator().Render(scene, film, opt);
+    if (!r.stats.hasImage) return r;
+    r.image = film.Resolve();
+    StampMetadata(*r.image, scene, scenePath, opt, r.stats);
+    return r;
 }
 
 void StampMetadata(Image &img, const Scene &scene, const std::string &scenePath, const RenderOptions &opt,
@@ -241,14 +266,19 @@ std::string StageDisplayPng(OutputFiles &files, const std::string &png, const Im
     return png;
 }
 
-void PrintRenderWarnings(const Scene &scene, const RenderStats &st, const Image &img) {
-    for (const std::string &w : st.counters.Warnings()) std::cerr << "warning: " << w << "\n";
+std::vector<std::string> RenderWarnings(const Scene &scene, const RenderStats &st, const Image &img) {
+    std::vector<std::string> w = st.counters.Warnings();
     if (!st.cancelled && std::all_of(img.data.begin(), img.data.end(), [](float v) { return v == 0; }))
-        std::cerr << "warning: the image is black: " << scene.DarkImageCause() << "\n";
+        w.push_back("the image is black: " + scene.DarkImageCause());
     if (st.invalidSamples > 0)
-        std::cerr << "warning: " << st.invalidSamples
-                  << " samples were NaN, negative or beyond the float range of the image (|v| > 3.4e38) "
-                     "and were discarded (counted in phasor:invalid_samples)\n";
+        w.push_back(std::to_string(st.invalidSamples) +
+                    " samples were NaN, negative or beyond the float range of the image (|v| > 3.4e38) "
+                    "and were discarded (counted in phasor:invalid_samples)");
+    return w;
+}
+
+void PrintRenderWarnings(const Scene &scene, const RenderStats &st, const Image &img) {
+    for (const std::string &w : RenderWarnings(scene, st, img)) std::cerr << "warning: " << w << "\n";
 }
 
 }  // namespace phasor

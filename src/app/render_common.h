@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/cli.h"
 #include "core/image/film.h"
@@ -43,6 +44,10 @@ std::optional<SceneDesc> ParseScene(const CliOptions &o, Diagnostics &diag);
 /// Builds `desc` with `integrator` ("" = the scene's own); prints `diag` and "N errors in 'SCENE'".
 std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Diagnostics &diag,
                                   const std::string &integrator);
+/// Scene::Build, with running out of memory reported as an error at `scenePath` instead of thrown;
+/// nothing printed (BuildScene prints; the Python module raises `diag`'s errors).
+std::unique_ptr<Scene> BuildSceneQuietly(const std::string &scenePath, const SceneDesc &desc, Diagnostics &diag,
+                                         const std::string &integrator);
 /// ParseScene + BuildScene with o.integrator: nullptr after errors (all of them printed).
 std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag);
 /// Prints an error: `file:line:col: error: …` with the source line when it has a location.
@@ -66,6 +71,20 @@ RenderOptions OptionsFor(const Scene &scene, const CliOptions &o);
 /// their own steps and have no sample rate.
 std::function<void(int, int)> ProgressBar(const std::string &label, bool deterministic, long long pixels,
                                           double budgetSeconds = 0);
+/// The text ProgressBar draws (without the leading carriage return) after `seconds` of a render
+/// that has done `done` of `total` units.
+std::string ProgressText(const std::string &label, bool deterministic, long long pixels, double budgetSeconds,
+                         int done, int total, double seconds);
+
+/// What `render` does between loading and writing: a film of the detector's size, the
+/// integrator's render loop, the resolved image with StampMetadata's metadata. `image` is empty
+/// when the render stopped before it had anything honest to show (RenderStats::hasImage false).
+/// Throws phasor::Error (an integrator's refusal at render time).
+struct RenderResult {
+    RenderStats stats;
+    std::optional<Image> image;
+};
+RenderResult RenderToImage(const Scene &scene, const std::string &scenePath, const RenderOptions &opt);
 
 /// Stamps a render's metadata on its image: scene, integrator, spp (requested, reached, max),
 /// seed, sampler, the integrator's own keys, time, cancellation, a sensor plane's pixel positions.
@@ -82,6 +101,8 @@ std::string StageDisplayPng(OutputFiles &files, const std::string &png, const Im
 
 /// The warnings after a render: render-time events, a black image (with its likely cause),
 /// discarded samples.
+std::vector<std::string> RenderWarnings(const Scene &scene, const RenderStats &st, const Image &img);
+/// RenderWarnings on stderr, each as "warning: …".
 void PrintRenderWarnings(const Scene &scene, const RenderStats &st, const Image &img);
 
 }  // namespace phasor

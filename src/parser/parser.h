@@ -26,6 +26,10 @@ using DefineList = std::vector<std::pair<std::string, std::string>>;
 
 struct ParseOptions {
     DefineList defines;
+    /// Names among `defines` whose value is a bare number in SI units (the Python module's floats):
+    /// overriding a Define of a dimensioned quantity it takes that dimension (1.5e-4 for a length is
+    /// 150 um). Other bare numbers for a dimensioned Define are errors, as on the command line.
+    std::vector<std::string> siDefines;
     /// Reads an included file; returns nullopt if it cannot be read. Default: the file system
     /// (regular files only). (Tests and the fuzzer supply in-memory files.)
     std::function<std::optional<std::string>(const std::string &path)> readFile;
