@@ -12,6 +12,7 @@ PACKAGES=(
   openimageio-tools   # iinfo: the Ctrl-C test reads the partial image's metadata with it
   fonts-dejavu-core   # DejaVu Sans: labels on images drawn by OpenImageIO (core/image/sheet.cpp)
   python3-matplotlib  # every plot (python/phasor_plot.py: profile, compare, probe); brings numpy
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests (docs/python.md)
   chromium            # headless: the test that opens `phasor compare`'s page (tests/app/compare.sh)
 )
 # Optional extras for `make fuzz` (clang + libFuzzer runtime).

@@ -1,0 +1,129 @@
+# SPDX-License-Identifier: Apache-2.0
+"""Kernels written in Python: registration, use from a .wscene by grt and ray (equal to the C++
+Lambertian they copy), exceptions, and the kernel contract suite (phasor.testing.check_kernel)."""
+import math
+
+import numpy as np
+import pytest
+
+import phasor
+
+
+
+def concentric_disc(u1, u2):
+    """Shirley & Chiu's concentric map of [0,1)² to the unit disc (as core/render/sampling.h)."""
+    a, b = 2 * u1 - 1, 2 * u2 - 1
+    if a == 0 and b == 0:
+        return 0.0, 0.0
+    if abs(a) > abs(b):
+        r, phi = a, math.pi / 4 * (b / a)
+    else:
+        r, phi = b, math.pi / 2 - math.pi / 4 * (a / b)
+    return r * math.cos(phi), r * math.sin(phi)
+
+
+class Lambert(phasor.Material):
+    """A Lambertian reflector written in Python (the C++ `diffuse` kernel's formulas)."""
+
+    parameters = {"albedo": phasor.param("number", 0.5, min=0, max=1, doc="directional-hemispherical reflectance")}
+    presets = [{"albedo": 0.5}, {"albedo": 1.0}]
+
+    def __init__(self, params):
+        super().__init__(params)
+        self.albedo = params["albedo"]
+
+    def sample(self, wi, wl, u0, u):
+        if wi[2] == 0:
+            return None
+        x, y = concentric_disc(*u)
+        z = math.sqrt(max(0.0, 1 - x * x - y * y))
+        if z == 0:
+            return None
+        return phasor.ScatterSample((x, y, z if wi[2] > 0 else -z), self.albedo, z / math.pi)
+
+    def eval(self, wi, wo, wl):
+        return self.albedo / math.pi if wi[2] * wo[2] > 0 else 0.0
+
+    def pdf(self, wi, wo, wl):
+        return abs(wo[2]) / math.pi if wi[2] * wo[2] > 0 else 0.0
+
+
+phasor.register_material("py_lambert", Lambert)
+
+SCENE = """wscene 1
+Define kernel = "py"
+Material "py_lambert" "py" { albedo = 0.5 }
+Material "diffuse" "cpp" { reflectance = 0.5 }
+Shape "sphere" "ball" { radius = 1 m  material = select($kernel == "py", @py, @cpp) }
+Shape "rectangle" "floor" { to_world = [scale(4), translate([0 0 -1] m)]  material = select($kernel == "py", @py, @cpp) }
+Shape "rectangle" "panel" { to_world = [rotate(90 deg, [1 0 0]), translate([0 3 0] m)] }
+Light "area" { shape = @panel  radiance = 2 W/m^2/sr }
+Detector "perspective" "cam" { to_world = lookat([0 -2 5] m, [0 0 0] m, [0 0 1])  resolution = [12 12] }
+"""
+
+
+@pytest.mark.parametrize("integrator", ["grt", "ray"])
+def test_python_kernel_renders_as_the_cpp_kernel_it_copies(integrator):
+    py = phasor.load_string(SCENE).render(integrator, spp=4, progress=False)
+    cpp = phasor.load_string(SCENE, defines={"kernel": "cpp"}).render(integrator, spp=4, progress=False)
+    assert py["intensity"].max() > 0
+    # The same random numbers, the same formulas: equal up to rounding.
+    np.testing.assert_allclose(py.array, cpp.array, rtol=1e-5, atol=1e-7)
+
+
+def test_registered_kernel_is_a_plugin(phasor_bin=None):
+    assert any(p["name"] == "py_lambert" for p in phasor.plugins("material"))
+    d = phasor.describe("material", "py_lambert")
+    assert d["doc"].startswith("A Lambertian reflector written in Python")
+    albedo = d["parameters"][0]
+    assert (albedo["name"], albedo["default"], albedo["range"]["max"]) == ("albedo", 0.5, 1.0)
+    with pytest.raises(phasor.SceneError, match="did you mean 'albedo'"):
+        phasor.load_string(SCENE.replace("albedo = 0.5", "albdo = 0.5"))
+    with pytest.raises(phasor.SceneError, match="albedo"):
+        phasor.load_string(SCENE.replace("albedo = 0.5", "albedo = 2"))
+    with pytest.raises(ValueError, match="built-in"):
+        phasor.register_material("diffuse", Lambert)
+
+    class NoPdf(phasor.Material):
+        def sample(self, wi, wl, u0, u):
+            return None
+
+        def eval(self, wi, wo, wl):
+            return 0.0
+    with pytest.raises(TypeError, match="pdf"):
+        phasor.register_material("py_nopdf", NoPdf)
+
+
+class Exploding(Lambert):
+    """A Lambertian whose sample raises after a few calls (for the test of exceptions)."""
+
+    calls = 0
+
+    def sample(self, wi, wl, u0, u):
+        Exploding.calls += 1
+        if Exploding.calls > 50:
+            raise ValueError("kernel exploded on purpose")
+        return super().sample(wi, wl, u0, u)
+
+
+phasor.register_material("py_exploding", Exploding)
+
+
+@pytest.mark.parametrize("integrator", ["grt", "ray"])
+def test_an_exception_in_a_python_kernel_stops_the_render_with_it(integrator):
+    scene = phasor.load_string(SCENE.replace('"py_lambert"', '"py_exploding"'))
+    Exploding.calls = 0
+    with pytest.raises(ValueError, match="kernel exploded on purpose"):
+        scene.render(integrator, spp=64, progress=False)
+    # The process goes on, and so does rendering.
+    assert phasor.load_string(SCENE).render(integrator, spp=1, progress=False).width == 12
+
+
+def test_an_exception_in_the_constructor_is_a_scene_error():
+    class Picky(Lambert):
+        def __init__(self, params):
+            raise ValueError("no albedo above 0.4")
+    phasor.register_material("py_picky", Picky)
+    with pytest.raises(phasor.SceneError, match="no albedo above 0.4") as e:
+        phasor.load_string(SCENE.replace('"py_lambert"', '"py_picky"'))
+    assert e.value.line == 3
