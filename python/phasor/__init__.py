@@ -95,3 +95,5 @@ def _comparison_dataframe(self):
 
 
 Comparison.dataframe = _comparison_dataframe
+
+from . import testing  # noqa: E402  (phasor.testing.check_kernel)

@@ -147,5 +147,6 @@ void BindPlugins(py::module_ &m);
 void BindProbe(py::module_ &m);
 void BindCompare(py::module_ &m);
 void BindKernels(py::module_ &m);
+void BindTesting(py::module_ &m);
 
 }  // namespace phasor::python

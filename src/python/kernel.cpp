@@ -343,6 +343,22 @@ void BindKernels(py::module_ &m) {
         },
         py::arg("name"), py::arg("cls"), py::arg("doc"), py::arg("params"), py::arg("presets"), py::arg("continuous"),
         py::arg("near_delta"), py::arg("reciprocal"));
+
+    m.def(
+        "_set_presets",
+        [](const std::string &name, const py::list &presets) {
+            for (PythonKernelClass &k : gClasses)
+                if (k.name == name) {
+                    std::vector<ParamDict> ps;
+                    for (py::handle p : presets) ps.push_back(PresetOf(k.schema, p));
+                    k.presets = std::move(ps);
+                    return;
+                }
+            throw py::value_error(Registry<Material>::Find(name)
+                                      ? "'" + name + "' is a C++ kernel: its presets are its TestPresets()"
+                                      : "no kernel named '" + name + "' is registered");
+        },
+        py::arg("name"), py::arg("presets"));
 }
 
 }  // namespace phasor::python

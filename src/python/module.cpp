@@ -13,4 +13,5 @@ PYBIND11_MODULE(_phasor, m) {
     BindProbe(m);
     BindCompare(m);
     BindKernels(m);
+    BindTesting(m);
 }

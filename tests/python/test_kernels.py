@@ -127,3 +127,61 @@ def test_an_exception_in_the_constructor_is_a_scene_error():
     with pytest.raises(phasor.SceneError, match="no albedo above 0.4") as e:
         phasor.load_string(SCENE.replace('"py_lambert"', '"py_picky"'))
     assert e.value.line == 3
+
+
+# ---- the kernel contract suite ---------------------------------------------------------------------
+
+QUICK = dict(wavelengths=["550nm"], sample_scale=0.05)  # 7 incident directions, 5 % of the samples
+
+
+def test_contract_suite_passes_a_correct_python_kernel():
+    report = phasor.testing.check_kernel("py_lambert", [{"albedo": 0.5}], **QUICK)
+    assert report.passed and bool(report)
+    assert len(report.cases) == 7 and report.cases[0] == "py_lambert_p0_550nm_in0"
+    checks = report.checks
+    assert {"Chi2SamplingMatchesPdf", "PdfIntegratesToAtMostOne", "SampleWeightMatchesEval", "WhiteFurnace",
+            "Reciprocal", "FiniteEverywhere", "NearDeltaListing", "LobeMaskSplitsSampleAndEval"} <= set(checks)
+    assert checks["Chi2SamplingMatchesPdf"]["passed"] == 7
+
+
+class PdfTwiceTooLarge(Lambert):
+    """A Lambertian whose pdf() states twice the density its sample() draws from."""
+
+    def pdf(self, wi, wo, wl):
+        return 2 * super().pdf(wi, wo, wl)
+
+
+class TooBright(Lambert):
+    """A Lambertian reflecting more than arrives (consistent sample, eval and pdf; albedo 1.2)."""
+
+    parameters = {"albedo": phasor.param("number", 1.2, min=0, max=2, doc="reflectance (wrongly above 1)")}
+
+
+phasor.register_material("py_pdf_twice", PdfTwiceTooLarge)
+phasor.register_material("py_too_bright", TooBright)
+
+
+def test_contract_suite_fails_a_kernel_whose_pdf_is_off_by_two():
+    with pytest.raises(phasor.KernelContractError) as e:
+        phasor.testing.check_kernel("py_pdf_twice", [{"albedo": 0.5}], **QUICK)
+    assert isinstance(e.value, AssertionError)
+    failed = e.value.report.failed_checks()
+    assert {"Chi2SamplingMatchesPdf", "PdfIntegratesToAtMostOne", "SampleWeightMatchesEval"} <= set(failed)
+    assert "pdf reported by Sample differs from Pdf()" in str(e.value)
+
+
+def test_contract_suite_fails_a_kernel_with_energy_above_one():
+    report = phasor.testing.check_kernel("py_too_bright", [{"albedo": 1.2}], raise_on_failure=False, **QUICK)
+    assert not report
+    assert report.failed_checks() == ["WhiteFurnace"]
+    assert "carries more energy than it received" in str(report)
+
+
+def test_contract_suite_on_a_cpp_kernel_and_bad_arguments():
+    assert phasor.testing.check_kernel("diffuse", wavelengths=[550e-9], incidents=[0, 5], sample_scale=0.05)
+    with pytest.raises(ValueError, match="TestPresets"):
+        phasor.testing.check_kernel("diffuse", [{"reflectance": 0.5}])
+    with pytest.raises(ValueError, match="did you mean 'diffuse'"):
+        phasor.testing.check_kernel("difuse")
+    with pytest.raises(ValueError, match="not one of the suite's"):
+        phasor.testing.check_kernel("py_lambert", wavelengths=["500nm"])
