@@ -100,15 +100,22 @@ class Material:
         self.params = dict(params)
 
     def sample(self, wi, wl, u0, u):
+        """Picks a lobe with u0 and a direction in it with u = (u1, u2) (uniform in [0, 1)):
+        a ScatterSample, or (wo, weight, pdf) for a continuous lobe, or None (absorbed)."""
         raise NotImplementedError(f"{type(self).__name__}.sample")
 
     def eval(self, wi, wo, wl):
+        """The continuous lobes' value f(wi → wo) [1/sr] (no cosine): a float, or one per
+        wavelength of wl. Near-delta lobes are not part of it."""
         return 0.0
 
     def pdf(self, wi, wo, wl):
+        """The solid-angle density [1/sr] with which sample() returns wo in a continuous lobe,
+        including the probability of choosing that lobe."""
         return 0.0
 
     def list_lobes(self, wi, wl):
+        """The near-delta lobes for light from wi: a list of Lobe, in the order of their ids."""
         return []
 
     def __repr__(self):

@@ -75,13 +75,13 @@ void EmitWarnings(const Diagnostics &diag, std::vector<std::string> *emitted) {
             if (std::find(emitted->begin(), emitted->end(), text) != emitted->end()) continue;
             emitted->push_back(text);
         }
-        warn(cls(text, ToPython(diag, d)), py::arg("stacklevel") = 2);
+        warn(cls(text, ToPython(diag, d)), py::arg("stacklevel") = 1);
     }
 }
 
 void EmitRenderWarning(const std::string &message) {
     py::module_::import("warnings").attr("warn")(ErrorsModule().attr("RenderWarning")(message),
-                                                 py::arg("stacklevel") = 2);
+                                                 py::arg("stacklevel") = 1);
 }
 
 double Quantity(py::handle value, Dim dim, const std::string &what, const char *example) {
