@@ -62,7 +62,7 @@ Detector "perspective" "cam" { to_world = lookat([0 -2 5] m, [0 0 0] m, [0 0 1])
 """
 
 
-@pytest.mark.parametrize("integrator", ["grt", "ray"])
+@pytest.mark.parametrize("integrator", ["grt", "ray", "sample_solve"])
 def test_python_kernel_renders_as_the_cpp_kernel_it_copies(integrator):
     py = phasor.load_string(SCENE).render(integrator, spp=4, progress=False)
     cpp = phasor.load_string(SCENE, defines={"kernel": "cpp"}).render(integrator, spp=4, progress=False)
