@@ -26,10 +26,6 @@ using DefineList = std::vector<std::pair<std::string, std::string>>;
 
 struct ParseOptions {
     DefineList defines;
-    /// Names among `defines` whose value is a bare number in SI units (the Python module's floats):
-    /// overriding a Define of a dimensioned quantity it takes that dimension (1.5e-4 for a length is
-    /// 150 um). Other bare numbers for a dimensioned Define are errors, as on the command line.
-    std::vector<std::string> siDefines;
     /// Reads an included file; returns nullopt if it cannot be read. Default: the file system
     /// (regular files only). (Tests and the fuzzer supply in-memory files.)
     std::function<std::optional<std::string>(const std::string &path)> readFile;
@@ -40,6 +36,10 @@ struct ParseOptions {
     /// Return what was read cleanly even after errors (SceneDesc::incomplete is then set), so the
     /// caller can build it and report the scene's remaining errors in the same run.
     bool partial = false;
+    /// Names among `defines` whose value is a bare number in SI units (the Python module's floats):
+    /// overriding a Define of a dimensioned quantity it takes that dimension (1.5e-4 for a length is
+    /// 150 um). Other bare numbers for a dimensioned Define are errors, as on the command line.
+    std::vector<std::string> siDefines;
 };
 
 /// Parses and resolves a scene file. Returns nullopt if any error was reported to `diag` (the

@@ -92,7 +92,9 @@ SampledSpectrum ToSpectrum(const py::handle &h, int count, const std::string &wh
 
 class PythonKernel final : public Material {
   public:
-    PythonKernel(const PythonKernelClass &k, py::object instance) : k_(k), self_(std::move(instance)) {}
+    /// (copies what it needs of `k`: registering the name again must not change this kernel)
+    PythonKernel(const PythonKernelClass &k, py::object instance)
+        : k_{k.name, {}, {}, k.continuous, k.nearDelta, k.reciprocal, {}}, self_(std::move(instance)) {}
     ~PythonKernel() override {
         if (!Py_IsInitialized()) {
             self_.release();  // the interpreter is gone: nothing to release it to
@@ -199,7 +201,7 @@ class PythonKernel final : public Material {
     }
 
   private:
-    const PythonKernelClass &k_;
+    PythonKernelClass k_;  // name and capabilities (no schema, class or presets)
     py::object self_;
 };
 
@@ -312,30 +314,25 @@ void BindKernels(py::module_ &m) {
             for (py::handle p : params) schema.params.push_back(SpecOf(p));
             std::vector<ParamDict> ps;
             for (py::handle p : presets) ps.push_back(PresetOf(schema, p));
+            auto define = [&](PythonKernelClass &k) {
+                k.schema = std::move(schema);
+                k.cls = cls;
+                k.continuous = continuous;
+                k.nearDelta = nearDelta;
+                k.reciprocal = reciprocal;
+                k.presets = std::move(ps);
+            };
             // Registered before (a notebook cell run again): the new class replaces the old one
             // for scenes built from now on.
             for (PythonKernelClass &k : gClasses)
-                if (k.name == name) {
-                    k.schema = std::move(schema);
-                    k.cls = cls;
-                    k.continuous = continuous;
-                    k.nearDelta = nearDelta;
-                    k.reciprocal = reciprocal;
-                    k.presets = std::move(ps);
-                    return;
-                }
+                if (k.name == name) return define(k);
             if (Registry<Material>::Find(name))
                 throw py::value_error("material '" + name + "' is a built-in kernel; choose another name");
             if (gClasses.size() >= std::size_t(MaxPythonKernels))
                 throw py::value_error("at most " + std::to_string(MaxPythonKernels) + " kernels can be registered from Python");
             PythonKernelClass &k = gClasses.emplace_back();
             k.name = name;
-            k.schema = std::move(schema);
-            k.cls = cls;
-            k.continuous = continuous;
-            k.nearDelta = nearDelta;
-            k.reciprocal = reciprocal;
-            k.presets = std::move(ps);
+            define(k);
             const int slot = int(gClasses.size()) - 1;
             gSlots[std::size_t(slot)] = &k;
             Registry<Material>::Register(

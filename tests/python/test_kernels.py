@@ -185,3 +185,22 @@ def test_contract_suite_on_a_cpp_kernel_and_bad_arguments():
         phasor.testing.check_kernel("difuse")
     with pytest.raises(ValueError, match="not one of the suite's"):
         phasor.testing.check_kernel("py_lambert", wavelengths=["500nm"])
+
+
+def test_registering_a_name_again_replaces_the_class_for_new_scenes_only():
+    class Dark(Lambert):
+        """A Lambertian reflecting a tenth of its albedo."""
+
+        def __init__(self, params):
+            super().__init__(params)
+            self.albedo *= 0.1
+
+    phasor.register_material("py_again", Lambert)
+    text = SCENE.replace('"py_lambert"', '"py_again"')
+    before = phasor.load_string(text)
+    phasor.register_material("py_again", Dark)
+    after = phasor.load_string(text)
+    a = before.render(spp=2, progress=False)["intensity"].sum()
+    b = after.render(spp=2, progress=False)["intensity"].sum()
+    assert b < 0.5 * a  # the new class for the new scene, the old one's instances for the old
+    assert before.render(spp=2, progress=False)["intensity"].sum() == a
