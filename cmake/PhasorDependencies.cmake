@@ -39,6 +39,19 @@ find_package(Threads REQUIRED)
 find_library(CERF_LIBRARY cerf REQUIRED)
 find_path(CERF_INCLUDE_DIR cerf.h)
 
+# MPI (plain MPI-3; Debian: libopenmpi-dev openmpi-bin) for distributed renders, docs/distributed.md.
+# PHASOR_MPI: ON by default when an MPI is found; OFF builds the one-process program.
+# The C API only: no deprecated C++ bindings (MPI_CXX_SKIP_MPICXX).
+set(MPI_CXX_SKIP_MPICXX ON)
+find_package(MPI COMPONENTS CXX QUIET)
+option(PHASOR_MPI "Distributed renders, sweeps and compare runs over MPI (docs/distributed.md)" ${MPI_CXX_FOUND})
+if(PHASOR_MPI AND NOT MPI_CXX_FOUND)
+  message(FATAL_ERROR "PHASOR_MPI=ON but no MPI was found (Debian: apt-get install libopenmpi-dev openmpi-bin)")
+endif()
+if(PHASOR_MPI)
+  find_program(PHASOR_MPIEXEC NAMES mpirun mpiexec HINTS ${MPIEXEC_EXECUTABLE})
+endif()
+
 if(PHASOR_BUILD_TESTS)
   find_package(GTest REQUIRED)
   include(GoogleTest)

@@ -14,6 +14,7 @@ PACKAGES=(
   python3-matplotlib  # every plot (python/phasor_plot.py: profile, compare, probe); brings numpy
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests (docs/python.md)
   chromium            # headless: the test that opens `phasor compare`'s page (tests/app/compare.sh)
+  libopenmpi-dev openmpi-bin  # MPI (docs/distributed.md): mpirun -n N phasor render …; the MPI tests
 )
 # Optional extras for `make fuzz` (clang + libFuzzer runtime).
 if [[ "${PHASOR_WITH_FUZZ:-0}" == 1 ]]; then

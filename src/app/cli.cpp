@@ -23,6 +23,76 @@ bool ParseDouble(const std::string &s, double &out) {
     out = std::strtod(s.c_str(), &end);
     return end == s.c_str() + s.size() && std::isfinite(out);
 }
+// One of render's options at scale (docs/distributed.md): --sweep NAME=v1,v2,…, --checkpoint SECONDS,
+// --resume FILE.
+bool ParseRunOption(const std::string &flag, const std::string &v, CliOptions::RunOptions &run, std::string &err) {
+    if (flag == "--checkpoint") {
+        if (!ParseDouble(v, run.checkpoint) || !(run.checkpoint > 0)) {
+            err = "'--checkpoint' expects a positive number of seconds; got '" + v + "'";
+            return false;
+        }
+        return true;
+    }
+    if (flag == "--resume") {
+        run.resume = v;
+        return true;
+    }
+    // NAME=v1,v2,…: commas inside (), [] or quotes belong to a value (rotate(90 deg, [1 0 0])).
+    const std::size_t eq = v.find('=');
+    const std::string name = eq == std::string::npos ? "" : v.substr(0, eq);
+    std::vector<std::string> values;
+    if (!name.empty()) {
+        std::string cur;
+        int depth = 0;
+        bool quoted = false;
+        for (std::size_t k = eq + 1; k <= v.size(); ++k) {
+            const char c = k < v.size() ? v[k] : ',';
+            if (c == '"') quoted = !quoted;
+            else if (!quoted && (c == '(' || c == '[')) ++depth;
+            else if (!quoted && (c == ')' || c == ']')) --depth;
+            if (c == ',' && depth == 0 && !quoted) {
+                values.push_back(cur);
+                cur.clear();
+            } else {
+                cur += c;
+            }
+        }
+    }
+    if (name.empty() || std::any_of(values.begin(), values.end(), [](const std::string &x) { return x.empty(); })) {
+        err = "'--sweep' expects NAME=value1,value2,… (a Define and its values); got '" + v + "'";
+        return false;
+    }
+    for (const auto &[n, vals] : run.sweeps)
+        if (n == name) {
+            err = "'--sweep' names '" + name + "' twice (give all its values in one --sweep)";
+            return false;
+        }
+    for (std::size_t i = 0; i < values.size(); ++i)
+        if (std::find(values.begin(), values.begin() + std::ptrdiff_t(i), values[i]) != values.begin() + std::ptrdiff_t(i)) {
+            err = "'--sweep " + name + "' lists the value '" + values[i] + "' twice";
+            return false;
+        }
+    run.sweeps.emplace_back(name, std::move(values));
+    return true;
+}
+
+// The combinations render's options at scale allow.
+bool CheckRunOptions(const CliOptions &o, std::string &err) {
+    const auto &run = o.run;
+    if (!run.sweeps.empty() && (!run.resume.empty() || run.checkpoint > 0)) {
+        err = std::string("'--sweep' renders several images; '") + (run.resume.empty() ? "--checkpoint" : "--resume") +
+              "' is for one render (render each value on its own to checkpoint it)";
+        return false;
+    }
+    for (const auto &[name, values] : run.sweeps)
+        for (const auto &d : o.defines)
+            if (d.first == name) {
+                err = "'" + name + "' is given both by -D and by --sweep";
+                return false;
+            }
+    return true;
+}
+
 }  // namespace
 
 bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
@@ -80,6 +150,8 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
                 return false;
             }
             o.defines.emplace_back(def.substr(0, eq), def.substr(eq + 1));
+        } else if (o.command == Command::Render && (a == "--sweep" || a == "--checkpoint" || a == "--resume")) {
+            if (!value(a, v) || !ParseRunOption(a, v, o.run, err)) return false;
         } else if (o.command == Command::Compare &&
                    (a == "--integrators" || a == "--reference" || a == "--reference-integrator")) {
             if (!value(a, v)) return false;
@@ -222,6 +294,9 @@ bool ParseCommandLine(int argc, char **argv, CliOptions &o, std::string &err) {
             break;
         }
         case Command::Render:
+            if (!CheckRunOptions(o, err)) return false;
+            if (!o.run.resume.empty() && positional.empty()) break;  // the scene is the checkpoint's
+            [[fallthrough]];
         case Command::Check:
         case Command::Format:
             if (positional.size() != 1) {

@@ -56,6 +56,14 @@ struct CliOptions {
         int referenceSpp = 0;                  // --reference-spp N (0: the scene's spp)
         int row = -1, column = -1;             // --row / --column: a profile plot
     } compare;
+
+    // `render` at scale (docs/distributed.md): parameter sweeps, checkpoints and resume.
+    struct RunOptions {
+        /// --sweep NAME=v1,v2,…: one render per value (per combination when repeated), in order.
+        std::vector<std::pair<std::string, std::vector<std::string>>> sweeps;
+        double checkpoint = 0;  // --checkpoint SECONDS: OUT.ckpt every SECONDS (0: none)
+        std::string resume;     // --resume FILE.ckpt: continue that render
+    } run;
 };
 
 /// Fills `o` from argv; on a usage error returns false with a message in `err`.

@@ -23,7 +23,9 @@
 #include <sstream>
 #include <thread>
 
+#include "app/bytes.h"
 #include "app/compare_report.h"
+#include "app/distributed.h"
 #include "app/plot.h"
 #include "app/profile.h"
 #include "app/render_common.h"
@@ -91,8 +93,10 @@ std::string FileStem(const std::string &name) {
 
 // Renders one run for the program: RenderCompareRun with the command line's options, a progress bar
 // and the run's messages on stderr.
+// With `shared`, every MPI rank renders the run's tiles together (rank 0 keeps the time budget and
+// fills `run`).
 void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int index, int count, double budget,
-               SnapshotContext &snap) {
+               SnapshotContext &snap, bool shared) {
     const Integrator &integrator = scene.GetIntegrator();
     const Detector &det = scene.GetDetector();
     CompareRunSettings s;
@@ -100,9 +104,10 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
     s.budget = budget;
     s.scenePath = o.scene;
     s.stop = &StopFlag();
+    s.shared = shared;
     const bool timed = budget > 0 && !integrator.Deterministic();
     const std::string label = "[" + std::to_string(index) + "/" + std::to_string(count) + "] " + run.name;
-    const bool bar = !o.quiet && isatty(2);
+    const bool bar = !o.quiet && isatty(2) && dist::Root();
     if (bar)
         s.options.progress =
             ProgressBar(label, integrator.Deterministic(), (long long)det.Width() * det.Height(), timed ? budget : 0);
@@ -117,6 +122,7 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
         return;
     }
     if (bar) std::cerr << "\n";
+    if (shared && !dist::Root()) return;  // rank 0 holds the run
     if (!run.image) {  // rs stopped before it had anything honest to show
         std::cerr << label << ": interrupted (" << st.work << "); no image\n";
         return;
@@ -131,8 +137,12 @@ void RenderRun(CompareRun &run, const Scene &scene, const CliOptions &o, int ind
         else
             std::cerr << st.sppReached << " spp";
         std::cerr << " in " << FormatDuration(run.seconds) << (timed ? " (the time budget)" : "");
-        if (!run.deterministic && run.seconds > 0)
-            std::fprintf(stderr, " (%.3g samples/s)", double(st.sppReached) * det.Width() * det.Height() / run.seconds);
+        if (!run.deterministic && run.seconds > 0) {
+            char rate[48];
+            std::snprintf(rate, sizeof rate, " (%.3g samples/s)",
+                          double(st.sppReached) * det.Width() * det.Height() / run.seconds);
+            std::cerr << rate;
+        }
         std::cerr << "\n";
         PrintRenderWarnings(scene, st, *run.image);
     }
@@ -158,8 +168,14 @@ RenderStats RenderCompareRun(CompareRun &run, const Scene &scene, const CompareR
     const bool timed = budget > 0 && !run.deterministic;  // rs takes no samples: it runs to the end
     if (timed) opt.spp = TimeModeSpp;
     run.sppRequested = opt.spp;
-    Watchdog watchdog(timed ? budget : 0, s.stop);
+    const bool helper = s.shared && !dist::Root();
+    Watchdog watchdog(timed && !helper ? budget : 0, s.stop);
     opt.cancel = watchdog.Flag();
+    std::unique_ptr<dist::Share> share = s.shared ? dist::MakeShare(watchdog.Flag()) : nullptr;
+    if (share) {
+        opt.work = share.get();
+        opt.cancel = share->Stop();
+    }
 
     Film film(det.Width(), det.Height(), det.Response());
     // Snapshots of `intensity` at roughly geometric sample counts (×1.5), taken between passes;
@@ -205,14 +221,18 @@ RenderStats RenderCompareRun(CompareRun &run, const Scene &scene, const CompareR
         run.error = e.Message();
         throw;
     }
+    const int remoteSignal = share ? share->Signal() : 0;
+    share.reset();
+    if (helper) return st;  // rank 0 holds the run
     // Equal time: the time since the budget started (the watchdog's clock, which the deadline is
     // on), so that a run stopped by its budget reports at least the budget; otherwise the render's own.
     const double spent = timed ? std::chrono::duration<double>(Clock::now() - watchdog.Start()).count() : st.seconds;
     run.seconds = std::max(0.0, spent - snapshotCost);
     run.sppReached = st.sppReached;
     run.work = st.work;
-    // A run stopped by its time budget is complete; one stopped by a stop request is not.
-    const bool interrupted = st.cancelled && s.stop && s.stop->load();
+    // A run stopped by its time budget is complete; one stopped by a stop request (here or on
+    // another rank) is not.
+    const bool interrupted = st.cancelled && ((s.stop && s.stop->load()) || remoteSignal != 0);
     if (!st.hasImage) {  // rs stopped before it had anything honest to show
         run.status = CompareRun::Status::Interrupted;
         return st;
@@ -234,6 +254,75 @@ RenderStats RenderCompareRun(CompareRun &run, const Scene &scene, const CompareR
     run.image = std::move(img);
     return st;
 }
+
+namespace {
+
+// A run as bytes, from the rank that rendered it (whole runs under MPI) to rank 0.
+std::string SerializeRun(const CompareRun &r) {
+    ByteWriter w;
+    w.Put(int32_t(dist::Rank()));
+    w.Put(int32_t(r.status));
+    w.PutString(r.error);
+    w.PutString(r.work);
+    for (int v : {int(r.deterministic), r.sppRequested, r.sppReached, int(r.snapshotsCut), int(r.image.has_value())})
+        w.Put(int32_t(v));
+    w.Put(r.seconds);
+    if (r.image) {
+        w.Put(int32_t(r.image->width));
+        w.Put(int32_t(r.image->height));
+        w.PutStrings(r.image->channels);
+        w.PutVector(r.image->data);
+        w.PutMap(r.image->metadata);
+    }
+    w.PutVector(r.intensity);
+    w.PutVector(r.variance);
+    w.Put(uint64_t(r.snapshots.size()));
+    for (const CompareSnapshot &snap : r.snapshots) {
+        w.Put(int32_t(snap.spp));
+        w.Put(snap.seconds);
+        w.Put(int32_t(snap.metrics.has_value()));
+        if (snap.metrics) w.Put(*snap.metrics);
+        w.PutVector(snap.intensity);
+    }
+    return std::move(w.bytes);
+}
+
+// Fills `r` (its name and file are rank 0's) from SerializeRun's bytes; returns the rank that rendered it.
+int DeserializeRun(const std::string &bytes, CompareRun &r) {
+    ByteReader in(bytes);
+    const int rank = in.Get<int32_t>();
+    r.status = CompareRun::Status(in.Get<int32_t>());
+    r.error = in.GetString();
+    r.work = in.GetString();
+    r.deterministic = in.Get<int32_t>() != 0;
+    r.sppRequested = in.Get<int32_t>();
+    r.sppReached = in.Get<int32_t>();
+    r.snapshotsCut = in.Get<int32_t>() != 0;
+    const bool hasImage = in.Get<int32_t>() != 0;
+    r.seconds = in.Get<double>();
+    r.image.reset();
+    if (hasImage) {
+        Image img;
+        img.width = in.Get<int32_t>();
+        img.height = in.Get<int32_t>();
+        img.channels = in.GetStrings();
+        img.data = in.GetVector<float>();
+        img.metadata = in.GetMap();
+        r.image = std::move(img);
+    }
+    r.intensity = in.GetVector<double>();
+    r.variance = in.GetVector<double>();
+    r.snapshots.resize(std::size_t(in.Get<uint64_t>()));
+    for (CompareSnapshot &snap : r.snapshots) {
+        snap.spp = in.Get<int32_t>();
+        snap.seconds = in.Get<double>();
+        if (in.Get<int32_t>()) snap.metrics = in.Get<CompareMetrics>();
+        snap.intensity = in.GetVector<float>();
+    }
+    return rank;
+}
+
+}  // namespace
 
 int RunCompare(const CliOptions &o) {
     const CliOptions::CompareOptions &c = o.compare;
@@ -270,17 +359,21 @@ int RunCompare(const CliOptions &o) {
         }
 
     // A reference image, read and checked before rendering (its size once the detector is known).
+    // Under MPI rank 0 alone reads it and writes the outputs.
+    const bool root = dist::Root();
     CompareReference ref;
     std::optional<Image> refImage;
-    if (!c.reference.empty()) {
+    int bad = 0;
+    if (!c.reference.empty() && root) {
         try {
             refImage = ReadImage(c.reference);
             ref.values = ChannelValues(*refImage, "intensity");
         } catch (const Error &e) {
             std::cerr << "error: reference '" << c.reference << "': " << e.Message() << "\n";
-            return 1;
+            bad = 1;
         }
     }
+    if (dist::Agree(bad)) return 1;
 
     // The output directory, created and tried before anything is rendered; removed again (if it
     // was made here and is still empty) when nothing is written.
@@ -293,13 +386,14 @@ int RunCompare(const CliOptions &o) {
             std::error_code e;
             if (!keep && fs::is_empty(dir, e)) fs::remove(dir, e);
         }
-    } cleanup{dir, dirExisted};
-    try {
-        CheckWritable((fs::path(dir) / "index.html").string());
-    } catch (const Error &e) {
-        PrintError(e);
-        return 1;
-    }
+    } cleanup{dir, dirExisted || !root};
+    if (root) try {
+            CheckWritable((fs::path(dir) / "index.html").string());
+        } catch (const Error &e) {
+            PrintError(e);
+            bad = 1;
+        }
+    if (dist::Agree(bad)) return 1;
 
     std::vector<CompareRun> runs;
     if (!c.referenceIntegrator.empty()) {
@@ -333,13 +427,38 @@ int RunCompare(const CliOptions &o) {
     snap.reference = refImage ? &ref.values : nullptr;
     snap.bytesLeft = std::min(1e9, AvailableMemory() / 4);
 
-    InstallStopHandlers(!o.quiet);
+    InstallStopHandlers(!o.quiet && root);
     int width = 0, height = 0, sceneSpp = 0;
     bool radiometric = false;
     std::string detectorName;
-    for (std::size_t i = 0; i < runs.size(); ++i) {
-        CompareRun &run = runs[i];
-        if (StopFlag().load()) break;  // the rest stay NotRun
+    // The detector of the first run that builds sets the comparison's size: a reference image of
+    // another size, or a film that does not fit in memory on any rank, stops it before rendering.
+    auto firstScene = [&](const Scene &scene) {
+        const Detector &det = scene.GetDetector();
+        width = det.Width();
+        height = det.Height();
+        radiometric = det.Response().GetKind() == SensorResponse::Kind::Radiometric;
+        detectorName = det.name;
+        CliOptions plain = o;
+        plain.spp = -1;
+        sceneSpp = OptionsFor(scene, plain).spp;
+        std::string why;
+        if (refImage && (refImage->width != width || refImage->height != height)) {
+            std::cerr << "error: reference '" << c.reference << "' is " << refImage->width << "x" << refImage->height
+                      << " pixels but detector '" << det.name << "' renders " << width << "x" << height << "\n";
+            why = "reference size";
+        }
+        if (why.empty()) try {
+                CheckMemory(scene);
+            } catch (const Error &e) {
+                PrintError(e);
+                why = e.Message();
+            }
+        if (dist::AllOk(why.empty(), why, &why)) return true;
+        if (root && !why.empty()) std::cerr << "error: " << why << "\n";
+        return false;
+    };
+    auto build = [&](CompareRun &run) {
         Diagnostics d(o.strict);
         auto scene = BuildScene(o, *desc, d, run.name);
         if (!scene) {
@@ -349,37 +468,63 @@ int RunCompare(const CliOptions &o) {
                     run.error = x.message;
                     break;
                 }
-            continue;
         }
-        const Detector &det = scene->GetDetector();
-        if (width == 0) {
-            width = det.Width();
-            height = det.Height();
-            radiometric = det.Response().GetKind() == SensorResponse::Kind::Radiometric;
-            detectorName = det.name;
-            CliOptions plain = o;
-            plain.spp = -1;
-            sceneSpp = OptionsFor(*scene, plain).spp;
-            if (refImage && (refImage->width != width || refImage->height != height)) {
-                std::cerr << "error: reference '" << c.reference << "' is " << refImage->width << "x"
-                          << refImage->height << " pixels but detector '" << det.name << "' renders " << width << "x"
-                          << height << "\n";
-                RemoveStopHandlers();
-                return 1;
-            }
-            try {
-                CheckMemory(*scene);
-            } catch (const Error &e) {
-                PrintError(e);
-                RemoveStopHandlers();
-                return 1;
-            }
-        }
+        return scene;
+    };
+    auto render = [&](std::size_t i, const Scene &scene, bool shared) {
+        CompareRun &run = runs[i];
         const double budget = run.isReferenceRun ? 0 : c.seconds;
         CliOptions ro = o;
         if (run.isReferenceRun) ro.spp = c.referenceSpp;  // 0: the scene's
-        RenderRun(run, *scene, ro, int(i) + 1, int(runs.size()), budget, snap);
+        RenderRun(run, scene, ro, int(i) + 1, int(runs.size()), budget, snap, shared);
         if (run.isReferenceRun && run.image && run.status == CompareRun::Status::Done) snap.reference = &run.intensity;
+    };
+    // Under MPI (docs/distributed.md): with more runs than ranks each rank renders whole runs and
+    // rank 0 gathers them (if a run fits in a message to rank 0); else every run's tiles are shared
+    // by all ranks, one run after another.
+    bool whole = dist::Size() > 1 && int(runs.size()) > dist::Size();
+    if (whole) {
+        for (CompareRun &run : runs)
+            if (auto scene = build(run)) {
+                if (!firstScene(*scene)) {
+                    RemoveStopHandlers();
+                    return 1;
+                }
+                break;
+            }
+        for (CompareRun &run : runs) run.status = CompareRun::Status::NotRun;  // (built again where rendered)
+        whole = double(width) * height <= dist::MaxWholeRenderPixels;
+    }
+    if (!whole) {
+        for (std::size_t i = 0; i < runs.size(); ++i) {
+            if (dist::Agree(StopFlag().load() ? 1 : 0)) break;  // rank 0's word; the rest stay NotRun
+            auto scene = build(runs[i]);
+            if (!scene) continue;
+            if (width == 0 && !firstScene(*scene)) {
+                RemoveStopHandlers();
+                return 1;
+            }
+            render(i, *scene, dist::Size() > 1);
+        }
+    } else {
+        dist::ForEachUnit(
+            int(runs.size()),
+            [&](int u) {
+                if (auto scene = build(runs[std::size_t(u)])) render(std::size_t(u), *scene, false);
+                return SerializeRun(runs[std::size_t(u)]);
+            },
+            [&](int u, std::string &&bytes) {
+                CompareRun &run = runs[std::size_t(u)];
+                const int rank = DeserializeRun(bytes, run);
+                if (rank != 0 && !o.quiet)  // (rank 0's own runs said so as they ended)
+                    std::cerr << "[" << u + 1 << "/" << runs.size() << "] " << run.name << ": rendered on rank " << rank
+                              << (run.status == CompareRun::Status::Failed ? ": failed: " + run.error : "") << "\n";
+            },
+            &StopFlag());
+    }
+    if (!root) {
+        RemoveStopHandlers();
+        return dist::Agree(0);
     }
 
     // Nothing to show: every run failed (their errors are printed) or none finished.
@@ -388,10 +533,10 @@ int RunCompare(const CliOptions &o) {
         RemoveStopHandlers();
         if (StopSignal()) {
             std::cerr << "interrupted before any integrator finished; nothing written\n";
-            return StoppedStatus();
+            return dist::Agree(StoppedStatus());
         }
         std::cerr << "error: no integrator could render '" << o.scene << "'; nothing written\n";
-        return 1;
+        return dist::Agree(1);
     }
 
     // The reference: the image given, the reference run, else the best-converged run.
@@ -441,7 +586,7 @@ int RunCompare(const CliOptions &o) {
     } catch (const Error &e) {
         RemoveStopHandlers();
         std::cerr << "error: " << e.Message() << "\n";
-        return 1;
+        return dist::Agree(1);
     }
     RemoveStopHandlers();
     const bool failed = std::any_of(runs.begin(), runs.end(),
@@ -462,8 +607,8 @@ int RunCompare(const CliOptions &o) {
             }
         std::cerr << " failed (see above and the table)\n";
     }
-    if (StopSignal()) return StoppedStatus();
-    return failed ? 1 : 0;
+    if (StopSignal()) return dist::Agree(StoppedStatus());
+    return dist::Agree(failed ? 1 : 0);
 }
 
 }  // namespace phasor

@@ -36,6 +36,7 @@ struct CompareRunSettings {
     double budget = 0;     // equal time: seconds of rendering for a sampling integrator (0: options.spp)
     std::string scenePath;  // for the image's metadata
     const std::atomic<bool> *stop = nullptr;  // a stop request (Ctrl-C): the run is then Interrupted
+    bool shared = false;  // every MPI rank renders the run's tiles (rank 0 alone fills `run`)
 };
 
 /// Renders one run of a comparison with the scene built for its integrator and fills `run`: its

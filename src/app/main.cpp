@@ -16,9 +16,11 @@
 
 #include "app/cli.h"
 #include "app/compare.h"
+#include "app/distributed.h"
 #include "app/plot.h"
 #include "app/probe.h"
 #include "app/profile.h"
+#include "app/render.h"
 #include "app/render_common.h"
 #include "core/image/image_io.h"
 #include "core/render/registry.h"
@@ -36,8 +38,12 @@ const char *kUsageHead =
     "commands:\n"
     "  render SCENE [-o FILE] [--spp N] [--threads N] [--seed S] [--integrator NAME]\n"
     "               [--sampler sobol|independent] [-D name=value ...] [--strict | --permissive]\n"
-    "               [--quiet]\n"
-    "                      render SCENE to FILE (.exr; a .png is written beside it)\n"
+    "               [--quiet] [--sweep NAME=v1,v2,... ...] [--checkpoint SECONDS]\n"
+    "                      render SCENE to FILE (.exr; a .png is written beside it); --sweep: one\n"
+    "                      render per value (FILE-NAME=v.exr); --checkpoint: FILE.ckpt every SECONDS\n"
+    "  render --resume FILE.ckpt [--spp N] [...]\n"
+    "                      continue a checkpointed render (bit for bit); under mpirun/srun the\n"
+    "                      ranks share the work (docs/distributed.md)\n"
     "  check SCENE [-D name=value ...] [--strict | --permissive]\n"
     "                      load and validate only; exit status 0 if the scene is valid\n"
     "                      (unknown parameters and -D names that match no Define are errors;\n"
@@ -69,99 +75,6 @@ std::string Usage() {
     std::string families;
     for (const FamilyInfo &f : AllFamilies()) families += " " + f.family;
     return kUsageHead + std::string("                     ") + families + "\n" + kUsageTail;
-}
-
-int Render(const CliOptions &o) {
-    Diagnostics diag(o.strict);
-    auto scene = Load(o, diag);
-    if (!scene) return 1;
-    const RenderSettings &rs = scene->Settings();
-    RenderOptions opt = OptionsFor(*scene, o);
-    std::string out = !o.output.empty() ? o.output
-                      : !rs.output.empty() ? rs.output
-                                           : "out/" + std::filesystem::path(o.scene).stem().string() + ".exr";
-    std::filesystem::path exr(out), png(out);
-    if (exr.extension() == ".png") exr.replace_extension(".exr");
-    else png.replace_extension(".png");
-    // Stokes output (a detector's `stokes = true`): the degree of polarisation as a PNG beside.
-    std::filesystem::path dop = png;
-    dop.replace_extension(".dop.png");
-    const bool stokes = scene && scene->GetDetector().Polarization().stokes;
-    if (exr.extension() != ".exr") {
-        std::cerr << "error: output '" << out << "' must end in .exr or .png\n";
-        return 1;
-    }
-    try {
-        CheckWritable(exr.string());
-        CheckWritable(png.string());
-        if (stokes) CheckWritable(dop.string());
-        CheckMemory(*scene);  // refuse a resolution the machine cannot hold before allocating anything
-    } catch (const Error &e) {
-        PrintError(e);
-        return 1;
-    }
-
-    const Detector &det = scene->GetDetector();
-    const Integrator &integrator = scene->GetIntegrator();
-    const bool deterministic = integrator.Deterministic();
-    const bool bar = !o.quiet && isatty(2);
-    if (bar) opt.progress = ProgressBar("", deterministic, (long long)det.Width() * det.Height());
-    opt.warn = [&](const std::string &w) { std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n"; };
-    // The stop handlers stay installed until the outputs are written, so that a signal during
-    // the writes cannot leave a temporary file behind.
-    InstallStopHandlers(!o.quiet);
-    RenderResult result;
-    try {
-        result = RenderToImage(*scene, o.scene, opt);
-    } catch (const Error &e) {
-        if (bar) std::cerr << "\n";
-        PrintError(e);
-        return 1;
-    }
-    if (bar) std::fprintf(stderr, "\n");
-    const RenderStats &st = result.stats;
-    if (!result.image) {  // cancelled before anything honest could be written (rs)
-        std::cerr << "interrupted: " << integrator.name << " " << st.work << "; no image written\n";
-        return StoppedStatus();
-    }
-    const Image &img = *result.image;
-    // The EXR and the PNG are written all or nothing (core/image/output_file.h): if either fails,
-    // neither appears (and earlier files of those names are left as they were).
-    std::string shown, dopWritten;
-    try {
-        OutputFiles files;
-        WriteExr(files, exr.string(), img);
-        shown = StageDisplayPng(files, png.string(), img,
-                                det.Response().GetKind() == SensorResponse::Kind::Radiometric, integrator.name,
-                                std::filesystem::path(o.scene).filename().string() + ": intensity");
-        if (stokes && img.ChannelIndex("DoP") >= 0) {
-            const SheetResult r = StageDegreeOfPolarizationPng(files, dop.string(), img);
-            if (!r.textDrawn) std::cerr << "warning: " << r.textProblem << "; '" << dop.string() << "' has no text\n";
-            dopWritten = dop.string();
-        }
-        files.Commit();
-    } catch (const Error &e) {
-        std::cerr << "error: " << e.Message() << "\n";
-        return 1;
-    }
-    RemoveStopHandlers();
-    if (shown != png.string())
-        std::cerr << "warning: " << MatplotlibMissing() << "; '" << png.string() << "' not drawn, its data is in '"
-                  << shown << "'\n";
-    if (!o.quiet) {
-        std::cerr << (st.cancelled ? "interrupted: " : "");
-        if (deterministic)
-            std::cerr << integrator.name << " " << st.work << " in " << FormatDuration(st.seconds) << "\n";
-        else
-            std::cerr << "rendered " << st.sppReached << " spp"
-                      << (st.sppMax > st.sppReached ? " (" + std::to_string(st.sppMax) + " in some pixels)" : "")
-                      << " in " << FormatDuration(st.seconds) << " with " << integrator.name << "\n";
-        PrintRenderWarnings(*scene, st, img);
-        std::cerr << "wrote " << exr.string() << (dopWritten.empty() ? " and " : ", ") << shown
-                  << (dopWritten.empty() ? "" : " and " + dopWritten) << "\n";
-    }
-    if (StopSignal()) return StoppedStatus();
-    return 0;
 }
 
 int Check(const CliOptions &o) {
@@ -283,6 +196,7 @@ class StdoutCapture {
         std::cout.rdbuf(old_);
         const std::string text = text_.str();
         text_.str({});
+        if (!dist::Root()) return status;  // one voice under MPI: rank 0's
         const char *p = text.data();
         std::size_t left = text.size();
         while (left > 0) {
@@ -308,7 +222,7 @@ int RunCommand(const CliOptions &o) {
     switch (o.command) {
         case Command::Help: std::cout << Usage(); return 0;
         case Command::Version: std::cout << "phasor " << PHASOR_VERSION << "\n"; return 0;
-        case Command::Render: return Render(o);
+        case Command::Render: return RunRender(o);
         case Command::Check: return Check(o);
         case Command::Format: return Format(o);
         case Command::List: return List(o);
@@ -320,28 +234,42 @@ int RunCommand(const CliOptions &o) {
     return 1;
 }
 
+// The command on this process: under MPI, `render` and `compare` run on every rank together; every
+// other command runs on rank 0 alone (the others wait for its status).
+int RunOnRank(const CliOptions &o, StdoutCapture &out) {
+    const bool together = o.command == Command::Render || o.command == Command::Compare;
+    if (!dist::Root() && !together) return dist::Agree(0);
+    try {
+        const int status = out.Flush(RunCommand(o));
+        return together ? status : dist::Agree(status);
+    } catch (const Error &e) {
+        out.Flush(1);
+        std::cerr << (e.Loc().Known() ? e.Loc().ToString() + ": " : "") << "error: " << e.Message() << "\n";
+        return together ? 1 : dist::Agree(1);
+    } catch (const std::exception &e) {
+        out.Flush(2);
+        std::cerr << "internal error: " << e.what() << "\n";
+        return together ? 2 : dist::Agree(2);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char **argv) {
     // A file-size limit (RLIMIT_FSIZE, `ulimit -f`) then makes write(2) fail with EFBIG, reported
     // as "cannot write 'FILE': File too large", instead of killing the program with SIGXFSZ.
     std::signal(SIGXFSZ, SIG_IGN);
+    // MPI when an MPI launcher started the program (distributed.h); then rank 0 alone prints.
+    if (!dist::Start(argc, argv)) return 1;
+    struct Finish {
+        ~Finish() { dist::Finish(); }
+    } finish;
     CliOptions o;
     std::string err;
-    if (!ParseCommandLine(argc, argv, o, err)) {
+    if (!ParseCommandLine(argc, argv, o, err)) {  // every rank sees the same arguments
         std::cerr << "error: " << err << "\n" << Usage();
         return 1;
     }
     StdoutCapture out;
-    try {
-        return out.Flush(RunCommand(o));
-    } catch (const Error &e) {
-        out.Flush(1);
-        std::cerr << (e.Loc().Known() ? e.Loc().ToString() + ": " : "") << "error: " << e.Message() << "\n";
-        return 1;
-    } catch (const std::exception &e) {
-        out.Flush(2);
-        std::cerr << "internal error: " << e.what() << "\n";
-        return 2;
-    }
+    return RunOnRank(o, out);
 }

@@ -14,6 +14,7 @@
 #include <iostream>
 #include <new>
 
+#include "app/distributed.h"
 #include "app/profile.h"
 #include "core/image/image_io.h"
 #include "parser/parser.h"
@@ -92,7 +93,7 @@ std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Di
     return scene;
 }
 
-std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
+std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag, SceneDesc *descOut) {
     std::optional<SceneDesc> desc;
     try {
         desc = ParseScene(o, diag);
@@ -107,7 +108,9 @@ std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag) {
                   << "'\n";
         return nullptr;
     }
-    return BuildScene(o, *desc, diag, o.integrator);
+    std::unique_ptr<Scene> scene = BuildScene(o, *desc, diag, o.integrator);
+    if (descOut) *descOut = std::move(*desc);
+    return scene;
 }
 
 void PrintError(const Error &e) {
@@ -163,7 +166,8 @@ RenderOptions OptionsFor(const Scene &scene, const CliOptions &o) {
     RenderOptions opt;
     opt.spp = o.spp > 0 ? o.spp : rs.spp;
     opt.seed = o.seed >= 0 ? uint64_t(o.seed) : rs.seed;
-    opt.threads = o.threads;
+    // Under MPI, ranks sharing a node share its cores (distributed.h DefaultThreads).
+    opt.threads = o.threads > 0 ? o.threads : dist::DefaultThreads();
     opt.sampler = o.sampler.empty() ? rs.sampler : o.sampler;
     opt.cancel = &gCancel;
     return opt;
@@ -205,14 +209,19 @@ std::function<void(int, int)> ProgressBar(const std::string &label, bool determi
     };
 }
 
+Image ResolvedImage(const Film &film, const Scene &scene, const std::string &scenePath, const RenderOptions &opt,
+                    const RenderStats &st) {
+    Image img = film.Resolve();
+    StampMetadata(img, scene, scenePath, opt, st);
+    return img;
+}
+
 RenderResult RenderToImage(const Scene &scene, const std::string &scenePath, const RenderOptions &opt) {
     const Detector &det = scene.GetDetector();
     Film film(det.Width(), det.Height(), det.Response());
     RenderResult r;
     r.stats = scene.GetIntegrator().Render(scene, film, opt);
-    if (!r.stats.hasImage) return r;
-    r.image = film.Resolve();
-    StampMetadata(*r.image, scene, scenePath, opt, r.stats);
+    if (r.stats.hasImage) r.image = ResolvedImage(film, scene, scenePath, opt, r.stats);
     return r;
 }
 

@@ -48,8 +48,9 @@ std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Di
 /// nothing printed (BuildScene prints; the Python module raises `diag`'s errors).
 std::unique_ptr<Scene> BuildSceneQuietly(const std::string &scenePath, const SceneDesc &desc, Diagnostics &diag,
                                          const std::string &integrator);
-/// ParseScene + BuildScene with o.integrator: nullptr after errors (all of them printed).
-std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag);
+/// ParseScene + BuildScene with o.integrator: nullptr after errors (all of them printed). The
+/// description read goes to `desc` when given.
+std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag, SceneDesc *desc = nullptr);
 /// Prints an error: `file:line:col: error: …` with the source line when it has a location.
 void PrintError(const Error &e);
 
@@ -62,7 +63,8 @@ void CheckWritable(const std::string &path);
 /// available memory (film.h Film::MemoryNeeded, AvailableMemory).
 void CheckMemory(const Scene &scene);
 /// RenderOptions from the scene's Render block and the command line (--spp, --seed, --threads,
-/// --sampler), cancelled by StopFlag().
+/// --sampler), cancelled by StopFlag(). Without --threads, an MPI rank takes its share of its
+/// node's cores (dist::DefaultThreads).
 RenderOptions OptionsFor(const Scene &scene, const CliOptions &o);
 
 /// A RenderOptions::progress callback drawing a bar on stderr: "[label] [====   ]  40% 8/16 spp
@@ -76,10 +78,14 @@ std::function<void(int, int)> ProgressBar(const std::string &label, bool determi
 std::string ProgressText(const std::string &label, bool deterministic, long long pixels, double budgetSeconds,
                          int done, int total, double seconds);
 
-/// What `render` does between loading and writing: a film of the detector's size, the
-/// integrator's render loop, the resolved image with StampMetadata's metadata. `image` is empty
-/// when the render stopped before it had anything honest to show (RenderStats::hasImage false).
-/// Throws phasor::Error (an integrator's refusal at render time).
+/// The image of a finished or stopped render: the film resolved, with StampMetadata's metadata
+/// (what `render` writes).
+Image ResolvedImage(const Film &film, const Scene &scene, const std::string &scenePath, const RenderOptions &opt,
+                    const RenderStats &st);
+/// One render in this process, as `render` does it without MPI or checkpoints (the Python
+/// module's render): a film of the detector's size, the integrator's render loop, ResolvedImage.
+/// `image` is empty when the render stopped before it had anything honest to show
+/// (RenderStats::hasImage false). Throws phasor::Error (an integrator's refusal at render time).
 struct RenderResult {
     RenderStats stats;
     std::optional<Image> image;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — scene values, plug-in schemas and the parameter dictionary (style.md §2.4).
+// phasor — scene values, plug-in schemas and the parameter dictionary (docs/architecture.md, "Plug-ins").
 //
 // A Value is what a scene file (or C++ code building a scene) says for one parameter, already
 // resolved: $defines substituted, arithmetic evaluated, numbers converted to SI with their

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// `perspective`: a pinhole camera. Pixels report radiance (design.md §4.2, theory §0 D4).
+// `perspective`: a pinhole camera. Pixels report radiance (theory §0 D4).
 // Camera frame from `to_world` (e.g. lookat): +z is the viewing direction, +y is up; image x
 // grows to the right, image y downwards. `fov` spans the shorter image side.
 //

@@ -218,6 +218,7 @@ class VirtualPlane final : public Detector {
     bool SupportsGR() const override { return true; }
     /// Image x: the plane's local x axis (light arriving from the front sees y = image down).
     Vec3 PolarizationX(const DetectorGrSample &) const override { return frame_.s; }
+    bool StratifiesAcrossSamples() const override { return true; }  // StratifiedPixelSample
     std::optional<DetectorGrSample> GenerateGR(int x, int y, const PixelSampleIndex &si, Sampler &sampler,
                                                const SampledWavelengths &wl) const override {
         const Vec2 uPixel = sampler.GetPixel2D();

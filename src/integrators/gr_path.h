@@ -35,7 +35,7 @@ inline ScatterQuery GrQuery(const SurfaceInteraction &si, const SpectralGenRay &
     ScatterQuery q;
     q.wi = si.shading.ToLocal(-gr.d);
     q.wl = &wl;
-    q.rayOptics = rayOptics;  // a spread-free GR continues as a classical ray (theory §9.5)
+    q.rayOptics = rayOptics;  // a spread-free GR continues as a classical ray (theory §9 item 5)
     q.tex = TextureEvalContext(si, rayOptics ? 0 : std::sqrt(gr.beta2[0]));  // hero footprint radius β
     q.gr = rayOptics ? nullptr : &gr;
     q.si = &si;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// `grt`: the backward generalized-ray path tracer — Algorithm 1 of theory §3.3 (design.md §4.3).
+// `grt`: the backward generalized-ray path tracer — Algorithm 1 of theory §3.3 (docs/generalized_rays.md §5).
 //
 // Each pixel sample draws wavelengths ∝ emission × sensor response (D10; the render loop), a GR
 // from the detector (D2: mean ray + per-wavelength footprint β², ρ) and follows it like a

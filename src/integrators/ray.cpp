@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// `ray`: the classical spectral path tracer — phasor's baseline (design.md §4.3). Kernels are
+// `ray`: the classical spectral path tracer — phasor's baseline (docs/architecture.md). Kernels are
 // queried in their ray-optics limit (ScatterQuery::rayOptics): near-delta lobes are true deltas.
 // Next-event estimation to one uniformly chosen light per vertex, multiple importance sampling
 // (power heuristic) between light and kernel sampling for area and infinite lights, Russian

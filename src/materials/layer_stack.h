@@ -44,8 +44,8 @@ struct StackResponse {
 StackResponse LayerStackResponse(double lambda, Complex nIncident, Complex cosIncident,
                                  std::span<const Layer> layers, Complex nSubstrate);
 
-/// The incoherent response of a stack (the ray-optics limit, design.md §4.1 "a film's incoherent
-/// sum"): inside every layer in which the wave propagates, the multiply reflected waves are
+/// The incoherent response of a stack (the ray-optics limit, theory §0 D8, §4.4–4.5: "a film's
+/// incoherent sum"): inside every layer in which the wave propagates, the multiply reflected waves are
 /// summed in power instead of in amplitude — what a stack of layers thicker than the light's
 /// coherence length (or laterally sheared past its coherence width) reflects, and what a ray
 /// tracer bouncing rays inside each slab computes. Layers in which the wave does not propagate

@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — the one kernel of a smooth (optically flat) surface, shared by `conductor`,
-// `dielectric`, `thin_film` and `multilayer` (design.md §4.1: one layer stack, several
-// geometries). Each of those files only declares its schema and builds a SmoothSurface — a
+// `dielectric`, `thin_film` and `multilayer` (docs/kernels.md "Layer stacks and coatings": one layer stack,
+// several geometries). Each of those files only declares its schema and builds a SmoothSurface — a
 // coating (possibly none) over a substrate — in Create; everything optical is here.
 //
 // Lobes (all near-delta and listed, theory §4.1, S6.4): id 0, specular reflection with the
@@ -13,7 +13,7 @@
 //     formula, a stack's characteristic matrix (theory §4.4–4.5, D8) — with EvalLobe's Jones
 //     matrices diag(r_s, r_p) and diag(t_s, t_p)·√(power factor)·(η_i/η_t);
 //   * the ray-optics limit (rayOptics true: `ray`, spread-free GRs): the incoherent sum of the
-//     coating (multiple reflections inside each layer summed in power; design.md §4.1 "a film's
+//     coating (multiple reflections inside each layer summed in power; theory §4.4–4.5, D8: "a film's
 //     incoherent sum"), a partially depolarising Mueller matrix without a Jones matrix. A bare
 //     surface has one response in both regimes: the Fresnel equations, with their Jones matrix.
 // EvalLobe also fills LobeCoherence for a coated surface: `incoherent` (that incoherent sum)

@@ -1,6 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — the plane-wave optics of a smooth surface: an optional coating (a stack of thin
-// layers) over a substrate half-space (design.md §4.1 "reflectance and geometry are separate").
+// layers) over a substrate half-space (reflectance and geometry are separate: docs/kernels.md,
+// "Layer stacks and coatings").
 //
 // One implementation serves every kernel whose *geometry* (a flat interface, a sinusoidal grating,
 // a rough surface) multiplies a *reflectance*: `conductor` and `dielectric` are a SmoothSurface

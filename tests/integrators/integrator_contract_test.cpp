@@ -95,7 +95,7 @@ std::unique_ptr<Scene> BuildCaseScene(const SceneSource &src, const std::string 
 }
 
 // Camera inside a sphere whose inner surface is diffuse (albedo a) and emits Le = 1: every path sees
-// Le·Σ aᵏ = Le/(1 − a) (style.md §2.6 furnace test).
+// Le·Σ aᵏ = Le/(1 − a) (the furnace test).
 const SceneSource FurnaceScene{R"(wscene 1
 Define gain = 1
 Define albedo = 0.5

@@ -165,7 +165,7 @@ TEST(Rs, TwoDDoubleSlitMatchesIndependentRs) {
         EXPECT_TRUE(grid.collapseY);
         if (tiltDeg != 0) continue;
         // The reference itself against the Fresnel-regime two-slit formula with the Gaussian
-        // pixel's decoherence factor (theory §6.7: agreement 1–5 % of peak).
+        // pixel's decoherence factor (theory §6.7; bounded here by 6 % of peak).
         const double k = 2 * Pi / lambda;
         double worst = 0;
         for (int i = 0; i < g.nx; ++i) {
@@ -181,7 +181,7 @@ TEST(Rs, TwoDDoubleSlitMatchesIndependentRs) {
                  2 * s1 * s2 * std::cos(k * d * x / z) * std::exp(-0.5 * Sqr(k * d * sigma / z)));
             worst = std::max(worst, std::abs(f - ref[i]));
         }
-        std::printf("  reference vs the Fresnel-regime formula (theory 6.7): %.3f of peak\n",
+        std::printf("  reference vs the Fresnel-regime formula (theory §6.7): %.3f of peak\n",
                     worst / Peak(ref));
         EXPECT_LT(worst / Peak(ref), 0.06);
     }

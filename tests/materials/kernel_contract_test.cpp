@@ -1,8 +1,9 @@
 // SPDX-License-Identifier: Apache-2.0
-// The generic diffraction-kernel contract suite (design.md §4.1, style.md §2.6): every registered
-// material × each of its TestPresets() × λ ∈ {400, 550, 700} nm × 7 incident directions (normal,
-// oblique, two grazing, two from below the shading normal). A new kernel is covered as soon as it
-// is registered and declares presets; presets may reference the fixtures of material_test_util.h.
+// The generic diffraction-kernel contract suite (docs/kernels.md, "What the contract suite checks
+// automatically"): every registered material × each of its TestPresets() × λ ∈ {400, 550, 700} nm
+// × 7 incident directions (normal, oblique, two grazing, two from below the shading normal). A new
+// kernel is covered as soon as it is registered and declares presets; presets may reference the
+// fixtures of material_test_util.h.
 //
 // Conventions checked (core/render/material.h): local frame, wi and wo point away from the surface;
 // continuous samples have weight = Eval·|cosθo|/Pdf and report pdf = Pdf(wo); near-delta samples
@@ -162,7 +163,7 @@ void PreparePooled(const std::vector<double> &obs, const std::vector<double> &ex
     }
 }
 
-// On a χ² failure: observed and expected tables plus a plotting script (style.md §2.6 step 6).
+// On a χ² failure: observed and expected tables plus a plotting script, as pbrt's and Mitsuba's χ² tests write.
 std::string WriteChi2Data(const std::string &name, int nCos, int nPhi, const std::vector<double> &obs,
                           const std::vector<double> &ex) {
     std::filesystem::path dir = std::filesystem::path(::testing::TempDir()) / "phasor_chi2";
@@ -268,7 +269,7 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
     const ScatterQuery *qs_ = &q_;  // the statistical tests' query
 };
 
-// χ² grid (style.md §2.6): 2N × N cells over (φ, cosθ), N odd.
+// χ² grid: 2N × N cells over (φ, cosθ), N odd.
 constexpr int GridN = 51, GridPhi = 2 * GridN, GridCos = GridN;
 
 int CellOf(const Vec3 &w) {

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor test support — proper statistical tests (style.md §2.6): χ² goodness of fit with
+// phasor test support — proper statistical tests (docs/architecture.md, "Error estimates"): χ² goodness of fit with
 // pooling, Student's t-tests, and the special functions behind them.
 #pragma once
 

@@ -112,6 +112,45 @@ void Film::AddInvalidSample(int x, int y) {
     p.m2I += delta * (0 - p.meanI);
 }
 
+void Film::GetPixels(int x0, int y0, int x1, int y1, PixelState *out) const {
+    assert(0 <= x0 && x0 <= x1 && x1 <= width_ && 0 <= y0 && y0 <= y1 && y1 <= height_);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x, ++out) {
+            const std::size_t i = std::size_t(y) * width_ + x;
+            const Pixel &p = pixels_[i];
+            *out = PixelState{};
+            out->mean[0] = p.mean.x;
+            out->mean[1] = p.mean.y;
+            out->mean[2] = p.mean.z;
+            out->meanI = p.meanI;
+            out->m2I = p.m2I;
+            out->n = p.n;
+            out->invalid = p.invalid;
+            if (stokes_) {
+                for (int c = 0; c < 4; ++c) out->stokes[c] = stokesMeans_[i].mean[std::size_t(c)];
+                out->stokesN = stokesMeans_[i].n;
+            }
+        }
+}
+
+void Film::SetPixels(int x0, int y0, int x1, int y1, const PixelState *in) {
+    assert(0 <= x0 && x0 <= x1 && x1 <= width_ && 0 <= y0 && y0 <= y1 && y1 <= height_);
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x, ++in) {
+            const std::size_t i = std::size_t(y) * width_ + x;
+            Pixel &p = pixels_[i];
+            p.mean = Vec3(in->mean[0], in->mean[1], in->mean[2]);
+            p.meanI = in->meanI;
+            p.m2I = in->m2I;
+            p.n = in->n;
+            p.invalid = in->invalid;
+            if (stokes_) {
+                for (int c = 0; c < 4; ++c) stokesMeans_[i].mean[std::size_t(c)] = in->stokes[c];
+                stokesMeans_[i].n = in->stokesN;
+            }
+        }
+}
+
 long long Film::SampleCount(int x, int y) const {
     return pixels_[std::size_t(y) * width_ + x].n;
 }

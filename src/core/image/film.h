@@ -5,6 +5,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -61,6 +62,24 @@ class Film {
     /// Samples discarded as invalid, plus every sample of a pixel whose resolved mean or variance
     /// is beyond the float range (> 3.4e38; such a pixel is written as 0, never as Inf).
     long long InvalidSampleCount() const;
+
+    /// One pixel's accumulators, exactly as Resolve reads them, in a plain form for moving pixels
+    /// between processes and into checkpoints (docs/distributed.md): the running (Welford) means of
+    /// the channels and of `intensity`, the sum of squared deviations of `intensity`, the sample
+    /// count (invalid samples included, as zeros) and the invalid count; with Stokes output the
+    /// Stokes means and their count (zeros otherwise). Copying a pixel out and back in changes no bit.
+    struct PixelState {
+        double mean[3] = {0, 0, 0};
+        double meanI = 0, m2I = 0;
+        int64_t n = 0, invalid = 0;
+        double stokes[4] = {0, 0, 0, 0};
+        int64_t stokesN = 0;
+    };
+    /// The accumulators of the pixels [x0, x1) × [y0, y1), row-major, into `out` (that many entries).
+    void GetPixels(int x0, int y0, int x1, int y1, PixelState *out) const;
+    /// Replaces the accumulators of [x0, x1) × [y0, y1) by `in` (row-major). Thread-safe for
+    /// distinct pixels, as AddSample.
+    void SetPixels(int x0, int y0, int x1, int y1, const PixelState *in);
 
     /// Bytes a render of width × height holds at its peak (film, resolved image, the copies the
     /// EXR and PNG writers make, an integrator's per-pixel buffers); film_memory.cpp.

@@ -57,9 +57,19 @@ uint32_t PermutationElement(uint32_t i, uint32_t l, uint32_t p) {
 
 }  // namespace
 
+namespace {
+// n ≥ 2 when `count` is the square n² (StratifiedPixelSample lays an n×n lattice), else 0.
+int LatticeSide(int count) {
+    const int n = int(std::lround(std::sqrt(double(count))));
+    return n >= 2 && n * n == count ? n : 0;
+}
+}  // namespace
+
+bool SameStratification(int a, int b) { return a == b || (LatticeSide(a) == 0 && LatticeSide(b) == 0); }
+
 Vec2 StratifiedPixelSample(int x, int y, const PixelSampleIndex &si, Sampler &sampler) {
-    const int n = int(std::lround(std::sqrt(double(si.count))));
-    if (n < 2 || n * n != si.count || si.index < 0 || si.index >= si.count) return sampler.Get2D();
+    const int n = LatticeSide(si.count);
+    if (n == 0 || si.index < 0 || si.index >= si.count) return sampler.Get2D();
     // One shift per (seed, pixel): the same rotated lattice for all of the pixel's samples.
     const uint64_t h = Hash(si.seed, uint64_t(uint32_t(x)), uint64_t(uint32_t(y)), 0x6c61747469636521ULL);
     const double sx = double(h >> 11) * 0x1p-53, sy = double(MixBits(h) >> 11) * 0x1p-53;

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — detectors: cameras and sensors that generate rays (design.md §3 "detectors").
+// phasor — detectors: cameras and sensors that generate rays (docs/generalized_rays.md §3).
 // Image coordinates: x to the right, y down, pixel (i, j) covers [i, i+1) × [j, j+1).
 #pragma once
 
@@ -50,6 +50,9 @@ struct PixelSampleIndex {
 /// prefix of the samples — a render stopped early — is spread over the whole lattice), otherwise
 /// the sampler's next (0,2)-stratified pair.
 Vec2 StratifiedPixelSample(int x, int y, const PixelSampleIndex &si, Sampler &sampler);
+/// Whether StratifiedPixelSample gives every sample index the same value for sample counts a and
+/// b: they are equal, or neither is a square ≥ 4 (both then use the sampler's own pair).
+bool SameStratification(int a, int b);
 
 /// Polarisation options of a detector (docs/sample_solve.md): an ideal linear polariser in front
 /// of the pixels and/or Stokes output. Only integrators that carry polarisation honour them
@@ -118,6 +121,10 @@ class Detector {
     /// (position in the pixel first, then directions / lens). Wavelengths set the footprint.
     virtual std::optional<DetectorGrSample> GenerateGR(int x, int y, const PixelSampleIndex &si,
                                                        Sampler &sampler, const SampledWavelengths &wl) const;
+    /// True if GenerateGR's samples depend on the pixel's sample count (PixelSampleIndex::count:
+    /// StratifiedPixelSample's lattice), so that samples taken for one spp differ from those of
+    /// another (a render resumed to a new spp then differs from a fresh one: SameStratification).
+    virtual bool StratifiesAcrossSamples() const { return false; }
     /// D4a: the pixel value (same units as weight × radiance) contributed by a closed-form source
     /// that reaches the sample's origin unobstructed, integrated analytically over the detector's
     /// directions. Only called when the sample has integratesIncidence.

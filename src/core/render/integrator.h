@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — integrators (design.md §4.3). All render into the same Film from the same Scene.
+// phasor — integrators (docs/architecture.md). All render into the same Film from the same Scene.
 #pragma once
 
 #include <array>
@@ -16,6 +16,7 @@
 namespace phasor {
 
 class Scene;
+class WorkShare;
 
 struct RenderOptions {
     int spp = 16;
@@ -33,6 +34,8 @@ struct RenderOptions {
     /// Called from the calling thread with a warning found while rendering (e.g. a work estimate
     /// far beyond the usual, before the first pass); may be empty.
     std::function<void(const std::string &)> warn;
+    /// Other processes and checkpoints (core/render/work.h); null: this process alone.
+    WorkShare *work = nullptr;
 };
 
 /// Render-time events an integrator counts and the user is told about once after the render (named
@@ -40,7 +43,7 @@ struct RenderOptions {
 /// render.cpp's Describe, the CLI prints every non-zero counter).
 enum class RenderEvent {
     /// A footprint-aware kernel (aperture) met a GR that had already left one: it acted
-    /// geometrically (re-fitting the footprint after an aperture is future work; theory §9.5).
+    /// geometrically (re-fitting the footprint after an aperture is future work; theory §9 item 5).
     FootprintAfterSpreadFree,
     /// Specular (delta) scattering of a spread-free GR in a scene with delta lights: a classical
     /// ray cannot reach those through a specular surface, so their light behind it is missing
@@ -65,6 +68,8 @@ struct RenderCounters {
     }
     /// "warning: N path vertices …" lines for every non-zero counter.
     std::vector<std::string> Warnings() const;
+    /// EXR metadata "phasor:count:<key>" = N for every non-zero counter (others removed).
+    void ToMetadata(std::map<std::string, std::string> &metadata) const;
 };
 
 /// The estimated run time [s] above which integrators warn before rendering (WorkWarning).

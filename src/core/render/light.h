@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — light sources (design.md §3 "lights"). Radiometric conventions: emitted quantities are
+// phasor — light sources (docs/generalized_rays.md §4). Radiometric conventions: emitted quantities are
 // spectral (per metre of wavelength); a line spectrum carries its integrated strength (D10).
 #pragma once
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — the diffraction-kernel (material) interface (design.md §4.1).
+// phasor — the diffraction-kernel (material) interface (docs/kernels.md).
 //
 // Frame: every direction is in the local shading frame (z = shading normal, pointing to the
 // side the shape calls "outside"); wi and wo both point *away* from the surface. wi is the
@@ -69,7 +69,7 @@ enum KernelCaps : unsigned {
     CapFootprintAware = 1u << 2,
 };
 
-/// What a kernel is asked about (design.md §4.1).
+/// What a kernel is asked about (docs/kernels.md, "The interface").
 struct ScatterQuery {
     Vec3 wi;                               // local, unit, pointing away from the surface
     const SampledWavelengths *wl = nullptr;
@@ -192,7 +192,7 @@ struct LobeCoherence {
 /// (core/polarization.h: s = the normal × propagation direction, p completing a right-handed frame
 /// with the propagation direction; for normal incidence the local x axis is p's reference). The
 /// kernel's convention is the backward tracer's: the wave arrives along −wi and leaves along wo
-/// (theory S6.1); `sample_solve` applies the reciprocal matrix to light arriving along −wo.
+/// (time reversal, theory §1.6); `sample_solve` applies the reciprocal matrix to light arriving along −wo.
 ///   * `mueller[i]`: the Mueller matrix; its M00 is the unpolarised value: for a near-delta lobe its
 ///     weight a_j(λ_i) (ListNearDelta), for a continuous lobe f(wi→wo)·|cosθo| per unit solid angle.
 ///   * `jones[i]`: the Jones matrix whose Mueller matrix is `mueller[i]`, when the lobe is

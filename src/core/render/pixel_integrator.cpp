@@ -1,14 +1,14 @@
 // SPDX-License-Identifier: Apache-2.0
 #include "core/render/pixel_integrator.h"
 
+#include "core/render/work.h"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <thread>
 
-#include <tbb/blocked_range2d.h>
-#include <tbb/combinable.h>
 #include <tbb/global_control.h>
 #include <tbb/parallel_for.h>
 
@@ -58,55 +58,98 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
     std::unique_ptr<Sampler> prototype = MakeSampler(opt.sampler, opt.seed);
     if (!prototype) throw Error("unknown sampler '" + opt.sampler + "' (use sobol or independent)");
 
+    auto cancelled = [&] { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); };
+    // Renders one tile: each pixel from its own sample count to the task's end, into a scratch film
+    // holding the tile's accumulators (the film itself changes only when TilePasses takes it back).
+    auto renderTile = [&](TileTask &task, Film &scratch, Sampler &sampler) {
+        const int tw = task.x1 - task.x0, th = task.y1 - task.y0;
+        scratch.SetPixels(0, 0, tw, th, task.pixels.data());
+        PathStats ps;
+        for (int y = task.y0; y < task.y1; ++y)
+            for (int x = task.x0; x < task.x1; ++x) {
+                // Cancellation is checked per pixel, so a stop request is honoured within one
+                // pixel's batch of samples. A pixel gets all of the batch or none of it, so every
+                // pixel's mean and variance stay those of its own n samples.
+                if (cancelled()) break;
+                const int lx = x - task.x0, ly = y - task.y0;
+                // Samples are added in index order from the pixel's count: who renders them, and in
+                // which passes, changes no bit of its accumulator (work.h).
+                for (int s = int(scratch.SampleCount(lx, ly)); s < task.sampleEnd; ++s) {
+                    sampler.StartPixelSample(x, y, s);
+                    ps.sample = PixelSampleIndex{s, opt.spp, opt.seed};
+                    // Wavelengths first, so they are stratified across the pixel's samples.
+                    SampledWavelengths wl = scene.Wavelengths().Sample(sampler.Get1D());
+                    if (scratch.HasStokes()) {
+                        scratch.AddStokesSample(lx, ly, EstimatePixelStokes(scene, x, y, wl, sampler, ps), wl);
+                    } else {
+                        SampledSpectrum L = EstimatePixel(scene, x, y, wl, sampler, ps);
+                        scratch.AddSample(lx, ly, L, wl);
+                    }
+                }
+            }
+        scratch.GetPixels(0, 0, tw, th, task.pixels.data());
+        task.rays = ps.rays;
+        task.counters = ps.counters;
+    };
+    // Every thread of this process takes tiles from `source` until it has none left.
+    auto renderTiles = [&](TileSource &source) {
+        const int workers = std::max(1, int(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
+        tbb::parallel_for(
+            0, workers,
+            [&](int) {
+                Film scratch(TilePasses::TileSize, TilePasses::TileSize, film.Response());
+                if (film.HasStokes()) scratch.EnableStokes();
+                std::unique_ptr<Sampler> sampler = prototype->Clone();
+                TileTask task;
+                while (source.Next(task)) {
+                    renderTile(task, scratch, *sampler);
+                    source.Done(task);
+                }
+            },
+            tbb::simple_partitioner());
+    };
+
     RenderStats stats;
+    if (opt.work && !opt.work->Coordinates()) {  // a helper process: its tiles, no image
+        if (TileSource *tiles = opt.work->HelperTiles(film)) renderTiles(*tiles);
+        stats.hasImage = false;
+        stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        return stats;
+    }
     const int w = film.Width(), h = film.Height();
     if (opt.warn) EstimateWork(scene, w, h, opt, *prototype);
-    constexpr int Tile = 16;
-    auto cancelled = [&] { return opt.cancel && opt.cancel->load(std::memory_order_relaxed); };
+    TilePasses passes(film, opt.cancel);
+    struct Serving {  // other processes and checkpoints see the passes while they run
+        WorkShare *work;
+        Serving(WorkShare *wk, TilePasses &p) : work(wk) {
+            if (work) work->BeginTiles(p);
+        }
+        ~Serving() {
+            if (work) work->EndTiles();
+        }
+    } serving(opt.work, passes);
+    // Passes of 1, 2, 4, 8, then 16 samples per pixel. A film that already holds samples (a
+    // resumed render) skips the passes its every pixel has.
+    long long have = film.SampleCount(0, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) have = std::min(have, film.SampleCount(x, y));
     int done = 0;
     int batch = 1;
     while (done < opt.spp && !cancelled()) {
-        int end = std::min(opt.spp, done + batch);
-        tbb::combinable<PathStats> local;
-        tbb::parallel_for(
-            tbb::blocked_range2d<int>(0, h, Tile, 0, w, Tile),
-            [&](const tbb::blocked_range2d<int> &r) {
-                std::unique_ptr<Sampler> sampler = prototype->Clone();
-                PathStats &ps = local.local();
-                for (int y = r.rows().begin(); y < r.rows().end(); ++y)
-                    for (int x = r.cols().begin(); x < r.cols().end(); ++x) {
-                        // Cancellation is checked per pixel, so a stop request is honoured within
-                        // one pixel's batch of samples. A pixel gets all of the batch or none of
-                        // it, so every pixel's mean and variance stay those of its own n samples.
-                        if (cancelled()) return;
-                        for (int s = done; s < end; ++s) {
-                            sampler->StartPixelSample(x, y, s);
-                            ps.sample = PixelSampleIndex{s, opt.spp, opt.seed};
-                            // Wavelengths first, so they are stratified across the pixel's samples.
-                            SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
-                            if (film.HasStokes()) {
-                                film.AddStokesSample(x, y, EstimatePixelStokes(scene, x, y, wl, *sampler, ps), wl);
-                            } else {
-                                SampledSpectrum L = EstimatePixel(scene, x, y, wl, *sampler, ps);
-                                film.AddSample(x, y, L, wl);
-                            }
-                        }
-                    }
-            },
-            tbb::simple_partitioner());
-        local.combine_each([&](const PathStats &p) {
-            stats.rays += p.rays;
-            stats.counters += p.counters;
-        });
-        if (cancelled()) break;  // the pass may be incomplete: `done` stays the count every pixel has
-        done = end;
+        const int end = std::min(opt.spp, done + batch);
         batch = std::min(batch * 2, 16);
-        if (opt.progress) opt.progress(done, opt.spp);
+        if (end > have) {
+            passes.BeginPass(end);
+            renderTiles(passes);
+            passes.EndPass();
+            if (cancelled()) break;  // the pass may be incomplete: `done` stays the count every pixel has
+        }
+        done = end;
+        if (opt.progress && end > have) opt.progress(done, opt.spp);
     }
-    for (std::size_t i = 0; i < stats.counters.n.size(); ++i)
-        if (stats.counters.n[i] > 0)
-            stats.metadata[std::string("phasor:count:") + Describe(RenderEvent(i)).key] =
-                std::to_string(stats.counters.n[i]);
+    stats.rays = passes.Rays();
+    stats.counters = passes.Counters();
+    stats.counters.ToMetadata(stats.metadata);
     stats.cancelled = done < opt.spp;
     // Pixels finished during an interrupted pass hold more samples than the others.
     long long fewest = film.SampleCount(0, 0), most = fewest;

@@ -1,8 +1,11 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — the shared render loop of integrators that estimate each pixel independently
-// (`ray`, `grt`): TBB over 16×16 tiles, sample passes in growing batches (1, 2, 4, … 16 spp),
-// deterministic per (pixel, sample). Cancellation is checked before each pixel's batch, so a stop
-// request is honoured within about one pixel's batch; a partial image is valid pixel by pixel
+// (`ray`, `grt`, `sample_solve`): sample passes in growing batches (1, 2, 4, … 16 spp), each over
+// 16×16 tiles that every thread (and, under MPI, every process) takes one by one from TilePasses
+// (core/render/work.h); deterministic per (pixel, sample), and each pixel's samples are added in
+// index order, so the image is the same for any number of threads and processes, and a film that
+// already holds samples (a resumed checkpoint) continues bit for bit. Cancellation is checked before
+// each pixel's batch, so a stop request is honoured within about one pixel's batch; a partial image is valid pixel by pixel
 // (each pixel's mean and variance are those of its own sample count; the pixels finished in the
 // interrupted pass have one batch more than the rest).
 #pragma once

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — plug-in registry and scene building (style.md §2.3).
+// phasor — plug-in registry and scene building (docs/architecture.md, "Plug-ins").
 //
 // A plug-in is one .cpp file holding a class with
 //     static const Schema &GetSchema();

@@ -26,4 +26,12 @@ std::vector<std::string> RenderCounters::Warnings() const {
     return out;
 }
 
+void RenderCounters::ToMetadata(std::map<std::string, std::string> &metadata) const {
+    for (std::size_t i = 0; i < n.size(); ++i) {
+        const std::string key = std::string("phasor:count:") + Describe(RenderEvent(i)).key;
+        if (n[i] > 0) metadata[key] = std::to_string(n[i]);
+        else metadata.erase(key);
+    }
+}
+
 }  // namespace phasor

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — rays, surface interactions, shapes and triangle meshes (design.md §3 "shapes").
+// phasor — rays, surface interactions, shapes and triangle meshes (docs/wscene.md §12).
 // World space is right-handed, lengths in metres.
 #pragma once
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — textures: values that vary over a surface (design.md §4.1, docs/kernels.md "Textures").
+// phasor — textures: values that vary over a surface (docs/kernels.md "Textures").
 //
 // One plug-in family `Texture`. A texture yields either a spectrum (per sampled wavelength,
 // e.g. a reflectance) or a scalar with a physical dimension (a thickness in metres, an angle in

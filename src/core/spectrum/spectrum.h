@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// phasor — spectra, sampled wavelengths, sensor responses (design.md §3 "spectrum", theory §0 D10).
+// phasor — spectra, sampled wavelengths, sensor responses (theory §0 D10, §4.10).
 // Wavelengths are vacuum wavelengths in metres everywhere.
 #pragma once
 

@@ -1,5 +1,5 @@
 // SPDX-License-Identifier: Apache-2.0
-// `rs`: the forward Rayleigh–Sommerfeld reference (theory §6.2, §9; design.md §4.3). Coherent,
+// `rs`: the forward Rayleigh–Sommerfeld reference (theory §6.2, §9; docs/rs.md). Coherent,
 // monochromatic sources (`plane_wave` with a line spectrum at any incidence, isotropic `point`
 // with a line spectrum, `gaussian_beam` with a line spectrum: its exact paraxial TEM₀₀ field,
 // GaussianBeamGeometry, with the waist anywhere) shine on ONE planar aperture plate — the scene's only shape, whose
@@ -40,6 +40,7 @@
 #include "core/render/material.h"
 #include "core/render/registry.h"
 #include "core/render/scene.h"
+#include "core/render/work.h"
 #include "integrators/rs/propagator.h"
 #include "integrators/rs/sensor_quadrature.h"
 #include "integrators/rs/slit_end_error.h"
@@ -254,7 +255,11 @@ class RsIntegrator final : public Integrator {
                 return true;
             };
             std::vector<double> flux =
-                rs::IntegrateSensor(*sensor, *job.prop, job.grid, rs::Quantity::Flux, onBatch, opt.cancel);
+                rs::IntegrateSensor(*sensor, *job.prop, job.grid, rs::Quantity::Flux, onBatch, opt.cancel, opt.work);
+            // A helper process (MPI) computes its share of every light's field; the pixels are summed
+            // on the coordinating one.
+            const bool helper = opt.work && !opt.work->Coordinates();
+            if (helper && !(opt.cancel && opt.cancel->load())) continue;
             if (flux.empty()) {
                 // Every pixel needs the field over its whole window, so a partial field gives no
                 // honest pixel: nothing is written (docs/rs.md "Cancellation").
@@ -273,6 +278,10 @@ class RsIntegrator final : public Integrator {
                 channels[p] += wc * v;
                 intensity[p] += wi * v;
             }
+        }
+        if (opt.work && !opt.work->Coordinates()) {
+            stats.hasImage = false;
+            return stats;
         }
         // Round-off can leave tiny negative sums in dark pixels: those are clamped to 0. A pixel
         // more negative than round-off, or one the film cannot hold (NaN, beyond float), is an

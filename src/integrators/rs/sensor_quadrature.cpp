@@ -117,13 +117,11 @@ int ProgressUnits(const SensorGrid &grid) {
 std::vector<double> IntegrateSensor(const SensorPlaneGeometry &g, const Propagator &prop,
                                     const SensorGrid &grid, Quantity q,
                                     const std::function<bool(int)> &batchDone,
-                                    const std::atomic<bool> *cancel) {
+                                    const std::atomic<bool> *cancel, WorkShare *work) {
     const std::size_t nxg = grid.xs.size(), nyg = grid.ys.size(), total = nxg * nyg;
     std::vector<double> field(total, 0.0);
-    const int units = ProgressUnits(grid);
     auto cancelled = [&] { return cancel && cancel->load(std::memory_order_relaxed); };
-    for (int u = 0; u < units; ++u) {
-        const std::size_t begin = total * u / units, end = total * (u + 1) / units;
+    auto batch = [&](std::size_t begin, std::size_t end) {
         tbb::parallel_for(
             tbb::blocked_range<std::size_t>(begin, end, 1), [&](const tbb::blocked_range<std::size_t> &r) {
                 for (std::size_t idx = r.begin(); idx < r.end(); ++idx) {
@@ -133,8 +131,10 @@ std::vector<double> IntegrateSensor(const SensorPlaneGeometry &g, const Propagat
                     field[idx] = q == Quantity::Flux ? prop.Flux(p, g.frame.n) : prop.Intensity(p);
                 }
             });
-        if (cancelled() || (batchDone && !batchDone(u + 1))) return {};
-    }
+    };
+    const bool complete = work ? work->Batches(field, ProgressUnits(grid), batch, batchDone, cancel)
+                               : RunBatchesLocally(field, ProgressUnits(grid), batch, batchDone, cancel);
+    if (!complete) return {};
     // Separable pixel sums: G(b, i) = Σ_a w_x(x_a − x_i)·F(a, b)·h_x, then Σ_b w_y·G·h_y, over the
     // nodes within each pixel's window (the node lists are sorted).
     struct Taps {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/render/detector.h"
+#include "core/render/work.h"
 #include "integrators/rs/propagator.h"
 
 namespace phasor::rs {
@@ -35,11 +36,13 @@ SensorGrid MakeGrid(const SensorPlaneGeometry &sensor, const Propagator &prop);
 /// ProgressUnits(grid) equal batches; `batchDone(batches)` is called from the calling thread after
 /// every batch with the number done so far; returning false cancels. `cancel`, when set, is also
 /// checked before every node, so a stop request ends the current batch early. A cancelled call
-/// returns an empty vector. Parallel over grid nodes (TBB), deterministic.
+/// returns an empty vector. Parallel over grid nodes (TBB), deterministic. With `work` the batches
+/// are shared with other processes (WorkShare::Batches; every node's value is the same whoever
+/// computes it): the pixels are returned on the coordinating process only, an empty vector elsewhere.
 std::vector<double> IntegrateSensor(const SensorPlaneGeometry &sensor, const Propagator &prop,
                                     const SensorGrid &grid, Quantity q,
                                     const std::function<bool(int)> &batchDone = {},
-                                    const std::atomic<bool> *cancel = nullptr);
+                                    const std::atomic<bool> *cancel = nullptr, WorkShare *work = nullptr);
 /// Number of progress units (batches of at least 64 grid nodes, at most 1000 batches) that
 /// IntegrateSensor reports for `grid`.
 int ProgressUnits(const SensorGrid &grid);
