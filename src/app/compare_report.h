@@ -94,7 +94,6 @@ struct CompareRun {
     std::optional<CompareMetrics> metrics;    // against the reference (not for the reference)
     std::optional<ConsistencyTest> test;      // against the reference's noise (same physics only)
     bool comparable = true;                   // same physics as the reference
-    std::vector<std::string> warnings;        // everything the run warned about (scene, render)
     /// Notes about this integrator on this scene for the page (e.g. what it cannot see); empty
     /// unless someone fills it — the table shows them.
     std::vector<std::string> messages;
@@ -150,6 +149,10 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
                                              const CompareReference &ref, const Image *refImage,
                                              const CompareReport &report);
 
+/// results.csv: one row per run — integrator (the reference run's with " (reference)"), role,
+/// status, spp, seconds, samples_per_second, rmse, rel_mse, max_error, rgb_rmse, noise_floor,
+/// comparable, chi2, dof, z, verdict, error (empty where a run has no value).
+std::string CompareCsv(const std::vector<CompareRun> &runs, const CompareReference &ref);
 /// The table as text, for the terminal.
 void PrintSummary(std::ostream &os, const std::vector<CompareRun> &runs, const CompareReference &ref);
 /// "0.25 s", "12 s", "2m05s".
