@@ -44,7 +44,7 @@ Result Run(const std::string &integrator, const DefineList &defines, int threads
     const Detector &det = built->GetDetector();
     Film film(det.Width(), det.Height(), det.Response());
     RenderOptions opt;
-    opt.spp = built->Settings().spp;
+    opt.spp = built->Settings().options.spp;
     opt.seed = 1;
     opt.threads = threads;
     const auto start = std::chrono::steady_clock::now();

@@ -134,8 +134,11 @@ class Parser {
         render->add_option("--resume", raw.resume, "continue a checkpointed render bit for bit (SCENE optional)")
             ->type_name("FILE.ckpt");
 
-        CLI::App *check = Add("check", "load and validate SCENE only; exit status 0 if it is valid");
+        CLI::App *check = Add("check", "load and validate SCENE only, for the integrator render would use; exit "
+                                       "status 0 if it is valid");
         scene(check, "the scene file (.wscene)");
+        check->add_option("--integrator", o.integrator, "check for this integrator (as render --integrator)")
+            ->type_name("NAME");
         loading(check);
         quiet(check);
 

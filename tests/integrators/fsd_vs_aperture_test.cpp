@@ -49,6 +49,8 @@ double WorstDifference(const Scene &meshes, const Scene &plate, const Vec3 &o, d
     SpectralGenRay gp = g;
     gp.o = si->p;
     const ScatterQuery q = grpath::GrQuery(*si, gp, false, wl);
+    ScratchBuffer scratch;
+    const PreparedKernel &k = si->material->Prepare(q, scratch);
     double worst = 0, peak = 0;
     for (int a = 0; a < 3; ++a) {
         const double phi = a * Pi / 5;
@@ -56,7 +58,7 @@ double WorstDifference(const Scene &meshes, const Scene &plate, const Vec3 &o, d
             const double th = thetaMax * i / 40;
             const Vec3 wo(std::sin(th) * std::cos(phi), std::sin(th) * std::sin(phi), std::cos(th));
             const double ff = lobe.Eval(wo)[0];
-            const double fa = si->material->Eval(q, si->shading.ToLocal(wo))[0];
+            const double fa = k.Eval(si->shading.ToLocal(wo))[0];
             peak = std::max(peak, fa);
             worst = std::max(worst, std::abs(ff - fa));
         }

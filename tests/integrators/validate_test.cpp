@@ -52,7 +52,7 @@ Loaded Load(const std::string &text, const std::string &integrator = "") {
 }
 
 // A diffuse floor under a small lamp, seen by a camera (line 6) or a test detector (line 7).
-const char *const kRoom = R"(wscene 1
+const char *const kRoom = R"(wscene 2
 Material "diffuse" "white" { reflectance = 0.5 }
 Shape "rectangle" "floor" { material = @white }
 Shape "disk" "lamp" { radius = 0.1 m  to_world = [rotate(180 deg, [1 0 0]) translate([0 0 1] m)] }

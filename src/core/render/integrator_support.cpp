@@ -55,7 +55,8 @@ unsigned ProbedCaps(const Material &m, bool rayOptics) {
             q.rayOptics = rayOptics;
             q.gr = rayOptics ? nullptr : &gr;
             q.tex = TextureEvalContext::AtUV(Vec2(0.1 + 0.4 * (i % 3), 0.1 + 0.4 * (i / 3)));
-            caps |= m.Capabilities(q);
+            ScratchBuffer scratch;
+            caps |= m.Prepare(q, scratch).Capabilities();
         }
     return caps;
 }
@@ -111,7 +112,7 @@ void ValidateSupport(const Integrator &integrator, const Scene &scene, Diagnosti
     for (const auto &shape : scene.Shapes()) {
         const Material *m = shape->material;
         const FileLoc loc = scene.Where(shape.get());
-        if (platesOnly && !(m && m->Openings())) {
+        if (platesOnly && !(m && OpeningsOf(*m))) {
             diag.Error(loc, who + " needs an aperture plate: shape '" + shape->name +
                                 "' has no material with openings (use the 'aperture' material; " + who +
                                 " propagates through one plate and no other shape)");

@@ -50,13 +50,13 @@ bool Transmits(const Material &m) {
         q.wl = &wl;
         q.rayOptics = true;
         q.tex = TextureEvalContext::AtUV(Vec2(0.5, 0.5));
-        NearDeltaLobes lobes;
-        m.ListNearDelta(q, lobes);
-        for (const NearDeltaLobe &l : lobes)
+        ScratchBuffer scratch;
+        const PreparedKernel &k = m.Prepare(q, scratch);
+        for (const NearDeltaLobe &l : k.ListNearDelta())
             if ((l.flags & ScatterTransmission) && l.weight.Max() > 0) return true;
         for (int i = 0; i < 16; ++i) {
             const double u = (i + 0.5) / 16;
-            auto s = m.Sample(q, u, Vec2(std::fmod(u * 7.31, 1.0), std::fmod(u * 3.77, 1.0)));
+            auto s = k.Sample(u, Vec2(std::fmod(u * 7.31, 1.0), std::fmod(u * 3.77, 1.0)));
             if (s && (s->flags & ScatterTransmission) && s->weight.Max() > 0) return true;
         }
     }
