@@ -51,7 +51,7 @@ def median_seconds(f, repeat=5):
 def main():
     phasor.register_material("py_lambert", Lambert)
     phasor.register_material("py_null", Null)
-    lib = 'wscene 1\nMaterial "diffuse" "cpp" { reflectance = 0.5 }\nMaterial "py_lambert" "py" { albedo = 0.5 }\n' \
+    lib = 'wscene 2\nMaterial "diffuse" "cpp" { reflectance = 0.5 }\nMaterial "py_lambert" "py" { albedo = 0.5 }\n' \
           'Material "py_null" "null" {}\n'
     path = os.path.join(os.environ.get("TMPDIR", "/tmp"), "phasor_kernel_cost.wscene")
     with open(path, "w") as f:

@@ -84,7 +84,7 @@ class SheenLambert(phasor.Material):
         return phasor.ScatterSample(wo, self.eval(wi, wo, wl) * c / pdf, pdf)
 
 
-SCENE = """wscene 1
+SCENE = """wscene 2
 # A sheen sphere and a plain Lambertian one on a matte floor, under one ceiling panel.
 Define res = 64
 Material "sheen" "velvet" { reflectance = 0.6  sheen = 2.2 }

@@ -88,6 +88,10 @@ class Material:
     ``reciprocal`` (default True) whether f(wi→wo) = f(wo→wi). The constructor receives the
     parameters as a dict of SI values: ``__init__(self, params)``.
 
+    Every method is about one query and gets what it needs of it (wi, wl): a kernel keeps no state
+    per hit. (phasor's renderer prepares a kernel per hit; for a Python kernel that calls
+    list_lobes once per hit, then sample, eval and pdf as the integrator asks.)
+
     Register the class with phasor.register_material(name, cls); scenes loaded afterwards in the
     same process name it like any kernel: Material "name" "x" { ... }.
     """

@@ -229,7 +229,10 @@ RenderResult RenderToImage(const Scene &scene, const std::string &scenePath, con
     Film film(det.Width(), det.Height(), det.Response());
     RenderResult r;
     r.stats = scene.GetIntegrator().Render(scene, film, opt);
-    if (r.stats.hasImage) r.image = ResolvedImage(film, scene, scenePath, opt, r.stats);
+    if (r.stats.hasImage) {
+        r.image = ResolvedImage(film, scene, scenePath, opt, r.stats);
+        StampDisplayExposure(*r.image, det, DisplayStops(det, *r.image));
+    }
     return r;
 }
 

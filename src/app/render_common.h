@@ -84,7 +84,8 @@ std::string ProgressText(const std::string &label, bool deterministic, long long
 Image ResolvedImage(const Film &film, const Scene &scene, const std::string &scenePath, const RenderOptions &opt,
                     const RenderStats &st);
 /// One render in this process, as `render` does it without MPI or checkpoints (the Python
-/// module's render): a film of the detector's size, the integrator's render loop, ResolvedImage.
+/// module's render): a film of the detector's size, the integrator's render loop, ResolvedImage,
+/// and the display exposure stamped (StampDisplayExposure).
 /// `image` is empty when the render stopped before it had anything honest to show
 /// (RenderStats::hasImage false). Throws phasor::Error (an integrator's refusal at render time).
 struct RenderResult {

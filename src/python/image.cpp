@@ -59,6 +59,18 @@ std::string Title(const PyImage &p) {
     return scene + ": intensity";
 }
 
+// The display exposure [stops] `phasor render` gave the image's PNG (phasor:display_exposure; 0
+// for an image without it).
+double DisplayExposure(const Image &img) {
+    const auto it = img.metadata.find("phasor:display_exposure");
+    if (it == img.metadata.end()) return 0;
+    try {
+        return std::stod(it->second);
+    } catch (const std::exception &) {
+        return 0;
+    }
+}
+
 // Writes the PNG `phasor render` writes beside its EXR (StageDisplayPng); returns the file written
 // (a CSV instead of a one-row image's plot when matplotlib is missing, with a warning).
 std::string WriteDisplayPng(const PyImage &p, const std::string &path) {
@@ -67,7 +79,8 @@ std::string WriteDisplayPng(const PyImage &p, const std::string &path) {
         py::gil_scoped_release release;
         MakeParentDirectory(path);
         OutputFiles files;
-        shown = StageDisplayPng(files, path, p.image, Radiometric(p.image), Label(p), Title(p));
+        shown = StageDisplayPng(files, path, p.image, Radiometric(p.image), Label(p), Title(p), 0,
+                                DisplayExposure(p.image));
         files.Commit();
     }
     if (shown != path) EmitRenderWarning("'" + path + "' not drawn (matplotlib is missing); its data is in '" + shown + "'");
@@ -160,19 +173,20 @@ transform, a radiometric detector's in false-colour dB with a colour bar, a one-
 plot). All or nothing, as the program's outputs. Returns the path written.)doc")
         .def(
             "to_srgb",
-            [](const PyImage &p, double exposure) {
+            [](const PyImage &p, std::optional<double> exposure) {
                 try {
                     if (Radiometric(p.image)) return ToArray(ToFalseColourDb(p.image, "intensity", 40, 0));
                     DisplayOptions opt;
-                    opt.exposure = exposure;
+                    opt.exposure = exposure.value_or(DisplayExposure(p.image));
                     return ToArray(ToDisplay(p.image, opt));
                 } catch (const Error &e) {
                     RaisePhasorError(e);
                 }
             },
-            py::arg("exposure") = 0.0, R"doc(
+            py::arg("exposure") = py::none(), R"doc(
 The display image as an H x W x 3 uint8 array (sRGB): a camera's R, G, B through the OpenColorIO
-display transform of `phasor render`'s PNG (sRGB, view Standard; `exposure` in stops), a
+display transform of `phasor render`'s PNG (sRGB, view Standard; `exposure` in stops, None: the
+image's phasor:display_exposure as its PNG, the detector's `exposure`/auto-exposure), a
 radiometric detector's intensity in false-colour dB (viridis, 0 dB = the maximum, 40 dB shown)
 as in its PNG (without the colour bar).)doc")
         .def(

@@ -67,8 +67,9 @@ standard errors of their Monte-Carlo parts, and the near-delta lobes.)doc");
                 return out;
             },
             R"doc(The near-delta lobes, one dict each: kind ("reflection" | "transmission"), order (the lobe's
-id: a grating's order), name (the kernel's name of the lobe, as the CSV's order column), theta_o and phi_o [rad] (as the CSV), direction (x, y, z in the probe's
-frame: z = the normal, x = the kernel's reference direction or dp/du) and efficiency (power).)doc")
+id: a grating's order), name (the kernel's name of the lobe: the CSV's order column), theta_o and
+phi_o [rad] (as the CSV), direction (x, y, z in the probe's frame: z = the normal, x = the
+kernel's reference direction or dp/du) and efficiency (power).)doc")
         .def_property_readonly("csv", [](const PyProbe &p) { return ProbeCsv(p.result); },
                                "The CSV `phasor probe --csv` writes.")
         .def_property_readonly("material", [](const PyProbe &p) { return p.material; }, "The material's scene name.")

@@ -239,9 +239,9 @@ probes made from it keep it alive.)doc");
             [](LoadedScene &s) {
                 const RenderSettings &r = s.For("")->Settings();
                 py::dict d;
-                d["spp"] = r.spp;
-                d["seed"] = r.seed;
-                d["sampler"] = r.sampler;
+                d["spp"] = r.options.spp;
+                d["seed"] = r.options.seed;
+                d["sampler"] = r.options.sampler;
                 d["output"] = r.output;
                 return d;
             },

@@ -14,7 +14,7 @@ cd "$out"
 PYTHONPATH="$out$site" PYTHONDONTWRITEBYTECODE=1 "$python" - "$pkg" <<'PY'
 import sys, phasor
 assert phasor.__file__.startswith(sys.argv[1]), phasor.__file__
-scene = phasor.load_string('wscene 1\nShape "sphere" { radius = 1 m }\nLight "point" { position = [0 3 0] m  intensity = 1 W/sr }\n'
+scene = phasor.load_string('wscene 2\nShape "sphere" { radius = 1 m }\nLight "point" { position = [0 3 0] m  intensity = 1 W/sr }\n'
                            'Detector "virtual_plane" { extent = [4 4] m  resolution = [8 1]  to_world = translate([0 0 3] m) }\n')
 image = scene.render(spp=1, progress=False)
 assert image._repr_png_()[:4] == b"\x89PNG"  # a one-row image: the line plot, through the shipped plot module

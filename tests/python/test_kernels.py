@@ -50,7 +50,7 @@ class Lambert(phasor.Material):
 
 phasor.register_material("py_lambert", Lambert)
 
-SCENE = """wscene 1
+SCENE = """wscene 2
 Define kernel = "py"
 Material "py_lambert" "py" { albedo = 0.5 }
 Material "diffuse" "cpp" { reflectance = 0.5 }
@@ -204,3 +204,57 @@ def test_registering_a_name_again_replaces_the_class_for_new_scenes_only():
     b = after.render(spp=2, progress=False)["intensity"].sum()
     assert b < 0.5 * a  # the new class for the new scene, the old one's instances for the old
     assert before.render(spp=2, progress=False)["intensity"].sum() == a
+
+
+# ---- a near-delta kernel: its lobes listed once per prepared query ----------------------------------
+
+class Mirror(phasor.Material):
+    """A mirror reflecting a fraction R of the light into one near-delta lobe."""
+
+    parameters = {"R": phasor.param("number", 0.8, min=0, max=1, doc="reflectance")}
+    presets = [{"R": 0.8}]
+    listed = 0  # list_lobes calls (all instances)
+
+    def __init__(self, params):
+        super().__init__(params)
+        self.r = params["R"]
+
+    def direction(self, wi):
+        return (-wi[0], -wi[1], wi[2])
+
+    def list_lobes(self, wi, wl):
+        Mirror.listed += 1
+        return [phasor.Lobe(7, self.direction(wi), self.r, 1.0)]
+
+    def sample(self, wi, wl, u0, u):
+        return phasor.ScatterSample(self.direction(wi), self.r, 1.0, lobe=7, near_delta=True)
+
+
+class BackScatter(Mirror):
+    """A wrong mirror: it lists (and samples) the light back towards wi, against the law of reflection."""
+
+    def direction(self, wi):
+        return wi
+
+
+phasor.register_material("py_mirror", Mirror)
+phasor.register_material("py_back_scatter", BackScatter)
+
+
+def test_contract_suite_on_a_near_delta_python_kernel():
+    assert phasor.testing.check_kernel("py_mirror", **QUICK)
+    report = phasor.testing.check_kernel("py_back_scatter", [{"R": 0.8}], raise_on_failure=False, **QUICK)
+    assert not report and "NearDeltaListing" in report.failed_checks()
+
+
+def test_probe_of_a_near_delta_python_kernel_lists_its_lobes_once(tmp_path):
+    library = tmp_path / "mirror.wscene"
+    library.write_text('wscene 2\nMaterial "py_mirror" "m" { R = 0.8 }\n')
+    before = Mirror.listed
+    p = phasor.probe(library, "m", "35deg", "550nm")
+    # One query, prepared once: its lobe is listed once and read back from the prepared kernel.
+    assert Mirror.listed - before == 1
+    assert not p.continuous and p.R == 0.8 and p.T == 0
+    (lobe,) = p.lobes
+    assert lobe["order"] == 7 and lobe["name"] == "7" and lobe["kind"] == "reflection"
+    assert lobe["theta_o"] == pytest.approx(math.radians(35), abs=1e-12) and lobe["efficiency"] == 0.8

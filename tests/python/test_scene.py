@@ -21,7 +21,7 @@ def test_load_gives_the_scene_and_its_settings(small_scene):
 
 
 def test_defines_as_text_and_as_si_numbers():
-    text = """wscene 1
+    text = """wscene 2
 Define size = 1 m
 Define albedo = 0.5
 Material "diffuse" "white" { reflectance = $albedo }
@@ -57,7 +57,7 @@ def test_define_that_matches_nothing(small_scene):
     assert any(issubclass(x.category, phasor.SceneWarning) and "szie" in str(x.message) for x in w)
 
 
-BROKEN = """wscene 1
+BROKEN = """wscene 2
 Material "diffuse" "white" { reflectance = 0.5 }
 Shape "sphere" "ball" { radius = 1 m  material = @whtie }
 Shape "spehre" "other" { radius = 1 m }
@@ -88,7 +88,7 @@ def test_scene_error_has_every_error_with_its_location(tmp_path, phasor_bin):
 
 def test_scene_error_from_text_and_parse_errors():
     with pytest.raises(phasor.SceneError) as e:
-        phasor.load_string('wscene 1\nShape "sphere" { radius = 1 m m }\n', name="inline.wscene")
+        phasor.load_string('wscene 2\nShape "sphere" { radius = 1 m m }\n', name="inline.wscene")
     assert e.value.file == "inline.wscene" and e.value.line == 2
     with pytest.raises(phasor.SceneError) as e:
         phasor.load(SCENES / "no_such_scene.wscene")
@@ -97,7 +97,7 @@ def test_scene_error_from_text_and_parse_errors():
 
 
 def test_warnings_go_through_python_warnings():
-    text = 'wscene 1\nShape "sphere" { radius = 1 m }\nDetector "perspective" { resolution = [4 4] }\n'
+    text = 'wscene 2\nShape "sphere" { radius = 1 m }\nDetector "perspective" { resolution = [4 4] }\n'
     with warnings.catch_warnings(record=True) as w:
         warnings.simplefilter("always")
         phasor.load_string(text, name="dark.wscene")
