@@ -93,6 +93,10 @@ void EmitRenderWarning(const std::string &message);
 /// "0.25*pi rad"), of dimension `dim`; `what` names the argument in errors. Raises ValueError.
 double Quantity(py::handle value, Dim dim, const std::string &what, const char *example);
 
+/// Checks a `sampler` argument as --sampler: a sampler plug-in or one of the scene's Sampler blocks
+/// (Scene::NewSampler); raises ValueError with a suggestion otherwise.
+void CheckSampler(const Scene &scene, const std::string &sampler);
+
 /// Runs C++ work (a render) on a thread of its own while the calling Python thread waits with the
 /// GIL released, waking every 20 ms to run Python's signal handlers — Ctrl-C's KeyboardInterrupt
 /// then asks the work to stop (Cancel()), as SIGINT does in the program — to show progress and to

@@ -131,6 +131,7 @@ index.html (all or nothing). Returns the paths written.)doc")
                 spec.path = Path(sceneArg);
                 p->scene = LoadedScene::Load(spec);
             }
+            if (sampler) CheckSampler(*p->scene->For(""), *sampler);
             const LoadSpec &spec = p->scene->Spec();
             // The command line this comparison is (its report prints it, to rerun it).
             CliOptions o;

@@ -259,12 +259,17 @@ struct Slot {
     static std::unique_ptr<Material> Make(const ParamDict &d, BuildContext &c) { return Create(*gSlots[I], d, c); }
     static std::vector<ParamDict> Presets() { return gSlots[I]->presets; }
     static std::optional<std::vector<std::string>> Cases() { return std::nullopt; }
+    static bool IsDefault() { return false; }  // (a scene always names its material)
 };
 
 template <int... I>
 PluginEntry<Material> EntryOf(int slot, const char *name, std::integer_sequence<int, I...>) {
-    PluginEntry<Material> e{name, nullptr, nullptr, nullptr, nullptr};
-    ((slot == I ? (e = {name, &Slot<I>::GetSchema, &Slot<I>::Make, &Slot<I>::Presets, &Slot<I>::Cases}, 0) : 0), ...);
+    PluginEntry<Material> e{name, nullptr, nullptr, nullptr, nullptr, nullptr};
+    ((slot == I ? (e = {name, &Slot<I>::GetSchema, &Slot<I>::Make, &Slot<I>::Presets, &Slot<I>::Cases,
+                        &Slot<I>::IsDefault},
+                   0)
+                : 0),
+     ...);
     return e;
 }
 

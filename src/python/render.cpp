@@ -160,12 +160,7 @@ RenderOptions OptionsOf(const Scene &scene, const RenderArgs &a) {
         o.threads = *a.threads;
     }
     if (a.sampler) {
-        // A sampler plug-in or one of the scene's Sampler blocks (as --sampler).
-        if (!scene.NewSampler(*a.sampler, 0)) {
-            const std::string s = Suggest(*a.sampler, scene.SamplerNames());
-            throw py::value_error("unknown sampler '" + *a.sampler + "'" +
-                                  (s.empty() ? "" : "; did you mean '" + s + "'?"));
-        }
+        CheckSampler(scene, *a.sampler);
         o.sampler = *a.sampler;
     }
     RenderOptions opt = OptionsFor(scene, o);

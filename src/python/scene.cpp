@@ -84,6 +84,12 @@ void EmitRenderWarning(const std::string &message) {
                                                  py::arg("stacklevel") = 1);
 }
 
+void CheckSampler(const Scene &scene, const std::string &sampler) {
+    if (scene.NewSampler(sampler, 0)) return;
+    const std::string s = Suggest(sampler, scene.SamplerNames());
+    throw py::value_error("unknown sampler '" + sampler + "'" + (s.empty() ? "" : "; did you mean '" + s + "'?"));
+}
+
 double Quantity(py::handle value, Dim dim, const std::string &what, const char *example) {
     const std::string expects = "'" + what + "' expects " + dim.Describe() + " (a string such as '" + example +
                                 "', or a number in SI units)";

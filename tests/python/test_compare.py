@@ -46,6 +46,8 @@ def test_compare_equal_time_and_failures():
         phasor.compare(DOUBLE_SLIT, ["gtr"])
     with pytest.raises(ValueError, match="not both"):
         phasor.compare(DOUBLE_SLIT, ["grt"], spp=2, time=1)
+    with pytest.raises(ValueError, match="unknown sampler 'sobl'; did you mean 'sobol'"):
+        phasor.compare(DOUBLE_SLIT, ["grt"], sampler="sobl")
     # An integrator that cannot render the scene is a failed row; the others run.
     scene = phasor.load(DOUBLE_SLIT, defines={"source": "disc"})
     c = phasor.compare(scene, ["grt", "rs"], spp=2, progress=False)

@@ -93,8 +93,8 @@ def test_render_options_are_checked(small_scene):
     scene = phasor.load(small_scene)
     with pytest.raises(ValueError, match="spp"):
         scene.render(spp=0)
-    with pytest.raises(ValueError, match="sampler"):
-        scene.render(sampler="halton")
+    with pytest.raises(ValueError, match="unknown sampler 'sobl'; did you mean 'sobol'"):
+        scene.render(sampler="sobl")
     with pytest.raises(phasor.SceneError, match="unknown integrator 'gtr'.*did you mean 'grt'"):
         scene.render("gtr")
 
