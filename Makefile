@@ -39,9 +39,13 @@ sanitize: deps
 bench: build
 	@bash $(BUILD)/bench/run_benchmarks.sh $(BUILD)
 
-# Regenerates docs/plugins.md from the plug-ins' schemas.
+# Regenerates docs/plugins.md from the plug-ins' schemas, and docs/python.md's API reference from the
+# Python module's docstrings when the module is built.
 docs: build
 	@$(BUILD)/bin/phasor describe --markdown > docs/plugins.md
+	@if [ -d $(BUILD)/python/phasor ]; then \
+	  PYTHONPATH=$(BUILD)/python "$$(sed -n 's/^Python3_EXECUTABLE:FILEPATH=//p' $(BUILD)/CMakeCache.txt)" \
+	    -m phasor._apidoc docs/python.md; fi
 
 # Renders the showcase scenes with `phasor compare` (grt, ray, sample_solve) into docs/gallery/ (minutes
 # per scene); INTEGRATORS=grt,ray for fewer (scripts/make_gallery.sh).

@@ -15,6 +15,7 @@ PACKAGES=(
   fonts-dejavu-core   # DejaVu Sans: labels on images drawn by OpenImageIO (core/image/sheet.cpp)
   python3-matplotlib  # every plot (python/phasor_plot.py: profile, compare, probe); brings numpy
   python3-jinja2      # compare's page: results.json through python/templates/compare.html.j2
+  pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests (docs/python.md)
   chromium            # headless: the test that opens `phasor compare`'s page (tests/app/compare.sh)
   libopenmpi-dev openmpi-bin  # MPI (docs/distributed.md): mpirun -n N phasor render …; the MPI tests
 )

@@ -8,8 +8,9 @@
 // and of the same physics as the runs it grades. Every output is staged at the end and committed
 // together (core/image/output_file.h).
 //
-// RunCompare's steps, in order, are the methods of Comparison below: Load, PrepareDirectory,
-// RenderCompared, RenderReference, Report, Write.
+// RunCompare's steps, in order, are the methods of Comparison (compare.h): Load, PrepareDirectory,
+// RenderCompared, RenderReference, Report, Write. CompareHooks replace what is the command line's
+// own (signals, stderr, the scene file) for the Python module's phasor.compare.
 //
 // Under MPI (docs/distributed.md) every rank runs RunCompare: with more runs than ranks each rank
 // renders whole runs and rank 0 gathers them, else every run's tiles are shared by all ranks; the
@@ -53,19 +54,19 @@ constexpr int TimeModeSpp = (1 << 25) + 1;
 constexpr int ReferenceSppFactor = 4;
 constexpr int ReferenceReplicas = 4;
 
-// Sets `stop` when the time budget is spent (budget > 0) or a stop signal arrived, polling every
+// Sets `stop` when the time budget is spent (budget > 0) or `stopRequest` is set, polling every
 // 5 ms from its own thread, so that a render is stopped within a pixel's batch of the deadline.
 // Extend moves the deadline (time spent on snapshots does not count against the budget).
 class Watchdog {
   public:
-    explicit Watchdog(double budget)
+    Watchdog(double budget, const std::atomic<bool> *stopRequest)
         : start_(Clock::now()),
           deadline_(start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(budget))) {
-        thread_ = std::thread([this, budget] {
+        thread_ = std::thread([this, budget, stopRequest] {
             std::unique_lock<std::mutex> lock(mutex_);
             while (!done_) {
                 cv_.wait_for(lock, std::chrono::milliseconds(5));
-                if (StopFlag().load() || (budget > 0 && Clock::now() >= deadline_)) stop_.store(true);
+                if (stopRequest->load() || (budget > 0 && Clock::now() >= deadline_)) stop_.store(true);
             }
         });
     }
@@ -118,12 +119,6 @@ std::string SeedText(const std::vector<unsigned long long> &seeds) {
     return fmt::format("{}–{}", seeds.front(), seeds.back());
 }
 
-// The memory left for convergence snapshots of runs rendered before the reference.
-struct SnapshotBudget {
-    const std::vector<double> *reference = nullptr;  // known while the runs render: compare at once
-    double bytesLeft = 0;
-};
-
 // The combination of a reference's independent renders: their mean, every channel (`samples`
 // dropped), with `variance` the variance of the mean of `intensity` from their spread, s²/K.
 Image CombineReplicas(const std::vector<Image> &replicas) {
@@ -162,9 +157,10 @@ Image CombineReplicas(const std::vector<Image> &replicas) {
 }
 
 // Renders `scene` into `film` for `run`; on the integrator's error marks the run failed, prints the
-// error (`label`: the run's progress label; `bar`: a progress bar was drawn) and returns nullopt.
+// error when `print` (`label`: the run's progress label; `bar`: a progress bar was drawn) and
+// returns nullopt.
 std::optional<RenderStats> RenderFilm(CompareRun &run, const Scene &scene, Film &film, const RenderOptions &opt,
-                                      const std::string &label, bool bar) {
+                                      const std::string &label, bool bar, bool print) {
     try {
         RenderStats st = scene.GetIntegrator().Render(scene, film, opt);
         if (bar) std::cerr << "\n";
@@ -173,8 +169,10 @@ std::optional<RenderStats> RenderFilm(CompareRun &run, const Scene &scene, Film 
         if (bar) std::cerr << "\n";
         run.status = CompareRun::Status::Failed;
         run.error = e.Message();
-        std::cerr << label << ": failed:\n";
-        PrintError(e);
+        if (print) {
+            std::cerr << label << ": failed:\n";
+            PrintError(e);
+        }
         return std::nullopt;
     }
 }
@@ -250,74 +248,57 @@ int DeserializeRun(const std::string &bytes, CompareRun &r) {
     return rank;
 }
 
-// The whole comparison: its steps are the methods, called in order by RunCompare.
-class Comparison {
-  public:
-    explicit Comparison(const CliOptions &o)
-        : o_(o),
-          c_(o.compare),
-          dir_(!o.output.empty() ? o.output : "out/" + fs::path(o.scene).stem().string() + "_compare"),
-          parseDiag_(o.strict) {}
+}  // namespace
 
-    /// Parses the scene, checks every integrator name and reads a reference image; prints the
-    /// errors and returns false when the comparison cannot start (nothing is written).
-    bool Load();
-    /// Creates the output directory (removed again if it stays empty) and checks that it can be
-    /// written; false after an error.
-    bool PrepareDirectory();
-    /// Renders each compared integrator; false (after an error) when the comparison must stop
-    /// before writing anything (the detector's memory, a reference of another size).
-    bool RenderCompared();
-    /// Chooses the reference (an image, a deterministic run, or a rendered one: independent seeds,
-    /// more samples, the same physics as the runs it grades) and renders it.
-    void RenderReference();
-    /// The errors, the display exposure and what the page says; false when nothing was rendered.
-    bool Report();
-    /// Stages and commits every output; returns the exit status.
-    int Write();
+Comparison::Comparison(const CliOptions &o, CompareHooks hooks)
+    : o_(o),
+      c_(o_.compare),
+      hooks_(std::move(hooks)),
+      dir_(!o.output.empty() ? o.output : "out/" + fs::path(o.scene).stem().string() + "_compare"),
+      parseDiag_(o.strict) {}
 
-    /// Removes the output directory again if it was made here and nothing was written in it.
-    ~Comparison() {
-        if (dirCreated_) {
-            std::error_code e;
-            if (fs::is_empty(dir_, e)) fs::remove(dir_, e);
-        }
+// Removes the output directory again if it was made here and nothing was written in it.
+Comparison::~Comparison() {
+    if (dirCreated_) {
+        std::error_code e;
+        if (fs::is_empty(dir_, e)) fs::remove(dir_, e);
     }
+}
 
-  private:
-    std::unique_ptr<Scene> Build(CompareRun &run);
-    void RenderRun(CompareRun &run, const Scene &scene, int index, double budget, bool shared);
-    bool CheckFirstScene(const Scene &scene);
-    std::string ReferenceIntegrator() const;
-    int ReferenceSpp(const std::string &integrator, const Scene &scene) const;
-    void DescribeReferenceImage();
-    int Index(const CompareRun &run) const { return int(&run - runs_.data()) + 1; }
-    /// `--reference none`: the runs side by side, no errors.
-    bool NoReference() const { return c_.reference == "none"; }
+const SceneDesc &Comparison::Desc() const { return hooks_.desc ? *hooks_.desc : *desc_; }
 
-    const CliOptions &o_;
-    const CliOptions::CompareOptions &c_;
-    std::string dir_;
-    bool dirCreated_ = false;
-    std::optional<SceneDesc> desc_;
-    Diagnostics parseDiag_;
-    std::vector<std::string> integrators_;
-    std::optional<Image> refImage_;
-    CompareReference ref_;
-    std::vector<CompareRun> runs_;
-    SnapshotBudget snap_;
-    // What the first scene built tells (every run renders the same detector).
-    int width_ = 0, height_ = 0, sceneSpp_ = 0;
-    unsigned long long seed_ = 0;
-    std::string sampler_, detectorName_;
-    bool radiometric_ = false;
-    DetectorExposure exposure_;
-    CompareReport report_;
-};
+bool Comparison::Stopped() const { return (hooks_.stop ? *hooks_.stop : StopFlag()).load(); }
+
+void Comparison::RemoveHandlers() const {
+    if (!hooks_.stop) RemoveStopHandlers();
+}
+
+bool Comparison::Fail(const std::string &message) {
+    failure_ = message;
+    if (hooks_.print) std::cerr << "error: " << message << "\n";
+    return false;
+}
+
+std::function<void(int, int)> Comparison::Progress(const std::string &label, bool deterministic, long long pixels,
+                                                   double budget) const {
+    if (hooks_.progress) return hooks_.progress(label, deterministic, pixels, budget);
+    if (!o_.quiet && isatty(2)) return ProgressBar(label, deterministic, pixels, budget);
+    return {};
+}
+
+// A run's warnings while it renders: kept for the page, and shown (after a carriage return that
+// ends the progress bar's line when `bar`).
+std::function<void(const std::string &)> Comparison::Warn(CompareRun &run, bool bar) const {
+    return [this, &run, bar](const std::string &w) {
+        run.warnings.push_back(w);
+        if (hooks_.warn) hooks_.warn(run.name + ": " + w);
+        else std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n";
+    };
+}
 
 bool Comparison::Load() {
-    desc_ = ParseScene(o_, parseDiag_);
-    if (!desc_ || parseDiag_.HasErrors()) {
+    if (!hooks_.desc) desc_ = ParseScene(o_, parseDiag_);
+    if (!hooks_.desc && (!desc_ || parseDiag_.HasErrors())) {
         if (desc_) {
             BuildScene(o_, *desc_, parseDiag_, "");  // report the build's errors too
         } else {
@@ -329,24 +310,27 @@ bool Comparison::Load() {
     }
     // Every name must pick an integrator, before anything is rendered. `all`: every integrator of
     // the registry, in its order (a new integrator joins the comparison by being registered).
-    const std::vector<std::string> choices = IntegratorChoices(*desc_);
+    const std::vector<std::string> choices = IntegratorChoices(Desc());
     integrators_ = c_.integrators == std::vector<std::string>{"all"} ? Registry<Integrator>::Names() : c_.integrators;
     std::vector<std::string> names = integrators_;
     if (!c_.referenceIntegrator.empty()) names.push_back(c_.referenceIntegrator);
     for (const std::string &n : names)
         if (std::find(choices.begin(), choices.end(), n) == choices.end()) {
             const std::string sug = Suggest(n, choices);
-            std::cerr << fmt::format("error: unknown integrator '{}'{} (integrators: {})\n", n,
-                                     sug.empty() ? "" : "; did you mean '" + sug + "'?", fmt::join(choices, " "));
-            return false;
+            return Fail(fmt::format("unknown integrator '{}'{} (integrators: {})", n,
+                                    sug.empty() ? "" : "; did you mean '" + sug + "'?", fmt::join(choices, " ")));
         }
     int bad = 0;
-    if (!c_.reference.empty() && !NoReference() && dist::Root()) {  // rank 0 alone reads it
+    if (hooks_.referenceImage) {
+        refImage_ = std::move(hooks_.referenceImage);
+        hooks_.referenceImage.reset();
+        ref_.values = ChannelValues(*refImage_, "intensity");
+    } else if (!c_.reference.empty() && !NoReference() && dist::Root()) {  // rank 0 alone reads it
         try {
             refImage_ = ReadImage(c_.reference);
             ref_.values = ChannelValues(*refImage_, "intensity");
         } catch (const Error &e) {
-            std::cerr << "error: reference '" << c_.reference << "': " << e.Message() << "\n";
+            Fail("reference '" + c_.reference + "': " + e.Message());
             bad = 1;
         }
     }
@@ -368,7 +352,8 @@ bool Comparison::PrepareDirectory() {
         try {
             CheckWritable((fs::path(dir_) / "index.html").string());
         } catch (const Error &e) {
-            PrintError(e);
+            failure_ = e.Message();
+            if (hooks_.print) PrintError(e);
             bad = 1;
         }
     }
@@ -379,18 +364,15 @@ bool Comparison::PrepareDirectory() {
                                                   : std::string(", the scene's spp");
         std::cerr << fmt::format("compare: {} with {}{} -> {}/\n", o_.scene, fmt::join(integrators_, " "), budget, dir_);
     }
-    // Snapshots for the convergence plot: compared at once with a reference image; else kept
-    // (float per pixel) within a quarter of the available memory, at most 1 GB.
-    snap_.reference = refImage_ ? &ref_.values : nullptr;
-    snap_.bytesLeft = std::min(1e9, AvailableMemory() / 4);
     return true;
 }
 
 // Builds the scene with `run`'s integrator: nullptr (the run failed, its error kept) on errors.
 // The first scene built records the detector and the render settings every run shares.
-std::unique_ptr<Scene> Comparison::Build(CompareRun &run) {
+std::shared_ptr<const Scene> Comparison::Build(CompareRun &run) {
     Diagnostics d(o_.strict);
-    auto scene = BuildScene(o_, *desc_, d, run.name);
+    std::shared_ptr<const Scene> scene =
+        hooks_.build ? hooks_.build(run.name, d) : std::shared_ptr<const Scene>(BuildScene(o_, Desc(), d, run.name));
     for (const std::string &w : WarningsOf(d)) run.warnings.push_back(w);
     if (!scene) {
         run.status = CompareRun::Status::Failed;
@@ -431,7 +413,7 @@ void Comparison::RenderRun(CompareRun &run, const Scene &scene, int index, doubl
     run.sppRequested = opt.spp;
     run.seeds = {opt.seed};
     const bool helper = shared && !dist::Root();
-    Watchdog watchdog(timed && !helper ? budget : 0);
+    Watchdog watchdog(timed && !helper ? budget : 0, hooks_.stop ? hooks_.stop : &StopFlag());
     opt.cancel = watchdog.Flag();
     std::unique_ptr<dist::Share> share = shared ? dist::MakeShare(watchdog.Flag()) : nullptr;
     if (share) {
@@ -440,16 +422,12 @@ void Comparison::RenderRun(CompareRun &run, const Scene &scene, int index, doubl
     }
 
     const std::string label = fmt::format("[{}/{}] {}", index, runs_.size(), run.name);
-    const bool bar = !o_.quiet && isatty(2) && dist::Root();
-    std::function<void(int, int)> progress;
-    if (bar)
-        progress = ProgressBar(label, run.deterministic, (long long)det.Width() * det.Height(), timed ? budget : 0);
+    const std::function<void(int, int)> progress =
+        dist::Root() ? Progress(label, run.deterministic, (long long)det.Width() * det.Height(), timed ? budget : 0)
+                     : nullptr;
+    const bool bar = progress && !hooks_.progress;
     // (A timed run takes no work estimate: its pilot would spend the budget.)
-    if (!timed)
-        opt.warn = [&](const std::string &w) {
-            run.warnings.push_back(w);
-            std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n";
-        };
+    if (!timed) opt.warn = Warn(run, bar);
 
     Film film(det.Width(), det.Height(), det.Response());
     // Snapshots of `intensity` at roughly geometric sample counts (×1.5), taken between passes;
@@ -484,7 +462,7 @@ void Comparison::RenderRun(CompareRun &run, const Scene &scene, int index, doubl
         if (timed) watchdog.Extend(cost);
     };
 
-    const std::optional<RenderStats> rendered = RenderFilm(run, scene, film, opt, label, bar);
+    const std::optional<RenderStats> rendered = RenderFilm(run, scene, film, opt, label, bar, hooks_.print);
     const int remoteSignal = share ? share->Signal() : 0;
     share.reset();
     if (!rendered || helper) return;  // (rank 0 holds a shared run)
@@ -496,10 +474,10 @@ void Comparison::RenderRun(CompareRun &run, const Scene &scene, int index, doubl
     run.sppReached = st.sppReached;
     run.work = st.work;
     // A run stopped by its time budget is complete; one stopped by a signal is not.
-    const bool interrupted = st.cancelled && (StopFlag().load() || remoteSignal != 0);
+    const bool interrupted = st.cancelled && (Stopped() || remoteSignal != 0);
     if (!st.hasImage) {  // rs stopped before it had anything honest to show
         run.status = CompareRun::Status::Interrupted;
-        std::cerr << label << ": interrupted (" << st.work << "); no image\n";
+        if (hooks_.print) std::cerr << label << ": interrupted (" << st.work << "); no image\n";
         return;
     }
     run.status = interrupted ? CompareRun::Status::Interrupted : CompareRun::Status::Done;
@@ -516,12 +494,10 @@ void Comparison::RenderRun(CompareRun &run, const Scene &scene, int index, doubl
         else last.intensity.assign(run.intensity.begin(), run.intensity.end());  // (the image is kept anyway)
         run.snapshots.push_back(std::move(last));
     }
-    if (run.snapshotsCut) {
-        run.warnings.push_back(fmt::format("the convergence plot stops at {} spp (its snapshots would not fit in "
-                                           "memory; give --reference to compare them at once)",
-                                           run.snapshots.back().spp));
-        std::cerr << "warning: " << run.name << ": " << run.warnings.back() << "\n";
-    }
+    if (run.snapshotsCut)
+        Warn(run, false)(fmt::format("the convergence plot stops at {} spp (its snapshots would not fit in memory; "
+                                     "give --reference to compare them at once)",
+                                     run.snapshots.back().spp));
     run.image = std::move(img);
     if (!o_.quiet) {
         std::string line = label + ": " + (interrupted ? "interrupted: " : "") +
@@ -551,12 +527,16 @@ bool Comparison::CheckFirstScene(const Scene &scene) {
         }
     }
     if (dist::AllOk(why.empty(), why, &why)) return true;
-    if (dist::Root() && !why.empty()) std::cerr << "error: " << why << "\n";
+    if (dist::Root() && !why.empty()) Fail(why);
     return false;
 }
 
 bool Comparison::RenderCompared() {
-    InstallStopHandlers(!o_.quiet && dist::Root());
+    if (!hooks_.stop) InstallStopHandlers(!o_.quiet && dist::Root());
+    // Snapshots for the convergence plot: compared at once with a reference image; else kept
+    // (float per pixel) within a quarter of the available memory, at most 1 GB.
+    snap_.reference = refImage_ ? &ref_.values : nullptr;
+    snap_.bytesLeft = std::min(1e9, AvailableMemory() / 4);
     // Under MPI: with more runs than ranks each rank renders whole runs and rank 0 gathers them (if
     // a run fits in a message to rank 0); else every run's tiles are shared by all ranks, one run
     // after another.
@@ -576,7 +556,7 @@ bool Comparison::RenderCompared() {
     if (!whole) {
         bool checked = false;
         for (CompareRun &run : runs_) {
-            if (dist::Agree(StopFlag().load() ? 1 : 0)) break;  // rank 0's word; the rest stay NotRun
+            if (dist::Agree(Stopped() ? 1 : 0)) break;  // rank 0's word; the rest stay NotRun
             auto scene = Build(run);
             if (!scene) continue;
             if (!checked) {
@@ -601,7 +581,7 @@ bool Comparison::RenderCompared() {
                 std::cerr << fmt::format("[{}/{}] {}: rendered on rank {}{}\n", u + 1, runs_.size(), run.name, rank,
                                          run.status == CompareRun::Status::Failed ? ": failed: " + run.error : "");
         },
-        &StopFlag());
+        hooks_.stop ? hooks_.stop : &StopFlag());
     return true;
 }
 
@@ -679,7 +659,7 @@ void Comparison::RenderReference() {
         ref_.description = "none was asked for (--reference none): the runs are shown side by side, without errors";
         return;
     }
-    if (StopFlag().load()) return;
+    if (Stopped()) return;
     // Without --reference-integrator, a complete deterministic wave-optical run (rs) is the
     // reference: it has no noise at all.
     if (c_.referenceIntegrator.empty())
@@ -712,30 +692,27 @@ void Comparison::RenderReference() {
     const int each = r.deterministic ? 0 : (total + replicas - 1) / replicas;
     const Detector &det = scene->GetDetector();
     const std::string label = fmt::format("[{}/{}] {} (reference)", runs_.size(), runs_.size(), name);
-    const bool bar = !o_.quiet && isatty(2);
     std::vector<Image> images;
     RenderStats last;
-    for (int k = 0; k < replicas && !StopFlag().load(); ++k) {
+    for (int k = 0; k < replicas && !Stopped(); ++k) {
         RenderOptions opt = OptionsFor(*scene, o_);
+        if (hooks_.stop) opt.cancel = hooks_.stop;
         if (!r.deterministic) {
             opt.spp = each;
             opt.seed = seed_ + 1 + (unsigned long long)k;  // never a compared run's seed
         }
-        if (bar)
-            opt.progress = ProgressBar(replicas > 1 ? fmt::format("{} {}/{}", label, k + 1, replicas) : label,
-                                       r.deterministic, (long long)det.Width() * det.Height());
-        opt.warn = [&](const std::string &w) {
-            r.warnings.push_back(w);
-            std::cerr << (bar ? "\r" : "") << "warning: " << w << "\n";
-        };
+        opt.progress = Progress(replicas > 1 ? fmt::format("{} {}/{}", label, k + 1, replicas) : label,
+                                r.deterministic, (long long)det.Width() * det.Height(), 0);
+        const bool bar = opt.progress && !hooks_.progress;
+        opt.warn = Warn(r, bar);
         Film film(det.Width(), det.Height(), det.Response());
-        const std::optional<RenderStats> rendered = RenderFilm(r, *scene, film, opt, label, bar);
+        const std::optional<RenderStats> rendered = RenderFilm(r, *scene, film, opt, label, bar, hooks_.print);
         if (!rendered) {
             ref_.description = "the reference run (" + name + ") failed: " + r.error;
             return;
         }
         last = *rendered;
-        if (!last.hasImage || (last.cancelled && StopFlag().load())) break;  // an incomplete replica is dropped
+        if (!last.hasImage || (last.cancelled && Stopped())) break;  // an incomplete replica is dropped
         Image img = film.Resolve();
         StampMetadata(img, *scene, o_.scene, opt, last);
         images.push_back(std::move(img));
@@ -744,7 +721,7 @@ void Comparison::RenderReference() {
         r.work = last.work;
     }
     if (images.empty()) {
-        r.status = StopFlag().load() ? CompareRun::Status::Interrupted : CompareRun::Status::Failed;
+        r.status = Stopped() ? CompareRun::Status::Interrupted : CompareRun::Status::Failed;
         ref_.description = "the reference run (" + name + ") was stopped before it had an image";
         return;
     }
@@ -798,13 +775,13 @@ void Comparison::RenderReference() {
 bool Comparison::Report() {
     const bool any = std::any_of(runs_.begin(), runs_.end(), [](const CompareRun &r) { return r.image.has_value(); });
     if (!any) {
-        RemoveStopHandlers();
-        if (StopSignal()) {
-            std::cerr << "interrupted before any integrator finished; nothing written\n";
+        RemoveHandlers();
+        if (Stopped()) {
+            failure_ = "interrupted before any integrator finished";
+            if (hooks_.print) std::cerr << failure_ << "; nothing written\n";
             return false;
         }
-        std::cerr << "error: no integrator could render '" << o_.scene << "'; nothing written\n";
-        return false;
+        return Fail("no integrator could render '" + o_.scene + "'; nothing written");
     }
     ComputeErrors(runs_, ref_);
 
@@ -825,7 +802,10 @@ bool Comparison::Report() {
     rep.modeText = c_.seconds > 0 ? "equal time: " + FormatSeconds(c_.seconds) + " per integrator"
                    : o_.spp > 0   ? fmt::format("equal samples: {} spp per integrator", o_.spp)
                                   : fmt::format("equal samples: the scene's {} spp per integrator", sceneSpp_);
-    rep.stopped = StopSignal() == 0 ? "" : StopSignal() == SIGINT ? "Ctrl-C" : "SIGTERM";
+    rep.stopped = hooks_.stop       ? (Stopped() ? hooks_.stopName : "")
+                  : StopSignal() == 0 ? ""
+                  : StopSignal() == SIGINT ? "Ctrl-C"
+                                           : "SIGTERM";
     rep.row = c_.row;
     rep.column = c_.column;
     // One exposure for every camera image: the reference's (else the first run's).
@@ -848,7 +828,7 @@ bool Comparison::Report() {
         rep.sceneWarnings.push_back(w);
         for (CompareRun *r : rendered) r->warnings.erase(std::find(r->warnings.begin(), r->warnings.end(), w));
     }
-    // The command, to rerun it.
+    // The command, to rerun it (WriteTo adds its -o).
     std::string cmd = fmt::format("phasor compare {} --integrators {}", o_.scene, fmt::join(c_.integrators, ","));
     if (c_.seconds > 0) cmd += fmt::format(" --time {}", c_.seconds);
     if (o_.spp > 0) cmd += fmt::format(" --spp {}", o_.spp);
@@ -860,16 +840,24 @@ bool Comparison::Report() {
     if (!o_.sampler.empty()) cmd += " --sampler " + o_.sampler;
     if (c_.row >= 0) cmd += fmt::format(" --row {}", c_.row);
     if (c_.column >= 0) cmd += fmt::format(" --column {}", c_.column);
-    rep.command = cmd + " -o " + dir_;
+    rep.command = cmd;
     return true;
+}
+
+std::vector<std::string> Comparison::WriteTo(const std::string &dir) {
+    CompareReport report = report_;
+    report.dir = dir;
+    report.command += " -o " + dir;
+    OutputFiles files;
+    std::vector<std::string> written = StageCompareOutputs(files, runs_, ref_, refImage_ ? &*refImage_ : nullptr, report);
+    files.Commit();
+    return written;
 }
 
 int Comparison::Write() {
     std::vector<std::string> written;
     try {
-        OutputFiles files;
-        written = StageCompareOutputs(files, runs_, ref_, refImage_ ? &*refImage_ : nullptr, report_);
-        files.Commit();
+        written = WriteTo(dir_);
     } catch (const Error &e) {
         RemoveStopHandlers();
         std::cerr << "error: " << e.Message() << "\n";
@@ -893,8 +881,6 @@ int Comparison::Write() {
     if (StopSignal()) return StoppedStatus();
     return failed.empty() ? 0 : 1;
 }
-
-}  // namespace
 
 int RunCompare(const CliOptions &o) {
     Comparison comparison(o);

@@ -305,11 +305,13 @@ const char *MetricsNote =
     "run and the reference can have the same expectation, given both images' noise (block χ², z > 3.09: "
     "differs; docs/compare.md).";
 
-std::string CsvTable(const Context &c) {
+}  // namespace
+
+std::string CompareCsv(const std::vector<CompareRun> &runs, const CompareReference &ref) {
     std::string csv =
         "integrator,role,status,spp,seconds,samples_per_second,rmse,rel_mse,max_error,rgb_rmse,noise_floor,"
         "comparable,chi2,dof,z,verdict,error\n";
-    for (const CompareRun &r : c.runs) {
+    for (const CompareRun &r : runs) {
         const bool rendered = Rendered(r);
         const CompareMetrics m = r.metrics.value_or(CompareMetrics{});
         const bool tested = r.test && r.test->tested;
@@ -318,13 +320,15 @@ std::string CsvTable(const Context &c) {
             r.isReference ? "reference" : "compared", StatusName(r.status),
             rendered && !r.deterministic && r.image ? std::to_string(r.sppReached) : "",
             rendered ? Num(r.seconds, 4) : "", Num(SamplesPerSecond(r), 4), Num(m.rmse, 9), Num(m.relMse, 9),
-            Num(m.maxError, 9), Num(m.rgbRmse, 9), r.isReference ? Num(c.ref.noiseFloor, 9) : "",
+            Num(m.maxError, 9), Num(m.rgbRmse, 9), r.isReference ? Num(ref.noiseFloor, 9) : "",
             r.metrics ? (r.comparable ? "true" : "false") : "", tested ? Num(r.test->chi2, 9) : "",
             tested ? std::to_string(r.test->dof) : "", tested ? Num(r.test->z, 6) : "",
-            CsvField(Verdict(r, c.ref).first), CsvField(r.error));
+            CsvField(Verdict(r, ref).first), CsvField(r.error));
     }
     return csv;
 }
+
+namespace {
 
 std::string MarkdownTable(const Context &c) {
     const CompareReport &rep = c.rep;
@@ -515,7 +519,7 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
     f.convergence = StageConvergence(st, c);
     WarnPlotsNotDrawn(f);
 
-    files.Stage(st.Path("results.csv"), CsvTable(c));
+    files.Stage(st.Path("results.csv"), CompareCsv(c.runs, c.ref));
     files.Stage(st.Path("results.md"), MarkdownTable(c));
     const std::string json = ResultsJson(c, f).dump(2) + "\n";
     files.Stage(st.Path("results.json"), json);

@@ -149,6 +149,10 @@ std::vector<std::string> StageCompareOutputs(OutputFiles &files, std::vector<Com
                                              const CompareReference &ref, const Image *refImage,
                                              const CompareReport &report);
 
+/// results.csv: one row per run — integrator (the reference run's with " (reference)"), role,
+/// status, spp, seconds, samples_per_second, rmse, rel_mse, max_error, rgb_rmse, noise_floor,
+/// comparable, chi2, dof, z, verdict, error (empty where a run has no value).
+std::string CompareCsv(const std::vector<CompareRun> &runs, const CompareReference &ref);
 /// The table as text, for the terminal.
 void PrintSummary(std::ostream &os, const std::vector<CompareRun> &runs, const CompareReference &ref);
 /// "0.25 s", "12 s", "2m05s".

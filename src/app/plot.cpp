@@ -162,12 +162,15 @@ std::pair<std::string, std::string> Needs(const std::string &module) {
 }
 
 // The module's file: share/phasor/<module> beside the directory of the phasor executable
-// ($PHASOR_PLOT_MODULE overrides the plot module).
+// ($PHASOR_PLOT_MODULE overrides the plot module; $PHASOR_MODULE_DIR the directory of every module:
+// the Python package ships its own copies, as its executable is the Python interpreter).
 std::string ModulePath(const std::string &module) {
     std::error_code ec;
     fs::path path;
     if (const char *p = std::getenv("PHASOR_PLOT_MODULE"); p && *p && module == "phasor_plot.py") {
         path = p;
+    } else if (const char *d = std::getenv("PHASOR_MODULE_DIR"); d && *d) {
+        path = fs::path(d) / module;
     } else {
         const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
         if (ec) return "";

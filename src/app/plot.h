@@ -73,9 +73,11 @@ std::string DiscMapCsv(const DiscMap &map);
 /// nothing staged; the caller may stage DiscMapCsv instead). Throws phasor::Error.
 bool StageDiscMap(OutputFiles &files, const std::string &path, const DiscMap &map);
 
-/// The plot module: $PHASOR_PLOT_MODULE when set, else share/phasor/phasor_plot.py beside the
+/// The plot module: $PHASOR_PLOT_MODULE when set, else phasor_plot.py in $PHASOR_MODULE_DIR when
+/// set (the Python package's own directory), else share/phasor/phasor_plot.py beside the
 /// directory of the phasor executable (`<prefix>/bin/phasor` → `<prefix>/share/phasor/`; the build
-/// tree has the same layout). Empty when that file does not exist.
+/// tree has the same layout). Empty when that file does not exist. The page module
+/// (phasor_report.py, templates/ beside it) is found the same way.
 std::string PlotModulePath();
 
 /// One line for the user after StagePlot returned false: what was missing and how to install it.

@@ -59,6 +59,18 @@
 #include "parser/parser.h"
 
 namespace phasor {
+
+double ProbeTheta(const Vec3 &w) { return std::acos(Clamp(w.z, -1.0, 1.0)); }
+double ProbePhi(const Vec3 &w) {
+    const double r = std::hypot(w.x, w.y);
+    if (r < 1e-15) return 0.0;
+    // A component below 1e-12 of the transverse length is round-off (a direction turned back from
+    // the kernel's frame by −ψ), not an angle: φ = 0 or π exactly, never 3.5e-15 or −π. (+0.0 for
+    // y on the −x axis: atan2(+0, x < 0) = π.)
+    const double x = std::abs(w.x) <= 1e-12 * r ? 0.0 : w.x, y = std::abs(w.y) <= 1e-12 * r ? 0.0 : w.y;
+    return std::atan2(y + 0.0, x);
+}
+
 namespace {
 
 // A command-line problem: printed as "error: <message>", exit status 1.
@@ -92,40 +104,10 @@ double ParseQuantity(const std::string &flag, const std::string &text, Dim dim, 
     return v->number;
 }
 
-// What probe measured.
-struct ProbeLobe {
-    int id = 0;
-    std::string name;  // the kernel's name of the lobe (Material::LobeName): a grating's order
-    bool transmission = false;
-    Vec3 wo;
-    double efficiency = 0;  // power fraction
-};
-struct ProbeResult {
-    bool continuous = false;  // the kernel has a continuous lobe for this query (Monte Carlo ran)
-    double discreteR = 0, discreteT = 0;
-    double contR = 0, contT = 0, seR = 0, seT = 0;  // continuous part, standard errors of the mean
-    long long nonFinite = 0;                        // samples with a NaN/Inf weight (a kernel bug)
-    std::vector<ProbeLobe> lobes;
-    double R() const { return discreteR + contR; }
-    double T() const { return discreteT + contT; }
-};
-
 // w turned by ψ [rad] about the normal (counter-clockwise).
 Vec3 RotateZ(const Vec3 &w, double psi) {
     const double c = std::cos(psi), s = std::sin(psi);
     return {c * w.x - s * w.y, s * w.x + c * w.y, w.z};
-}
-
-// θ from the +z normal [0, π] and φ from +x in (−π, π] (0 on the normal, where it is undefined).
-double ThetaOf(const Vec3 &w) { return std::acos(Clamp(w.z, -1.0, 1.0)); }
-double PhiOf(const Vec3 &w) {
-    const double r = std::hypot(w.x, w.y);
-    if (r < 1e-15) return 0.0;
-    // A component below 1e-12 of the transverse length is round-off (a direction turned back from
-    // the kernel's frame by −ψ), not an angle: φ = 0 or π exactly, never 3.5e-15 or −π. (+0.0 for
-    // y on the −x axis: atan2(+0, x < 0) = π.)
-    const double x = std::abs(w.x) <= 1e-12 * r ? 0.0 : w.x, y = std::abs(w.y) <= 1e-12 * r ? 0.0 : w.y;
-    return std::atan2(y + 0.0, x);
 }
 
 // Progress of the Monte-Carlo loop, as `render` shows it: a bar with the ETA on a terminal
@@ -248,10 +230,10 @@ ProbeResult Measure(const Material &m, const ScatterQuery &q, long long samples,
         m2T += dt * (xt - meanT);
     }
     if (farUnknown)
-        throw ProbeError{"the kernel sends light from the source through the surface into a continuous lobe, but none "
-                         "of its own samples crossed there: probe cannot tell the media's indices for the power "
-                         "factor (a kernel that conserves energy per incident direction with continuous "
-                         "transmission)"};
+        throw Error("the kernel sends light from the source through the surface into a continuous lobe, but none "
+                    "of its own samples crossed there: probe cannot tell the media's indices for the power "
+                    "factor (a kernel that conserves energy per incident direction with continuous "
+                    "transmission)");
     r.contR = meanR;
     r.contT = meanT;
     if (samples > 1) {
@@ -261,23 +243,28 @@ ProbeResult Measure(const Material &m, const ScatterQuery &q, long long samples,
     return r;
 }
 
-// The CSV that scripts read: exactly this header, R and T, then one row per discrete lobe.
-std::string CsvText(const ProbeResult &r) {
+}  // namespace
+
+std::string ProbeCsv(const ProbeResult &r) {
     std::ostringstream os;
     os << "kind,order,theta_o,phi_o,value,stderr\n";
     os << "R,,,," << Num(r.R(), 12) << ',' << Num(r.seR, 12) << '\n';
     os << "T,,,," << Num(r.T(), 12) << ',' << Num(r.seT, 12) << '\n';
     for (const ProbeLobe &l : r.lobes)
-        os << "lobe," << CsvField(l.name) << ',' << Num(ThetaOf(l.wo), 15) << ',' << Num(PhiOf(l.wo), 15) << ','
+        os << "lobe," << CsvField(l.name) << ',' << Num(ProbeTheta(l.wo), 15) << ',' << Num(ProbePhi(l.wo), 15) << ','
            << Num(l.efficiency, 12) << ",0\n";
     return os.str();
 }
 
+namespace {
+
 std::string DegText(double rad) { return Num(Degrees(rad), 6); }
 
-std::string ReportText(const std::string &material, const std::string &type, const CliOptions &o, double theta,
-                       double phi, double lambda, const Vec2 &uv, uint64_t seed, const ProbeResult &r,
-                       const std::string &xAxis) {
+std::string ReportText(const std::string &material, const std::string &type, const CliOptions &o,
+                       const ProbeResult &r, const std::string &xAxis, const ProbeRequest &q) {
+    const double theta = q.theta, phi = q.phi, lambda = q.lambda;
+    const Vec2 uv = q.uv;
+    const uint64_t seed = q.seed;
     std::ostringstream os;
     os << "probe: material '" << material << "' (" << type << ") of " << o.scene << "\n"
        << "  light from theta = " << DegText(theta) << " deg, phi = " << DegText(phi)
@@ -309,8 +296,8 @@ std::string ReportText(const std::string &material, const std::string &type, con
     for (const ProbeLobe &l : r.lobes) {
         char line[160];
         std::snprintf(line, sizeof line, "  %-12s  %5s  %13s  %11s  %s\n",
-                      l.transmission ? "transmission" : "reflection", l.name.c_str(), DegText(ThetaOf(l.wo)).c_str(),
-                      DegText(PhiOf(l.wo)).c_str(), Num(l.efficiency, 9).c_str());
+                      l.transmission ? "transmission" : "reflection", l.name.c_str(), DegText(ProbeTheta(l.wo)).c_str(),
+                      DegText(ProbePhi(l.wo)).c_str(), Num(l.efficiency, 9).c_str());
         os << line;
     }
     return os.str();
@@ -373,30 +360,124 @@ std::vector<std::string> MaterialNames(const SceneDesc &desc) {
     return names;
 }
 
+// The query: the plane z = 0, first tangent +x (see the file comment), in the kernel's frame,
+// which is turned by ψ = `psi` (its reference angle) from the probe's; `wl` holds λ.
+ScatterQuery MakeQuery(const Material &m, const ProbeRequest &r, SampledWavelengths &wl, double *psi,
+                       bool *hasReference) {
+    wl.lambda[0] = r.lambda;
+    wl.pdf[0] = 1;
+    wl.delta = true;
+    ScatterQuery q;
+    q.wi = Vec3(std::sin(r.theta) * std::cos(r.phi), std::sin(r.theta) * std::sin(r.phi), std::cos(r.theta));
+    q.wl = &wl;
+    q.etaOutside = 1;
+    q.rayOptics = r.rayOptics;
+    q.tex.uv = r.uv;
+    q.tex.p = Vec3(r.uv.x, r.uv.y, 0);
+    q.tex.dpdu = Vec3(1, 0, 0);
+    q.tex.dpdv = Vec3(0, 1, 0);
+    q.tex.n = Vec3(0, 0, 1);
+    // φ is measured from the kernel's reference direction (a grating's grating vector), which
+    // lies at ψ from dp/du: the kernel is asked in its own frame, its answers turned back by −ψ.
+    const std::optional<double> reference = ReferenceAngleOf(m, q.tex);
+    *psi = reference.value_or(0.0);
+    *hasReference = reference.has_value();
+    q.wi = RotateZ(q.wi, *psi);
+    return q;
+}
+
 }  // namespace
+
+ProbedMaterial BuildProbedMaterial(const SceneDesc &desc, const std::string &material, const std::string &scenePath,
+                                   Diagnostics &diag) {
+    ProbedMaterial out;
+    out.name = !material.empty() && material[0] == '@' ? material.substr(1) : material;
+    const SceneEntity *entity = nullptr;
+    for (const SceneEntity &e : desc.entities)
+        if (e.name == out.name) entity = &e;
+    if (!entity || entity->keyword != "Material") {
+        const std::vector<std::string> names = MaterialNames(desc);
+        const std::string sug = Suggest(out.name, names);
+        std::string msg = entity ? "'" + out.name + "' in '" + scenePath + "' is a " + entity->keyword +
+                                       ", not a Material"
+                                 : "no material named '" + out.name + "' in '" + scenePath + "'";
+        if (!sug.empty()) msg += "; did you mean '" + sug + "'?";
+        else if (names.empty()) msg += " (it defines no named material)";
+        throw Error(msg);
+    }
+    out.type = entity->type;
+    BuildContext ctx(desc, diag);
+    ParamDict ref;
+    ref.Set("material", Value::Ref(out.name, FileLoc{"<command line>", 0, 0, 1}));
+    try {
+        out.material = ctx.GetRef<Material>(ref, "material");
+    } catch (const Error &e) {
+        diag.Report(e);
+    }
+    if (diag.HasErrors()) out.material.reset();
+    return out;
+}
+
+ProbeResult ProbeKernel(const ProbedMaterial &m, const ProbeRequest &r) {
+    if (m.material->IsFootprintAware())
+        throw Error("material '" + m.name + "' (" + m.type + ") is footprint-aware: its response depends on the "
+                    "incident generalized ray's footprint on the shape it lies on (theory §9), which a "
+                    "plane-wave probe does not have; render a scene with it instead (docs/aperture.md)");
+    SampledWavelengths wl;
+    double psi = 0;
+    bool hasReference = false;
+    const ScatterQuery q = MakeQuery(*m.material, r, wl, &psi, &hasReference);
+    ProbeResult result = Measure(*m.material, q, r.samples, r.seed, r.progressBar);
+    for (ProbeLobe &l : result.lobes) l.wo = RotateZ(l.wo, -psi);
+    result.psi = psi;
+    result.hasReference = hasReference;
+    return result;
+}
+
+std::string StageProbeMap(OutputFiles &files, const std::string &path, const ProbedMaterial &m,
+                          const ProbeRequest &r, const ProbeResult &result) {
+    SampledWavelengths wl;
+    double psi = 0;
+    bool hasReference = false;
+    const ScatterQuery q = MakeQuery(*m.material, r, wl, &psi, &hasReference);
+    DiscMap map = MakeMap(*m.material, q, result, 300, psi);
+    map.title = "phasor probe " + m.name + " (" + m.type + "), theta = " + DegText(r.theta) + " deg, phi = " +
+                DegText(r.phi) + " deg, lambda = " + Num(r.lambda * 1e9, 6) + " nm";
+    MakeParentDirectory(path);
+    if (StageDiscMap(files, path, map)) return path;
+    const std::string data = std::filesystem::path(path).replace_extension(".map.csv").string();
+    files.Stage(data, DiscMapCsv(map));
+    return data;
+}
 
 int RunProbe(const CliOptions &o) {
     const CliOptions::ProbeOptions &p = o.probe;
     const bool colour = isatty(2) && !std::getenv("NO_COLOR");
     try {
         // The quantities first: a typo there needs no scene.
-        const double theta = ParseQuantity("--theta", p.theta, Dim::Angle(), "30deg");
-        const double phi = p.phi.empty() ? 0.0 : ParseQuantity("--phi", p.phi, Dim::Angle(), "45deg");
-        const double lambda = ParseQuantity("--lambda", p.lambda, Dim::Length(), "550nm");
-        if (theta < 0 || theta > Pi)
+        ProbeRequest r;
+        r.theta = ParseQuantity("--theta", p.theta, Dim::Angle(), "30deg");
+        r.phi = p.phi.empty() ? 0.0 : ParseQuantity("--phi", p.phi, Dim::Angle(), "45deg");
+        r.lambda = ParseQuantity("--lambda", p.lambda, Dim::Length(), "550nm");
+        if (r.theta < 0 || r.theta > Pi)
             throw ProbeError{"'--theta' must lie in [0deg, 180deg] (from the normal; above 90deg the light comes "
                              "from below); got '" + p.theta + "'"};
-        if (std::abs(std::cos(theta)) < 1e-6)
+        if (std::abs(std::cos(r.theta)) < 1e-6)
             throw ProbeError{"'--theta' " + p.theta + " is grazing (the light runs along the surface): no "
                              "kernel scatters it; use an angle below or above 90deg"};
-        if (!(lambda > 0)) throw ProbeError{"'--lambda' must be positive; got '" + p.lambda + "'"};
+        if (!(r.lambda > 0)) throw ProbeError{"'--lambda' must be positive; got '" + p.lambda + "'"};
         // Far outside the optical range the kernels (thin surfaces, smooth interfaces) and their
         // index data (named materials: 200 nm – a few µm) are written for: a warning, the answer anyway.
-        if (lambda < 100e-9 || lambda > 1e-3)
+        if (r.lambda < 100e-9 || r.lambda > 1e-3)
             std::cerr << "warning: '--lambda' " << p.lambda
                       << " is far outside the optical range phasor's kernels model (100 nm – 1 mm): their surface "
                          "models assume wavelengths far above atomic scales and the named materials' indices are "
                          "tabulated from 200 nm to a few um (docs/kernels.md)\n";
+        r.uv = Vec2(p.u, p.v);
+        r.samples = p.samples;
+        r.seed = o.seed >= 0 ? uint64_t(o.seed) : 0;
+        r.rayOptics = p.rayOptics;
+        r.progressBar = !o.quiet && isatty(2);
 
         // The scene: parsed and resolved whole, but only the material (and what it refers to) is built,
         // so a scene without lights or a detector (a material library) can be probed.
@@ -405,100 +486,48 @@ int RunProbe(const CliOptions &o) {
         ParseOptions parse;
         parse.defines = o.defines;
         std::optional<SceneDesc> desc = ParseSceneFile(o.scene, parse, diag);
-        std::shared_ptr<Material> material;
-        std::string type;
-        const std::string name = !p.material.empty() && p.material[0] == '@' ? p.material.substr(1) : p.material;
+        ProbedMaterial m;
         if (desc && !diag.HasErrors()) {
-            const SceneEntity *entity = nullptr;
-            for (const SceneEntity &e : desc->entities)
-                if (e.name == name) entity = &e;
-            if (!entity || entity->keyword != "Material") {
-                const std::vector<std::string> names = MaterialNames(*desc);
-                const std::string sug = Suggest(name, names);
-                std::string msg = entity ? "'" + name + "' in '" + o.scene + "' is a " + entity->keyword +
-                                               ", not a Material"
-                                         : "no material named '" + name + "' in '" + o.scene + "'";
-                if (!sug.empty()) msg += "; did you mean '" + sug + "'?";
-                else if (names.empty()) msg += " (it defines no named material)";
-                throw ProbeError{msg};
-            }
-            type = entity->type;
-            BuildContext ctx(*desc, diag);
-            ParamDict ref;
-            ref.Set("material", Value::Ref(name, FileLoc{"<command line>", 0, 0, 1}));
             try {
-                material = ctx.GetRef<Material>(ref, "material");
+                m = BuildProbedMaterial(*desc, p.material, o.scene, diag);
             } catch (const Error &e) {
-                diag.Report(e);
+                throw ProbeError{e.Message()};
             }
         }
         diag.Print(std::cerr, colour);
-        if (!material || diag.HasErrors()) {
+        if (!m.material || diag.HasErrors()) {
             if (diag.HasErrors())
                 std::cerr << diag.ErrorCount() << " error" << (diag.ErrorCount() == 1 ? "" : "s") << " in '"
                           << o.scene << "'\n";
             return 1;
         }
-        if (material->IsFootprintAware())
-            throw ProbeError{"material '" + name + "' (" + type + ") is footprint-aware: its response depends on the "
-                             "incident generalized ray's footprint on the shape it lies on (theory §9), which a "
-                             "plane-wave probe does not have; render a scene with it instead (docs/aperture.md)"};
+        const ProbeResult result = ProbeKernel(m, r);
 
-        // The query: the plane z = 0, first tangent +x (see the file comment).
-        SampledWavelengths wl;
-        wl.lambda[0] = lambda;
-        wl.pdf[0] = 1;
-        wl.delta = true;
-        ScatterQuery q;
-        q.wi = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
-        q.wl = &wl;
-        q.etaOutside = 1;
-        q.rayOptics = p.rayOptics;
-        const Vec2 uv(p.u, p.v);
-        q.tex.uv = uv;
-        q.tex.p = Vec3(uv.x, uv.y, 0);
-        q.tex.dpdu = Vec3(1, 0, 0);
-        q.tex.dpdv = Vec3(0, 1, 0);
-        q.tex.n = Vec3(0, 0, 1);
-        // φ is measured from the kernel's reference direction (a grating's grating vector), which
-        // lies at ψ from dp/du: the kernel is asked in its own frame, its answers turned back by −ψ.
-        const std::optional<double> reference = ReferenceAngleOf(*material, q.tex);
-        const double psi = reference.value_or(0.0);
-        q.wi = RotateZ(q.wi, psi);
-        const uint64_t seed = o.seed >= 0 ? uint64_t(o.seed) : 0;
-        ProbeResult result = Measure(*material, q, p.samples, seed, !o.quiet && isatty(2));
-        for (ProbeLobe &l : result.lobes) l.wo = RotateZ(l.wo, -psi);
-
-        const std::string report = ReportText(name, type, o, theta, phi, lambda, uv, seed, result,
-                                              reference ? "the kernel's reference direction (" +
-                                                              DegText(psi) + " deg from dp/du)"
-                                                        : std::string("dp/du"));
-        const std::string csv = CsvText(result);
+        const std::string report = ReportText(m.name, m.type, o, result,
+                                              result.hasReference ? "the kernel's reference direction (" +
+                                                                        DegText(result.psi) + " deg from dp/du)"
+                                                                  : std::string("dp/du"),
+                                              r);
+        const std::string csv = ProbeCsv(result);
         const bool csvToStdout = p.csv == "-";
         OutputFiles files;
         if (!p.csv.empty() && !csvToStdout) {
             MakeParentDirectory(p.csv);
             files.Stage(p.csv, csv);
         }
-        std::string mapData;  // the map's data, written instead of the plot without matplotlib
+        std::string plotted;  // the plot, or its data without matplotlib
         if (!p.plot.empty()) {
-            DiscMap map = MakeMap(*material, q, result, 300, psi);
-            map.title = "phasor probe " + name + " (" + type + "), theta = " + DegText(theta) + " deg, phi = " +
-                        DegText(phi) + " deg, lambda = " + Num(lambda * 1e9, 6) + " nm";
-            MakeParentDirectory(p.plot);
-            if (!StageDiscMap(files, p.plot, map)) {
-                mapData = std::filesystem::path(p.plot).replace_extension(".map.csv").string();
-                files.Stage(mapData, DiscMapCsv(map));
+            plotted = StageProbeMap(files, p.plot, m, r, result);
+            if (plotted != p.plot)
                 std::cerr << "warning: " << MatplotlibMissing() << "; '" << p.plot << "' not drawn, its data is in '"
-                          << mapData << "'\n";
-            }
+                          << plotted << "'\n";
         }
         files.Commit();
         (csvToStdout ? std::cerr : std::cout) << report;
         if (csvToStdout) std::cout << csv;
         if (!o.quiet) {
             if (!p.csv.empty() && !csvToStdout) std::cerr << "wrote " << p.csv << "\n";
-            if (!p.plot.empty()) std::cerr << "wrote " << (mapData.empty() ? p.plot : mapData) << "\n";
+            if (!p.plot.empty()) std::cerr << "wrote " << plotted << "\n";
         }
         return 0;
     } catch (const ProbeError &e) {

@@ -99,8 +99,7 @@ int WriteRender(const CliOptions &o, const Scene &scene, const Film &film, const
         std::cerr << label << "interrupted: " << integrator.name << " " << st.work << "; no image written\n";
         return StatusAfter(sig ? sig : SIGINT);
     }
-    Image img = film.Resolve();
-    StampMetadata(img, scene, o.scene, opt, st);
+    Image img = ResolvedImage(film, scene, o.scene, opt, st);
     if (!o.run.resume.empty()) img.metadata["phasor:resumed_from"] = o.run.resume;
     const double stops = DisplayStops(det, img);
     StampDisplayExposure(img, det, stops);
@@ -490,8 +489,8 @@ std::unique_ptr<Scene> LoadQuietly(const CliOptions &o, std::string *error) {
     std::unique_ptr<Scene> scene;
     try {
         if (auto desc = ParseSceneFile(o.scene, parse, diag); desc && !diag.HasErrors())
-            scene = Scene::Build(*desc, diag, o.integrator);
-    } catch (const std::bad_alloc &) {
+            scene = BuildSceneQuietly(o.scene, *desc, diag, o.integrator);
+    } catch (const std::bad_alloc &) {  // (the parser's; BuildSceneQuietly reports the build's)
         scene.reset();
         *error = "out of memory while loading the scene";
         return nullptr;

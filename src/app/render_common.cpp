@@ -67,23 +67,29 @@ std::optional<SceneDesc> ParseScene(const CliOptions &o, Diagnostics &diag) {
     return ParseSceneFile(o.scene, parse, diag);
 }
 
-std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Diagnostics &diag,
-                                  const std::string &integrator) {
+std::unique_ptr<Scene> BuildSceneQuietly(const std::string &scenePath, const SceneDesc &desc, Diagnostics &diag,
+                                         const std::string &integrator) {
     std::unique_ptr<Scene> scene;
     try {
         scene = Scene::Build(desc, diag, integrator);
-        // --sampler names a sampler plug-in or one of the scene's Sampler blocks.
-        if (scene && !o.sampler.empty() && !scene->NewSampler(o.sampler, 0)) {
-            const std::string s = Suggest(o.sampler, scene->SamplerNames());
-            diag.Error(FileLoc{"<command line>", 0, 0, 1}, "unknown sampler '" + o.sampler + "'" +
-                                                               (s.empty() ? "" : "; did you mean '" + s + "'?"));
-            scene.reset();
-        }
     } catch (const std::bad_alloc &) {  // (what was allocated is released by now)
         scene.reset();
-        diag.Error(FileLoc{o.scene, 0, 0, 1},
+        diag.Error(FileLoc{scenePath, 0, 0, 1},
                    "out of memory while loading the scene (a scene takes about 60 bytes of memory per byte "
                    "of text, more for long inline lists: put large meshes in mesh files; docs/wscene.md §7)");
+    }
+    return scene;
+}
+
+std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Diagnostics &diag,
+                                  const std::string &integrator) {
+    std::unique_ptr<Scene> scene = BuildSceneQuietly(o.scene, desc, diag, integrator);
+    // --sampler names a sampler plug-in or one of the scene's Sampler blocks.
+    if (scene && !o.sampler.empty() && !scene->NewSampler(o.sampler, 0)) {
+        const std::string s = Suggest(o.sampler, scene->SamplerNames());
+        diag.Error(FileLoc{"<command line>", 0, 0, 1},
+                   "unknown sampler '" + o.sampler + "'" + (s.empty() ? "" : "; did you mean '" + s + "'?"));
+        scene.reset();
     }
     diag.Print(std::cerr, Colour());
     if (diag.HasErrors()) {
@@ -175,32 +181,59 @@ RenderOptions OptionsFor(const Scene &scene, const CliOptions &o) {
     return opt;
 }
 
+std::string ProgressText(const std::string &label, bool deterministic, long long pixels, double budgetSeconds,
+                         int done, int total, double t) {
+    const double frac = budgetSeconds > 0 ? std::min(1.0, t / budgetSeconds) : double(done) / total;
+    const int width = 30, filled = int(frac * width);
+    // rs counts its own steps (batches of field nodes) and has no sample rate.
+    char rate[48] = "";
+    if (!deterministic)
+        std::snprintf(rate, sizeof rate, "  %.2f Msamples/s", double(done) * pixels / std::max(t, 1e-9) * 1e-6);
+    char count[48];
+    if (budgetSeconds > 0 && !deterministic)
+        std::snprintf(count, sizeof count, "%d spp", done);
+    else
+        std::snprintf(count, sizeof count, "%d/%d %s", done, total, deterministic ? "steps" : "spp");
+    char line[512];
+    std::snprintf(line, sizeof line, "%s%s[%s%s] %3d%% %s  %s elapsed  %s %s%s   ", label.c_str(),
+                  label.empty() ? "" : " ", std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(),
+                  int(frac * 100), count, FormatDuration(t).c_str(), budgetSeconds > 0 ? "left" : "ETA",
+                  FormatDuration(budgetSeconds > 0 ? std::max(0.0, budgetSeconds - t)
+                                 : frac > 0        ? t / frac - t
+                                                   : 0)
+                      .c_str(),
+                  rate);
+    return line;
+}
+
 std::function<void(int, int)> ProgressBar(const std::string &label, bool deterministic, long long pixels,
                                           double budgetSeconds) {
     const auto start = std::chrono::steady_clock::now();
     return [=](int done, int total) {
         const double t = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        const double frac = budgetSeconds > 0 ? std::min(1.0, t / budgetSeconds) : double(done) / total;
-        const int width = 30, filled = int(frac * width);
-        // rs counts its own steps (batches of field nodes) and has no sample rate.
-        char rate[48] = "";
-        if (!deterministic)
-            std::snprintf(rate, sizeof rate, "  %.2f Msamples/s", double(done) * pixels / std::max(t, 1e-9) * 1e-6);
-        char count[48];
-        if (budgetSeconds > 0 && !deterministic)
-            std::snprintf(count, sizeof count, "%d spp", done);
-        else
-            std::snprintf(count, sizeof count, "%d/%d %s", done, total, deterministic ? "steps" : "spp");
-        std::fprintf(stderr, "\r%s%s[%s%s] %3d%% %s  %s elapsed  %s %s%s   ", label.c_str(), label.empty() ? "" : " ",
-                     std::string(filled, '=').c_str(), std::string(width - filled, ' ').c_str(), int(frac * 100), count,
-                     FormatDuration(t).c_str(), budgetSeconds > 0 ? "left" : "ETA",
-                     FormatDuration(budgetSeconds > 0 ? std::max(0.0, budgetSeconds - t)
-                                    : frac > 0        ? t / frac - t
-                                                      : 0)
-                         .c_str(),
-                     rate);
+        std::fprintf(stderr, "\r%s",
+                     ProgressText(label, deterministic, pixels, budgetSeconds, done, total, t).c_str());
         std::fflush(stderr);
     };
+}
+
+Image ResolvedImage(const Film &film, const Scene &scene, const std::string &scenePath, const RenderOptions &opt,
+                    const RenderStats &st) {
+    Image img = film.Resolve();
+    StampMetadata(img, scene, scenePath, opt, st);
+    return img;
+}
+
+RenderResult RenderToImage(const Scene &scene, const std::string &scenePath, const RenderOptions &opt) {
+    const Detector &det = scene.GetDetector();
+    Film film(det.Width(), det.Height(), det.Response());
+    RenderResult r;
+    r.stats = scene.GetIntegrator().Render(scene, film, opt);
+    if (r.stats.hasImage) {
+        r.image = ResolvedImage(film, scene, scenePath, opt, r.stats);
+        StampDisplayExposure(*r.image, det, DisplayStops(det, *r.image));
+    }
+    return r;
 }
 
 void StampMetadata(Image &img, const Scene &scene, const std::string &scenePath, const RenderOptions &opt,

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "app/cli.h"
 #include "core/image/film.h"
@@ -43,6 +44,10 @@ std::optional<SceneDesc> ParseScene(const CliOptions &o, Diagnostics &diag);
 /// Builds `desc` with `integrator` ("" = the scene's own); prints `diag` and "N errors in 'SCENE'".
 std::unique_ptr<Scene> BuildScene(const CliOptions &o, const SceneDesc &desc, Diagnostics &diag,
                                   const std::string &integrator);
+/// Scene::Build, with running out of memory reported as an error at `scenePath` instead of thrown;
+/// nothing printed (BuildScene prints; the Python module raises `diag`'s errors).
+std::unique_ptr<Scene> BuildSceneQuietly(const std::string &scenePath, const SceneDesc &desc, Diagnostics &diag,
+                                         const std::string &integrator);
 /// ParseScene + BuildScene with o.integrator: nullptr after errors (all of them printed). The
 /// description read goes to `desc` when given.
 std::unique_ptr<Scene> Load(const CliOptions &o, Diagnostics &diag, SceneDesc *desc = nullptr);
@@ -69,6 +74,25 @@ RenderOptions OptionsFor(const Scene &scene, const CliOptions &o);
 /// their own steps and have no sample rate.
 std::function<void(int, int)> ProgressBar(const std::string &label, bool deterministic, long long pixels,
                                           double budgetSeconds = 0);
+/// The text ProgressBar draws (without the leading carriage return) after `seconds` of a render
+/// that has done `done` of `total` units.
+std::string ProgressText(const std::string &label, bool deterministic, long long pixels, double budgetSeconds,
+                         int done, int total, double seconds);
+
+/// The image of a finished or stopped render: the film resolved, with StampMetadata's metadata
+/// (what `render` writes).
+Image ResolvedImage(const Film &film, const Scene &scene, const std::string &scenePath, const RenderOptions &opt,
+                    const RenderStats &st);
+/// One render in this process, as `render` does it without MPI or checkpoints (the Python
+/// module's render): a film of the detector's size, the integrator's render loop, ResolvedImage,
+/// and the display exposure stamped (StampDisplayExposure).
+/// `image` is empty when the render stopped before it had anything honest to show
+/// (RenderStats::hasImage false). Throws phasor::Error (an integrator's refusal at render time).
+struct RenderResult {
+    RenderStats stats;
+    std::optional<Image> image;
+};
+RenderResult RenderToImage(const Scene &scene, const std::string &scenePath, const RenderOptions &opt);
 
 /// Stamps a render's metadata on its image: scene, integrator, spp (requested, reached, max),
 /// seed, sampler, the integrator's own keys, time, cancellation, a sensor plane's pixel positions.

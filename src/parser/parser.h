@@ -36,6 +36,10 @@ struct ParseOptions {
     /// Return what was read cleanly even after errors (SceneDesc::incomplete is then set), so the
     /// caller can build it and report the scene's remaining errors in the same run.
     bool partial = false;
+    /// Names among `defines` whose value is a bare number in SI units (the Python module's floats):
+    /// overriding a Define of a dimensioned quantity it takes that dimension (1.5e-4 for a length is
+    /// 150 um). Other bare numbers for a dimensioned Define are errors, as on the command line.
+    std::vector<std::string> siDefines;
 };
 
 /// Parses and resolves a scene file. Returns nullopt if any error was reported to `diag` (the

@@ -355,6 +355,11 @@ class Resolver {
                 info.value = std::nullopt;
                 break;
             }
+            if (v->kind == Value::Kind::Number && v->dim.IsNone() && info.value->kind == Value::Kind::Number &&
+                std::find(opt_.siDefines.begin(), opt_.siDefines.end(), st.name) != opt_.siDefines.end()) {
+                v->dim = info.value->dim;  // a number in SI units (ParseOptions::siDefines)
+                v->isInteger = v->isInteger && v->dim.IsNone();
+            }
             if (!Compatible(*info.value, *v)) {
                 const Value &d = *info.value;
                 std::string want = d.kind == Value::Kind::Number ? d.dim.Describe() : d.DescribeKind();

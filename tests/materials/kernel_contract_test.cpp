@@ -28,7 +28,13 @@
 // only, an aperture transmits straight). Footprint-aware kernels (Material::IsFootprintAware, e.g.
 // `aperture`) read that GR; two checks change meaning for them (see WhiteFurnace and the sample
 // counts of the statistical tests).
+// The same checks run on kernels written in Python (phasor.testing.check_kernel): the Python module
+// compiles this file with src/python/contract_harness.h in place of GoogleTest.
+#ifdef PHASOR_KERNEL_CONTRACT_HARNESS
+#include "python/contract_harness.h"
+#else
 #include <gtest/gtest.h>
+#endif
 
 #include <cstdint>
 #include <filesystem>
@@ -70,7 +76,7 @@ struct ContractCase {
 };
 
 // gtest prints the case by name instead of its bytes.
-void PrintTo(const ContractCase &c, std::ostream *os) { *os << c.Name(); }
+[[maybe_unused]] void PrintTo(const ContractCase &c, std::ostream *os) { *os << c.Name(); }
 
 std::vector<ContractCase> AllCases() {
     std::vector<ContractCase> cases;
@@ -84,8 +90,12 @@ std::vector<ContractCase> AllCases() {
 }
 
 double Alpha() {
+#ifdef PHASOR_KERNEL_CONTRACT_HARNESS
+    return contract::Alpha(StatTestsPerCase);  // over the cases the harness runs
+#else
     static const double a = SidakAlpha(0.01, std::max<int>(1, int(AllCases().size()) * StatTestsPerCase));
     return a;
+#endif
 }
 
 // Deterministic per (case, test) seed (FNV-1a of the name).
@@ -235,7 +245,11 @@ class MaterialContract : public ::testing::TestWithParam<ContractCase> {
     /// Sample counts. A footprint-aware kernel evaluates a 2-D diffraction integral for every
     /// sample's weight (µs each), so it runs a tenth of the samples (the tests keep their form and
     /// level; only their power drops).
+#ifdef PHASOR_KERNEL_CONTRACT_HARNESS
+    long long Count(long long n) const { return contract::Scaled(footprint_ ? n / 10 : n); }
+#else
     long long Count(long long n) const { return footprint_ ? n / 10 : n; }
+#endif
 
     TestRng Rng(const char *test) const { return TestRng(SeedFor(c_.Name() + "/" + test)); }
     std::optional<ScatterSample> Draw(TestRng &rng) const { return DrawWith(*k_, rng); }
@@ -967,4 +981,30 @@ TEST(MaterialRegistry, ExpectedKernelsAreRegistered) {
 }
 
 }  // namespace
+
+#ifdef PHASOR_KERNEL_CONTRACT_HARNESS
+/// phasor.testing.check_kernel: every check of the suite on the cases of one kernel (its presets ×
+/// the chosen wavelengths and incident directions).
+contract::Report RunKernelContract(const contract::Options &o) {
+    std::vector<ContractCase> cases;
+    auto chosen = [](const std::vector<int> &only, int i) {
+        return only.empty() || std::find(only.begin(), only.end(), i) != only.end();
+    };
+    for (const ContractCase &c : AllCases())
+        if (c.kernel == o.kernel && chosen(o.lambdas, c.lambdaIndex) && chosen(o.incidents, c.incident))
+            cases.push_back(c);
+    contract::Report r = contract::Run(
+        o, int(cases.size()), [&](int i) { MaterialContract::current = &cases[std::size_t(i)]; },
+        [&](int i) { return cases[std::size_t(i)].Name(); });
+    r.alpha = Alpha();
+    return r;
+}
+
+contract::Domain KernelContractDomain() {
+    contract::Domain d;
+    d.lambdas.assign(std::begin(Lambdas), std::end(Lambdas));
+    for (const Incident &i : Incidents) d.incidents.emplace_back(i.cosTheta, i.phi);
+    return d;
+}
+#endif
 }  // namespace phasor::test

@@ -305,6 +305,31 @@ TEST(Parser, OverrideWithWrongDimensionCitesTheDefine) {
     EXPECT_FALSE(bare.desc);
 }
 
+// ParseOptions::siDefines (the Python module's numbers): a bare number takes the dimension of the
+// Define it overrides; other overrides are read as before, and a wrong kind stays an error.
+TEST(Parser, SiDefinesTakeTheDimensionOfTheirDefine) {
+    const std::string src = "wscene 1\nDefine w = 150 um\nDefine n = 3\nDefine t = 10 deg\nShape \"s\" { a = $w  b = $n  c = $t }\n";
+    auto parse = [&](const DefineList &defines, const std::vector<std::string> &si) {
+        Parsed r;
+        r.diag = std::make_unique<Diagnostics>();
+        ParseOptions o;
+        o.defines = defines;
+        o.siDefines = si;
+        r.desc = ParseSceneString(src, "main.wscene", o, *r.diag);
+        return r;
+    };
+    Parsed p = parse({{"w", "0.0002"}, {"n", "4"}, {"t", "0.5"}}, {"w", "n", "t"});
+    ASSERT_TRUE(p.desc) << p.Errors();
+    ExpectNumber(Param(p, "a"), 2e-4, Dim::Length());
+    ExpectNumber(Param(p, "b"), 4, Dim::None());
+    ExpectNumber(Param(p, "c"), 0.5, Dim::Angle());  // radians
+    Parsed text = parse({{"w", "100um"}}, {});  // a quantity with its unit, as -D
+    ASSERT_TRUE(text.desc) << text.Errors();
+    ExpectNumber(Param(text, "a"), 1e-4, Dim::Length(), 1e-14);
+    EXPECT_FALSE(parse({{"w", "0.0002"}}, {}).desc);  // not declared SI: a bare number is an error
+    EXPECT_FALSE(parse({{"w", "\"x\""}}, {"w"}).desc);  // a string is not a length either way
+}
+
 TEST(Parser, UnusedOverrideIsAnErrorOrAPermissiveWarning) {
     const std::string src = "wscene 1\nDefine width = 1 m\nShape \"s\" {}\n";
     Parsed p = Parse(src, {{"widt", "2 m"}});
