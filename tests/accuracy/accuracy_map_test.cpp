@@ -221,7 +221,9 @@ TEST(AccuracyMap, CappedAveragesAreCounted) {
                 const long long n = run(d, r, theta, &e);
                 std::printf("MEASURED %g um film under a %g deg disc at %g deg: %s, error %.2g relative\n", d * 1e6, r,
                             theta, n > 0 ? "capped" : "within the bound", e);
-                if (n > 0) EXPECT_LT(e, 1e-3) << "capped but still close";
+                if (n > 0) {
+                    EXPECT_LT(e, 1e-3) << "capped but still close";
+                }
             }
 }
 

@@ -73,7 +73,9 @@ TEST(FinePixels, ASensorTooCloseToThePlateIsWarnedAbout) {
         Diagnostics diag;
         auto desc = ParseSceneFile(scene, at(z), diag);
         EXPECT_TRUE(desc);
-        if (desc) EXPECT_TRUE(Scene::Build(*desc, diag));
+        if (desc) {
+            EXPECT_TRUE(Scene::Build(*desc, diag));
+        }
         std::ostringstream os;
         diag.Print(os);
         return os.str();
