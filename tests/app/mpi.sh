@@ -107,7 +107,12 @@ compare)
     [[ -f "$out/timed/results.csv" ]] || fail "equal-time compare on 2 ranks: no table"
     ;;
 sigterm)
-    STOP_BOUND=4  # seconds from a rank's signal to the job's end (the stop itself takes ~0.1 s)
+    # The slow scene at 768² pixels: its first pass is ≈ 135 s of CPU (≈ 70 s on each of 2 ranks), so
+    # a job that waited for the pass would take far longer than STOP_BOUND, seconds from a rank's
+    # signal to the job's end (the stop itself takes ~0.1 s; a loaded machine needed 4.8 s once
+    # to end two ranks and write the image).
+    STOP_BOUND=10
+    slow=("$src/tests/app/scenes/slow.wscene" -D res=768)
     # check_partial FILE LOG: the partial image, marked; "stopping" said once.
     check_partial() {
         [[ -f "$1" && -f "${1%.exr}.png" ]] || { cat "$2"; fail "$1: no partial image"; return; }
@@ -121,7 +126,7 @@ sigterm)
         fail "$1: the render did not start within 60 s"
     }
     # 1. The ranks signalled themselves (Slurm's scancel and time limit, `kill` of the ranks).
-    "${PH[@]}" render "$src/tests/app/scenes/slow.wscene" -o "$out/ranks.exr" --threads 1 2>"$out/ranks.log" &
+    "${PH[@]}" render "${slow[@]}" -o "$out/ranks.exr" --threads 1 2>"$out/ranks.log" &
     pid=$!
     started "$out/ranks.log"
     sleep 1
@@ -136,7 +141,7 @@ sigterm)
     # 2. mpirun signalled (Ctrl-C at the terminal): Open MPI signals the ranks after its kill timeout
     #    and kills them that long after; rank 0 writes the partial image in between.
     export OMPI_MCA_odls_base_sigkill_timeout=3
-    mpirun -q --oversubscribe --allow-run-as-root -n 2 "$phasor" render "$src/tests/app/scenes/slow.wscene" \
+    mpirun -q --oversubscribe --allow-run-as-root -n 2 "$phasor" render "${slow[@]}" \
         -o "$out/mpirun.exr" --threads 1 2>"$out/mpirun.log" &
     pid=$!
     started "$out/mpirun.log"
