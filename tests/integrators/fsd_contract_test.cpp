@@ -56,7 +56,7 @@ class FsdContract : public ::testing::TestWithParam<int> {
         ASSERT_TRUE(scene_);
         occ_ = std::make_unique<fsd::Occluders>(*scene_);
         st_.enabled = true;
-        g_ = FsdGr(p.origin * Um, Vec3(0.01, 0.02, 1), Lambda, std::pow(2.5 * Um, 2), p.rho);
+        g_ = OneWavelengthGr(p.origin * Um, Vec3(0.01, 0.02, 1), Lambda, std::pow(2.5 * Um, 2), p.rho);
         ASSERT_EQ(fsd::FindEvent(*scene_, *occ_, g_, Infinity, nullptr, st_, &ev_), fsd::Search::Event);
         g_.Propagate(ev_.t);
         wl_ = OneWavelength(Lambda);

@@ -72,7 +72,7 @@ TEST_P(FsdKnifeEdge, LobeMatchesFresnelAcrossTheShadowBoundaryAndFiveFringes) {
     int events = 0;
     for (double w = -1.5; w <= 4.6; w += 0.1) {
         const double x0 = w * zone;
-        SpectralGenRay g = FsdGr(Vec3(x0, 0, zDet), Vec3(0, 0, -1), lambda, beta0 * beta0, 0);
+        SpectralGenRay g = OneWavelengthGr(Vec3(x0, 0, zDet), Vec3(0, 0, -1), lambda, beta0 * beta0, 0);
         fsd::Event ev;
         const fsd::Search r = fsd::FindEvent(*scene, occ, g, Infinity, nullptr, st, &ev);
         double fsdValue;

@@ -34,7 +34,7 @@ TEST(FsdGeometry, KnifeEdgeEventAndMask) {
     s.enabled = true;
     const double beta2 = std::pow(4 * Um, 2);
     for (double x0 : {3.0, -2.0, 9.0}) {
-        const SpectralGenRay g = FsdGr(Vec3(x0 * Um, 0, -50 * Um), Vec3(0, 0, 1), Lambda, beta2, 0);
+        const SpectralGenRay g = OneWavelengthGr(Vec3(x0 * Um, 0, -50 * Um), Vec3(0, 0, 1), Lambda, beta2, 0);
         fsd::Event ev;
         const fsd::Search r = fsd::FindEvent(*scene, occ, g, Infinity, nullptr, s, &ev);
         ASSERT_EQ(r, fsd::Search::Event) << "x0 = " << x0;
@@ -72,19 +72,19 @@ TEST(FsdGeometry, NoneBlockedAndNegligible) {
     fsd::Event ev;
     const double beta2 = std::pow(4 * Um, 2);
     // Far from the edge on the open side: the geometry never enters 4β.
-    EXPECT_EQ(fsd::FindEvent(*scene, occ, FsdGr(Vec3(60 * Um, 0, -50 * Um), Vec3(0, 0, 1), Lambda, beta2, 0),
+    EXPECT_EQ(fsd::FindEvent(*scene, occ, OneWavelengthGr(Vec3(60 * Um, 0, -50 * Um), Vec3(0, 0, 1), Lambda, beta2, 0),
                              Infinity, nullptr, s, &ev),
               fsd::Search::None);
     // Deep in the shadow: the box covers the whole footprint.
-    EXPECT_EQ(fsd::FindEvent(*scene, occ, FsdGr(Vec3(-60 * Um, 0, -50 * Um), Vec3(0, 0, 1), Lambda, beta2, 0),
+    EXPECT_EQ(fsd::FindEvent(*scene, occ, OneWavelengthGr(Vec3(-60 * Um, 0, -50 * Um), Vec3(0, 0, 1), Lambda, beta2, 0),
                              Infinity, nullptr, s, &ev),
               fsd::Search::Blocked);
     // Travelling away from the box: nothing ahead.
-    EXPECT_EQ(fsd::FindEvent(*scene, occ, FsdGr(Vec3(3 * Um, 0, -50 * Um), Vec3(0, 0, -1), Lambda, beta2, 0),
+    EXPECT_EQ(fsd::FindEvent(*scene, occ, OneWavelengthGr(Vec3(3 * Um, 0, -50 * Um), Vec3(0, 0, -1), Lambda, beta2, 0),
                              Infinity, nullptr, s, &ev),
               fsd::Search::None);
     // A segment that ends before the box (the mean ray hit something at t = 20 µm).
-    EXPECT_EQ(fsd::FindEvent(*scene, occ, FsdGr(Vec3(3 * Um, 0, -50 * Um), Vec3(0, 0, 1), Lambda, beta2, 0),
+    EXPECT_EQ(fsd::FindEvent(*scene, occ, OneWavelengthGr(Vec3(3 * Um, 0, -50 * Um), Vec3(0, 0, 1), Lambda, beta2, 0),
                              20 * Um, nullptr, s, &ev),
               fsd::Search::None);
 }
@@ -99,7 +99,7 @@ TEST(FsdGeometry, HoleInAPlateKeepsOnlyItsRim) {
     fsd::Settings s;
     s.enabled = true;
     fsd::Event ev;
-    const SpectralGenRay g = FsdGr(Vec3(2 * Um, 1 * Um, -30 * Um), Vec3(0, 0, 1), Lambda, std::pow(6 * Um, 2), 0);
+    const SpectralGenRay g = OneWavelengthGr(Vec3(2 * Um, 1 * Um, -30 * Um), Vec3(0, 0, 1), Lambda, std::pow(6 * Um, 2), 0);
     ASSERT_EQ(fsd::FindEvent(*scene, occ, g, Infinity, nullptr, s, &ev), fsd::Search::Event);
     // The square's 32 outer edges are kept too (they fix the winding number) but lie far outside.
     int near = 0;
@@ -171,7 +171,7 @@ TEST(FsdLobe, AmplitudeMatchesBruteForce) {
         st.enabled = true;
         for (double rho : {0.0, 4.0}) {
             const double beta2 = std::pow(3 * Um, 2);
-            SpectralGenRay g = FsdGr(c.o, Vec3(0.02, -0.01, 1), Lambda, beta2, rho);
+            SpectralGenRay g = OneWavelengthGr(c.o, Vec3(0.02, -0.01, 1), Lambda, beta2, rho);
             fsd::Event ev;
             ASSERT_EQ(fsd::FindEvent(*scene, occ, g, Infinity, nullptr, st, &ev), fsd::Search::Event);
             g.Propagate(ev.t);
@@ -202,7 +202,7 @@ TEST(FsdLobe, UnobstructedGrMatchesTheClosedFormMeasurement) {
     ev.mask = DecomposeUnion({}, 2 * ev.halfWidth, ev.halfWidth);
     fsd::Settings st;
     for (double rho : {0.0, 2.5, -3.0}) {
-        const SpectralGenRay g = FsdGr(ev.p, ev.frame.n, Lambda, beta2, rho);
+        const SpectralGenRay g = OneWavelengthGr(ev.p, ev.frame.n, Lambda, beta2, rho);
         const SampledWavelengths wl = OneWavelength(Lambda);
         const fsd::Lobe lobe(ev, g, wl, st);
         for (double a : {0.0, 0.02, 0.06}) {
@@ -248,7 +248,7 @@ TEST(FsdGeometry, AnalyticSphereOutlineAndDiskRim) {
         ASSERT_TRUE(scene);
         fsd::Occluders occ(*scene);
         fsd::Event ev;
-        const SpectralGenRay g = FsdGr(Vec3(21 * Um, 2 * Um, -100 * Um), Vec3(0, 0, 1), Lambda, beta2, 0);
+        const SpectralGenRay g = OneWavelengthGr(Vec3(21 * Um, 2 * Um, -100 * Um), Vec3(0, 0, 1), Lambda, beta2, 0);
         ASSERT_EQ(fsd::FindEvent(*scene, occ, g, Infinity, nullptr, s, &ev), fsd::Search::Event);
         // The nearest approach is at the sphere's equator, z = 0.
         EXPECT_NEAR(ev.t, 100 * Um, 1e-3 * Um);
@@ -262,7 +262,7 @@ TEST(FsdGeometry, AnalyticSphereOutlineAndDiskRim) {
         ASSERT_TRUE(scene);
         fsd::Occluders occ(*scene);
         fsd::Event ev;
-        const SpectralGenRay g = FsdGr(Vec3(2 * Um, 11 * Um, -100 * Um), Vec3(0, 0, 1), Lambda, beta2, 0);
+        const SpectralGenRay g = OneWavelengthGr(Vec3(2 * Um, 11 * Um, -100 * Um), Vec3(0, 0, 1), Lambda, beta2, 0);
         ASSERT_EQ(fsd::FindEvent(*scene, occ, g, Infinity, nullptr, s, &ev), fsd::Search::Event);
         // Projected along z the rim is the ellipse x² + (y/cos40°)² < r².
         const double c = std::cos(40 * Pi / 180), r = 15 * Um;

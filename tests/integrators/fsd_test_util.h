@@ -14,6 +14,7 @@
 #include "core/render/genray.h"
 #include "core/render/scene.h"
 #include "parser/parser.h"
+#include "support/genray_builder.h"
 
 namespace phasor::test {
 
@@ -117,18 +118,6 @@ inline SampledWavelengths OneWavelength(double lambda) {
     wl.pdf.fill(1);
     wl.delta = true;
     return wl;
-}
-
-/// A GR at `o` travelling along `d` with one wavelength (λ in metres) and footprint β², ρ there.
-inline SpectralGenRay FsdGr(const Vec3 &o, const Vec3 &d, double lambda, double beta2, double rho) {
-    SpectralGenRay g;
-    g.o = o;
-    g.d = Normalize(d);
-    g.count = 1;
-    g.k[0] = 2 * Pi / lambda;
-    g.beta2[0] = beta2;
-    g.rho[0] = rho;
-    return g;
 }
 
 }  // namespace phasor::test

@@ -37,7 +37,7 @@ double WorstDifference(const Scene &meshes, const Scene &plate, const Vec3 &o, d
     fsd::Settings st;
     st.enabled = true;
     const SampledWavelengths wl = OneWavelength(Lambda);
-    SpectralGenRay g = FsdGr(o * Um, Vec3(0, 0, 1), Lambda, std::pow(beta0 * Um, 2), 0);
+    SpectralGenRay g = OneWavelengthGr(o * Um, Vec3(0, 0, 1), Lambda, std::pow(beta0 * Um, 2), 0);
     fsd::Event ev;
     EXPECT_EQ(fsd::FindEvent(meshes, occ, g, Infinity, nullptr, st, &ev), fsd::Search::Event);
     EXPECT_NEAR(ev.t, -o.z * Um, 1e-12);

@@ -31,6 +31,7 @@
 #include "core/numerics/gauss_legendre.h"
 #include "core/render/genray.h"
 #include "parser/parser.h"
+#include "support/genray_builder.h"
 #include "support/scene_builder.h"
 #include "support/stats.h"
 
@@ -172,18 +173,6 @@ Towards RadianceTowards(const Subject &s, const Light &light, const LightSampleC
     return t;
 }
 
-/// A physical generalized ray at o along d (k from λ, footprint β², curvature ρ), one wavelength.
-SpectralGenRay Gr(const Vec3 &o, const Vec3 &d, double lambda, double beta2, double rho) {
-    SpectralGenRay g;
-    g.o = o;
-    g.d = Normalize(d);
-    g.count = 1;
-    g.k[0] = 2 * Pi / lambda;
-    g.beta2[0] = beta2;
-    g.rho[0] = rho;
-    return g;
-}
-
 // ---- the checks (each returns "" or what failed, so that a test can show a check failing) -------
 
 /// Finite, non-negative answers everywhere; the delta convention.
@@ -209,7 +198,7 @@ std::string CheckFinite(const Subject &s, const Light &light) {
                 if (!Finite(t.L, wl.Count()) || !std::isfinite(t.pdf) || t.pdf < 0) bad << "Le/L or PdfLi; ";
                 if (delta && light.PdfLi(ctx, ls->wi, p + ls->wi, Vec3(0, 0, 1)) != 0) bad << "delta PdfLi ≠ 0; ";
                 // A GR measuring it from here, along the light's direction of travel.
-                const SpectralGenRay g = Gr(p, -ls->wi, wl.lambda[0], Sqr(30 * wl.lambda[0]), 0.3 * (j - 4));
+                const SpectralGenRay g = OneWavelengthGr(p, -ls->wi, wl.lambda[0], Sqr(30 * wl.lambda[0]), 0.3 * (j - 4));
                 if (const auto m = light.MeasureGR(g, wl)) {
                     if (!Finite(m->value, 1)) bad << "MeasureGR; ";
                 } else if (light.MeasuredInClosedForm() && !ls->L.IsZero() && delta) {
@@ -459,7 +448,7 @@ std::string CheckPowerMatchesRadiance(const Subject &s, const Light &light) {
 std::string CheckMeasureGR(const Subject &s, const Light &light) {
     std::ostringstream bad;
     if (light.Type() == LightType::Area) {
-        const SpectralGenRay g = Gr(Vec3(0, 0, -1), Vec3(0, 0, 1), 550e-9, 1e-10, 0);
+        const SpectralGenRay g = OneWavelengthGr(Vec3(0, 0, -1), Vec3(0, 0, 1), 550e-9, 1e-10, 0);
         if (light.MeasureGR(g, Wavelengths(*s.scene)[1])) bad << "an area light answers MeasureGR; ";
         return bad.str();
     }
@@ -480,7 +469,7 @@ std::string CheckMeasureGR(const Subject &s, const Light &light) {
                 // Along the light's travel at o, turned by half the GR's angular spread.
                 const double sigma = std::sqrt((1 + rho * rho) / 2) / (beta * k);
                 const Frame tf = Frame::FromNormal(-ls->wi);
-                const SpectralGenRay g = Gr(o, -ls->wi + tf.s * (0.5 * sigma), lambda, beta * beta, rho);
+                const SpectralGenRay g = OneWavelengthGr(o, -ls->wi + tf.s * (0.5 * sigma), lambda, beta * beta, rho);
                 const auto m = light.MeasureGR(g, wl);
                 const double got = m ? m->value[0] : 0;
                 const Frame f = Frame::FromNormal(g.d);
