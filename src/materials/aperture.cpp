@@ -39,7 +39,7 @@
 #include "core/render/material.h"
 #include "core/render/registry.h"
 #include "core/render/sampling.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "materials/aperture_integral.h"
 
 namespace phasor {

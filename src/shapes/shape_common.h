@@ -11,7 +11,7 @@
 #include "core/render/material.h"
 #include "core/params.h"
 #include "core/render/registry.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 
 namespace phasor::shape_common {
 

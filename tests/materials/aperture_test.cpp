@@ -15,7 +15,7 @@
 #include "core/image/image_io.h"
 #include "core/render/genray.h"
 #include "core/numerics/gauss_legendre.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "material_test_util.h"
 #include "materials/aperture_integral.h"
 

@@ -44,7 +44,7 @@
 
 #include "core/render/genray.h"
 #include "core/render/sampling.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "energy_test_util.h"
 #include "material_test_util.h"
 #include "support/stats.h"

@@ -12,7 +12,7 @@
 #include "core/render/genray.h"
 #include "core/render/material.h"
 #include "core/render/registry.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 
 namespace phasor::test {
 

@@ -8,7 +8,7 @@
 #include <optional>
 #include <vector>
 
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 
 namespace phasor {
 

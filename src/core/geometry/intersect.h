@@ -6,7 +6,7 @@
 #include <optional>
 
 #include "core/math.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 
 namespace phasor {
 

@@ -7,7 +7,7 @@
 
 #include "core/diagnostics.h"
 #include "core/geometry/intersect.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 
 namespace phasor {
 

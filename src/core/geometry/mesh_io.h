@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 
 namespace phasor {
 

@@ -10,7 +10,7 @@
 #include "core/math.h"
 #include "core/params.h"
 #include "core/render/sampler.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "core/spectrum/spectrum.h"
 
 namespace phasor {

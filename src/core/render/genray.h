@@ -15,7 +15,7 @@
 #include <array>
 
 #include "core/math.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "core/spectrum/spectrum.h"
 
 namespace phasor {

@@ -8,7 +8,7 @@
 
 #include "core/render/genray.h"
 #include "core/math.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "core/spectrum/spectrum.h"
 
 namespace phasor {

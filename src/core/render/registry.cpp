@@ -13,7 +13,7 @@
 #include "core/render/light.h"
 #include "core/render/material.h"
 #include "core/render/sampler.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "core/spectrum/spectrum.h"
 #include "plugin_tables.inc"
 

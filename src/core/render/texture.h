@@ -14,7 +14,7 @@
 #include <string>
 
 #include "core/math.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "core/spectrum/spectrum.h"
 #include "core/units.h"
 

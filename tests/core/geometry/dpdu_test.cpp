@@ -11,7 +11,7 @@
 
 #include "core/geometry/analytic.h"
 #include "core/geometry/mesh_io.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "support/stats.h"
 
 namespace phasor {

@@ -4,7 +4,7 @@
 #pragma once
 
 #include "core/math.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 
 #include <unistd.h>
 

@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "core/diagnostics.h"
-#include "core/render/shape.h"
+#include "core/geometry/shape.h"
 #include "geometry_test_util.h"
 #include "support/stats.h"
 

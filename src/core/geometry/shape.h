@@ -1,6 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — rays, surface interactions, shapes and triangle meshes (docs/wscene.md §12).
-// World space is right-handed, lengths in metres.
+// World space is right-handed, lengths in metres. Part of the geometry library: it names the
+// render layer's Material and Light only through pointers (declared, never included), so nothing
+// under core/geometry includes a core/render header (docs/architecture.md, "Libraries").
 #pragma once
 
 #include <memory>
