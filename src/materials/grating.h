@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "core/params.h"
+#include "core/params/dict.h"
 #include "core/render/material.h"
 #include "core/render/registry.h"
 #include "core/render/texture.h"

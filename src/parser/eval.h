@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "core/diagnostics.h"
-#include "core/params.h"
+#include "core/params/dict.h"
 #include "parser/ast.h"
 
 namespace phasor::wscene {

@@ -6,7 +6,7 @@
 // The resolver follows Includes, substitutes $defines (with command-line -D overrides), evaluates
 // arithmetic with dimensions, converts quantities to SI, evaluates pure math functions, drops
 // entities whose `enabled` is false and checks names and @references. Plug-in schemas are not
-// consulted here: BuildContext (core/render/registry.h) validates each entity against its schema.
+// consulted here: BuildContext (core/params/build_context.h) validates each entity against its schema.
 #pragma once
 
 #include <functional>
@@ -16,8 +16,8 @@
 #include <vector>
 
 #include "core/diagnostics.h"
-#include "core/params.h"
-#include "core/render/registry.h"
+#include "core/params/dict.h"
+#include "core/params/scene_desc.h"
 
 namespace phasor {
 

@@ -9,7 +9,7 @@
 
 #include "core/diagnostics.h"
 #include "core/render/material.h"
-#include "core/params.h"
+#include "core/params/dict.h"
 #include "core/render/registry.h"
 #include "core/geometry/shape.h"
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "core/diagnostics.h"
-#include "core/params.h"
+#include "core/params/dict.h"
 #include "core/units.h"
 
 namespace phasor::texture_common {

@@ -613,7 +613,7 @@ TEST(Parser, ReadsFilesFromDisk) {
 
 TEST(Parser, RecordListFieldsKeepTheirLocations) {
     // A list of calls with named arguments parses to Calls whose arguments know where their names
-    // are, so a record field's errors point at the field (ParamKind::RecordList, params.h).
+    // are, so a record field's errors point at the field (ParamKind::RecordList, core/params/schema.h).
     Parsed p = One("layers = [layer(ior = 1.55, thickness = 85 nm),\n    layer(ior = \"BK7\", thicknes = 0.1 um)]");
     ASSERT_TRUE(p.desc) << p.Errors();
     const Schema s{"shape", "sphere", "", {P::RecordList("layers", "layers", "layer", "a layer",

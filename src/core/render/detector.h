@@ -8,7 +8,7 @@
 
 #include "core/render/genray.h"
 #include "core/math.h"
-#include "core/params.h"
+#include "core/params/dict.h"
 #include "core/render/sampler.h"
 #include "core/geometry/shape.h"
 #include "core/spectrum/spectrum.h"

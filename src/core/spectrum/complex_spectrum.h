@@ -1,8 +1,8 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — complex-valued spectra: a refractive index n(λ) + iκ(λ) as a function of vacuum
 // wavelength λ [m], with κ ≥ 0 for absorbing media (time dependence e^{-iωt}, the convention of
-// materials/fresnel.h). Kernels read one with BuildContext::GetComplexSpectrum (registry.h) from a
-// `complex spectrum` parameter, which accepts
+// materials/fresnel.h). Kernels read one with BuildContext::GetComplexSpectrum
+// (core/params/build_context.h) from a `complex spectrum` parameter, which accepts
 //   1.5                      a real constant (κ = 0)
 //   0.2+3.4i                 a complex constant n + iκ
 //   "Au"                     a named material (core/spectrum/named_ior.h: Al, Ag, Au, Cu, BK7, …)

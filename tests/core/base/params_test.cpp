@@ -1,7 +1,7 @@
 // SPDX-License-Identifier: Apache-2.0
 #include <gtest/gtest.h>
 
-#include "core/params.h"
+#include "core/params/dict.h"
 
 namespace phasor {
 namespace {
