@@ -43,15 +43,34 @@ std::optional<GrMeasurement> GrPathSampler::MeasureOne(const Scene &scene, const
                                                        const SurfaceInteraction *si, const SampledWavelengths &wl,
                                                        PathStats &stats) {
     auto m = light.MeasureGR(g.TimeReversed(), wl);
-    if (!m || m->value.IsZero()) return std::nullopt;
-    ++stats.rays;
-    bool blocked;
-    if (si)
-        blocked = std::isinf(m->dist) ? scene.OccludedDirection(*si, m->wi) : scene.Occluded(*si, si->p + m->wi * m->dist);
-    else
-        blocked = scene.GetAccel().Occluded(Ray{g.o, m->wi}, 0, m->dist * (1 - 1e-7));
-    if (blocked) return std::nullopt;
+    if (!m || m->value.IsZero() || !Unoccluded(scene, *m, g, si, stats)) return std::nullopt;
     return m;
+}
+
+bool GrPathSampler::Unoccluded(const Scene &scene, const GrMeasurement &m, const SpectralGenRay &g,
+                               const SurfaceInteraction *si, PathStats &stats) {
+    ++stats.rays;
+    if (si) return !(std::isinf(m.dist) ? scene.OccludedDirection(*si, m.wi) : scene.Occluded(*si, si->p + m.wi * m.dist));
+    return !scene.GetAccel().Occluded(Ray{g.o, m.wi}, 0, m.dist * (1 - 1e-7));
+}
+
+std::vector<ParamSpec> PathAndFsdParams() {
+    std::vector<ParamSpec> p = PathParams();
+    for (ParamSpec &f : fsd::Params()) p.push_back(std::move(f));
+    return p;
+}
+
+GrPathSampler::GrPathSampler(const ParamDict &d)
+    : GrPathSampler(d.GetInt("max_depth"), d.GetInt("rr_depth"), d.GetInt("light_samples"),
+                    fsd::SettingsFromParams(d)) {}
+
+std::string GrPathSampler::ParamString() const {
+    std::string s = "max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) +
+                    ", light_samples = " + std::to_string(lightSamples_) + ", fsd = " + (fsd_.enabled ? "true" : "false");
+    if (fsd_.enabled)
+        s += fsd_.radius > 0 ? ", fsd_radius = " + std::to_string(fsd_.radius) + " m"
+                             : ", fsd_window = " + std::to_string(fsd_.window);
+    return s;
 }
 
 SpectralGenRay GrPathSampler::AlongLobe(const SpectralGenRay &g, const SurfaceInteraction &si,

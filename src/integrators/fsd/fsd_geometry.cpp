@@ -208,6 +208,8 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
     ev->gatherRadius = std::sqrt(5.0) * ev->halfWidth * (1 + 1e-9);
     ev->heroBeta2 = Beta2At(g.k[0], g.beta2[0], g.rho[0], t);
     ev->edges.clear();
+    ev->beyond = 0;
+    auto reach = [&](double d) { ev->beyond = std::clamp(std::max(ev->beyond, d - t), 0.0, ev->gatherRadius); };
     const Frame &f = ev->frame;
     const double rho = ev->halfWidth;
     auto toPlane = [&](const Vec3 &x) {
@@ -256,6 +258,7 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
         const double dep[3] = {depth(P[0]), depth(P[1]), depth(P[2])};
         if (dep[0] <= eps && dep[1] <= eps && dep[2] <= eps) continue;  // behind the origin
         const bool clipped = dep[0] <= eps || dep[1] <= eps || dep[2] <= eps;
+        reach(std::max({dep[0], dep[1], dep[2]}));
         std::vector<Vec2> poly;
         std::vector<int> from;  // per polygon vertex: the triangle vertex it is, or −1 if made by the clip
         if (!clipped) {
@@ -338,6 +341,7 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
             const Vec2 c = toPlane(sphere->Center());
             const double r = sphere->Radius();
             if (Length(c) > r + 2 * ev->gatherRadius) continue;
+            reach(depth(sphere->Center()) + r);
             const int nv = CircleVertices(r, 1e-3 * rho);
             // Equal-area polygon: radius r·√(2π/(n sin(2π/n))).
             const double rp = r * std::sqrt(2 * Pi / (nv * std::sin(2 * Pi / nv)));
@@ -352,6 +356,7 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
             const int nv = CircleVertices(rmax, 1e-3 * rho);
             const double scale = std::sqrt(2 * Pi / (nv * std::sin(2 * Pi / nv)));
             const Vec2 c = toPlane(disk->Center());
+            reach(depth(disk->Center()) + rmax);
             for (int k = 0; k < nv; ++k) poly.push_back(c + (toPlane(disk->RimPoint(2 * Pi * k / nv)) - c) * scale);
         } else {
             continue;  // an analytic shape without a known outline casts no FSD shadow

@@ -75,6 +75,9 @@ struct Event {
     std::vector<double> coveredMass;
     double coveredFraction = 0;
     double heroBeta2 = 0;                // β² of the hero at the event [m²]
+    /// How far the gathered geometry reaches beyond p along d [m], in [0, gatherRadius]: a ray
+    /// leaving the event starts there, past what the mask already accounts for (fsd_kernel.h).
+    double beyond = 0;
 };
 
 enum class Search {
