@@ -5,6 +5,10 @@
 //     pixels, across the shadow boundary and the first 5 fringes, within 2e-2 of the unobstructed
 //     irradiance; the same scene without FSD (a sharp shadow) and a reference with the edge moved
 //     by a tenth of a Fresnel zone are rejected.
+//   * A slit between two boxes and a disc hole in a mesh plate (scenes/validation/fsd_openings.wscene)
+//     against `rs` on an aperture plate with the same openings: within 2e-2 of the peak over the
+//     central lobe and the first side lobes; a slit 5 % wider is rejected.
+//   * Energy: the flux through the slit and the hole over the whole row is at most the open flux.
 //   * Edges outside every footprint: fsd on and off render bit-identical images.
 #include <gtest/gtest.h>
 
@@ -77,6 +81,46 @@ INSTANTIATE_TEST_SUITE_P(Scales, FsdRenderKnifeEdge, ::testing::Values(1.0, 1e4)
                          [](const ::testing::TestParamInfo<double> &i) {
                              return i.param == 1.0 ? std::string("visible") : std::string("mm_wave");
                          });
+
+const std::string kOpenings = test::ValidationScene("fsd_openings.wscene");
+
+TEST(FsdRender, SlitAndHoleOfMeshesMatchRsOnAnAperturePlate) {
+    for (const char *opening : {"slit", "hole"}) {
+        const Row fsd = RenderRow(kOpenings, {{"opening", opening}}, "grt");
+        const Row rs = RenderRow(kOpenings, {{"opening", opening}, {"obstacle", "plate"}}, "rs");
+        ASSERT_EQ(fsd.v.size(), 80u);
+        ASSERT_EQ(rs.v.size(), fsd.v.size());
+        // The central lobe and the first side lobes: |x| ≤ 75 µm covers the first two side lobes of
+        // the slit (zeros at λz/b = 25, 50, 75 µm) and of the hole (Airy zeros at 30.5, 55.8 µm).
+        const double diff = test::MaxDiffOfPeak(fsd, rs);
+        EXPECT_LT(diff, 2e-2) << opening;
+        EXPECT_GT(rs.Peak(), 0.3) << opening;  // the lobe is there (the slit 0.77, the hole 0.38)
+        std::printf("%s of meshes (grt + fsd) vs rs on an aperture plate: max diff %.2e of the peak\n", opening, diff);
+    }
+    // The tolerance discriminates: the same slit 5 % wider is rejected.
+    const Row fsd = RenderRow(kOpenings, {}, "grt");
+    const Row wider = RenderRow(kOpenings, {{"obstacle", "plate"}, {"b", "21 um"}}, "rs");
+    EXPECT_GT(test::MaxDiffOfPeak(fsd, wider), 2e-2);
+}
+
+TEST(FsdRender, FsdNeverCreatesLight) {
+    // Over a row much wider than the pattern, Σ I·pitch is the flux per unit length through the
+    // slit (b·E) and at most it: the diffracted light beyond the row and the angles the pixel's
+    // GR does not see (docs/fsd.md §5) are lost, nothing is gained. A hole: Σ over a row, at most
+    // the flux per unit length of the open lines through it (≤ 2a·E at the centre line).
+    const Row slit = RenderRow(kOpenings, {{"width", "2000 um"}}, "grt");
+    double flux = 0;
+    for (double v : slit.v) flux += v * 2e-6;
+    const double open = 20e-6;
+    EXPECT_LE(flux, open * (1 + 1e-3));
+    EXPECT_GT(flux, 0.9 * open);
+    std::printf("slit: flux over a 2 mm row %.4f of the open flux\n", flux / open);
+    // Without FSD the sharp slit passes exactly its width (the pixel centres inside it).
+    const Row sharp = RenderRow(kOpenings, {{"width", "2000 um"}, {"fsd", "false"}}, "grt");
+    double sharpFlux = 0;
+    for (double v : sharp.v) sharpFlux += v * 2e-6;
+    EXPECT_NEAR(sharpFlux, open, 2e-6 + 1e-9);
+}
 
 TEST(FsdRender, EdgesOutsideEveryFootprintRenderBitIdentical) {
     // The box behind the sensor: no GR's footprint meets it; paths are traced (4 spp over the

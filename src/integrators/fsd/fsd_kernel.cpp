@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "materials/aperture_integral.h"
+
 namespace phasor::fsd {
 
 namespace {
@@ -92,15 +94,32 @@ std::optional<LobeResponse> EventKernel::EvalLobe(int lobe, const Vec3 &wo) cons
 
 SampledSpectrum Transmission(const Event &ev, const SpectralGenRay &g, const SampledWavelengths &wl,
                              const Settings &s, const Vec3 &wo, const IncidentWave &w) {
-    Event free = ev;
-    free.edges.clear();
-    free.mask = DecomposeUnion({}, 2 * ev.halfWidth, ev.halfWidth);
-    free.coveredMass.clear();
-    free.coveredFraction = 0;
-    const Lobe masked(ev, g, wl, s), open(free, g, wl, s);
+    const Lobe masked(ev, g, wl, s);
+    // The unobstructed GR's |A|² in closed form (theory §2.4): the Gaussian integral of the
+    // aperture integrand's quadratic form over the whole plane, ∫exp(−xᵀMx + i bᵀx) d²x =
+    // π/√det M · exp(−bᵀM⁻¹b/4) — exact for the GR on its own axis (no oblique cut, no beam
+    // evolution), and free of the quadrature the masked lobe needs. A beam goes through the box.
+    std::optional<Lobe> openBox;
+    if (w.beam) {
+        Event free = ev;
+        free.edges.clear();
+        free.mask = DecomposeUnion({}, 2 * ev.halfWidth, ev.halfWidth);
+        free.coveredMass.clear();
+        free.coveredFraction = 0;
+        openBox.emplace(free, g, wl, s);
+    }
+    const Frame &f = ev.frame;
     SampledSpectrum r(0.0);
     for (int i = 0; i < std::min(wl.Count(), g.count); ++i) {
-        const double a0 = std::norm(open.Amplitude(i, -wo, w));
+        double a0;
+        if (openBox) {
+            a0 = std::norm(openBox->Amplitude(i, -wo, w));
+        } else {
+            const PlateGaussian pg = MakePlateGaussian(f.n, -wo, f.s, f.t, f.n, g.k[i], g.beta2[i], g.rho[i], w.dist, s.window);
+            const Complex det = pg.axx * pg.ayy - pg.axy * pg.axy;
+            const Complex q = (pg.bx * pg.bx * pg.ayy - 2.0 * pg.bx * pg.by * pg.axy + pg.by * pg.by * pg.axx) / det;
+            a0 = Pi / (g.beta2[i] * std::abs(det)) * std::exp(-0.5 * q.real());  // |(πβ²)^{−1/2}·π/√det·e^{−q/4}|²
+        }
         if (a0 > 0) r[i] = std::norm(masked.Amplitude(i, -wo, w)) / a0;
     }
     return r;
