@@ -321,7 +321,7 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
         if (g_.pixel.LabelOnly() && !(si && si->material && si->material->IsFootprintAware())) break;
         // Free-space diffraction at edges inside the footprint (docs/fsd.md §8); a spread-free GR
         // is a classical ray and shadows sharply.
-        if (paths_.Fsd().enabled && !spreadFree_ && depth < maxDepth) {
+        if (paths_.Fsd().enabled && !spreadFree_ && depth != maxDepth) {
             const FsdStep step = FreeSpaceDiffraction(si, depth);
             if (step == FsdStep::Scattered) continue;
             if (step == FsdStep::Ended) break;
@@ -374,7 +374,7 @@ typename PathEstimate<Sink>::FsdStep PathEstimate<Sink>::FreeSpaceDiffraction(st
     const fsd::Settings &settings = paths_.Fsd();
     if (fsd::FindEvent(scene_, paths_.FsdOccluders(scene_), g_, si ? si->t : Infinity, leaving_, settings, &ev) !=
         fsd::Search::Event)
-        return FsdStep::Pass;  // nothing in the footprint, or all of it: the ordinary hit
+        return FsdStep::Pass;  // nothing in the footprint, or all of it: the ordinary hit  // nothing in the footprint, or all of it: the ordinary hit
     const double covered = ev.coveredFraction;
     const fsd::EventKernel &k = fsdEvents_.emplace_back(std::move(ev), g_, wl_, settings);
     const SurfaceInteraction &at = k.Interaction();

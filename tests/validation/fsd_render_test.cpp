@@ -8,7 +8,10 @@
 //   * A slit between two boxes and a disc hole in a mesh plate (scenes/validation/fsd_openings.wscene)
 //     against `rs` on an aperture plate with the same openings: within 2e-2 of the peak over the
 //     central lobe and the first side lobes; a slit 5 % wider is rejected.
-//   * Energy: the flux through the slit and the hole over the whole row is at most the open flux.
+//   * Energy: the flux through the slit over a wide row is at most the open flux; a furnace (a
+//     uniform emitting room around a white plate, radiance Le everywhere) with every camera GR
+//     meeting the plate's edges reads Le, not more (t-test on independent replicas; a 20 % brighter
+//     room is rejected).
 //   * Edges outside every footprint: fsd on and off render bit-identical images.
 #include <gtest/gtest.h>
 
@@ -17,6 +20,7 @@
 
 #include "core/numerics/gauss_legendre.h"
 #include "validation/fresnel_reference.h"
+#include "support/stats.h"
 #include "validation/render_row.h"
 
 namespace phasor {
@@ -120,6 +124,40 @@ TEST(FsdRender, FsdNeverCreatesLight) {
     double sharpFlux = 0;
     for (double v : sharp.v) sharpFlux += v * 2e-6;
     EXPECT_NEAR(sharpFlux, open, 2e-6 + 1e-9);
+}
+
+// A room (a sphere emitting Le = 1 W/m²/sr over the default flat band inwards, black) around a thin
+// white plate (albedo 1) whose corner a camera views: radiance Le everywhere. The camera GRs' waist
+// (~13 µm) is far below the plate (800 µm): inside the thin-obstacle regime of docs/fsd.md §5.
+const char *kFurnace = R"(wscene 2
+Define gain = 1
+Define fsd = true
+Material "diffuse" "white" { reflectance = 1 }
+Shape "sphere" "room" { radius = 4 mm }
+Light "area" "glow" { shape = @room  two_sided = true  radiance = $gain * 1 W/m^2/sr }
+Shape "trianglemesh" "plate" {
+    positions = [-4 -4 -4  4 -4 -4  -4 4 -4  4 4 -4  -4 -4 -3.8  4 -4 -3.8  -4 4 -3.8  4 4 -3.8] * 100 um
+    indices = [0 2 3  0 3 1   4 5 7  4 7 6   0 1 5  0 5 4   2 6 7  2 7 3   0 4 6  0 6 2   1 3 7  1 7 5]
+    material = @white
+}
+Detector "perspective" "cam" { resolution = [4 1]  fov = 3 deg  to_world = lookat(eye = [0 0 -3] mm, target = [400 400 -400] um, up = [0 1 0]) }
+Integrator "grt" "grt" { max_depth = -1  rr_depth = 1  fsd = $fsd }
+Render { detector = @cam  integrator = @grt  spp = 64 }
+)";
+
+TEST(FsdRender, FurnaceWithEdgesReadsTheRoomsRadiance) {
+    constexpr double FlatBand = 470e-9;  // the default flat band [m]: pixels read Le / FlatBand
+    auto mean = [&](const char *gain) {
+        auto scene = test::BuildSceneText(kFurnace, "", {{"gain", gain}});
+        return scene ? test::ImageOverReplicas(test::RenderReplicas(*scene, 128, 12, 7)) : test::ReplicaEstimate{};
+    };
+    const test::ReplicaEstimate e = mean("1");
+    const test::TTestResult t = test::MeanTTest(e.mean, e.varianceOfMean, e.dof, 1 / FlatBand);
+    EXPECT_GT(t.pValue, 1e-3) << t.ToString();
+    std::printf("furnace with edges: %.5f ± %.5f of Le (%s)\n", e.mean * FlatBand, e.StdError() * FlatBand,
+                t.ToString().c_str());
+    const test::ReplicaEstimate b = mean("1.2");
+    EXPECT_LT(test::MeanTTest(b.mean, b.varianceOfMean, b.dof, 1 / FlatBand).pValue, 1e-3);
 }
 
 TEST(FsdRender, EdgesOutsideEveryFootprintRenderBitIdentical) {

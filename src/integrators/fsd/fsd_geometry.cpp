@@ -338,6 +338,7 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
         std::vector<Vec2> poly;
         if (const auto *sphere = dynamic_cast<const AnalyticSphere *>(shape)) {
             if (depth(sphere->Center()) <= eps) continue;
+            if (LengthSquared(g.o - sphere->Center()) < sphere->Radius() * sphere->Radius()) continue;  // a room
             const Vec2 c = toPlane(sphere->Center());
             const double r = sphere->Radius();
             if (Length(c) > r + 2 * ev->gatherRadius) continue;
@@ -418,6 +419,9 @@ Search FindEvent(const Scene &scene, const Occluders &occ, const SpectralGenRay 
                 dist = AxisTriangle(g.o, g.d, t, tStop, mesh->positions[idx[0]], mesh->positions[idx[1]],
                                     mesh->positions[idx[2]], &tau);
             } else if (const auto *sphere = dynamic_cast<const AnalyticSphere *>(shape)) {
+                // A sphere around the GR's origin (a room) has no outline in its way: its inside
+                // is met only where the mean ray hits it.
+                if (LengthSquared(g.o - sphere->Center()) < sphere->Radius() * sphere->Radius()) return;
                 tau = std::clamp(Dot(sphere->Center() - g.o, g.d), t, tStop);
                 dist = std::max(0.0, Length(g.o + g.d * tau - sphere->Center()) - sphere->Radius());
             } else if (const auto *disk = dynamic_cast<const AnalyticDisk *>(shape)) {
