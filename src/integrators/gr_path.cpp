@@ -3,6 +3,8 @@
 #include "integrators/gr_path.h"
 
 #include "core/render/lobe_average.h"
+#include <cstdio>
+
 #include "core/render/registry.h"
 
 namespace phasor::grpath {
@@ -63,6 +65,20 @@ std::vector<ParamSpec> PathAndFsdParams() {
 GrPathSampler::GrPathSampler(const ParamDict &d)
     : GrPathSampler(d.GetInt("max_depth"), d.GetInt("rr_depth"), d.GetInt("light_samples"),
                     fsd::SettingsFromParams(d)) {}
+
+void GrPathSampler::NoteFsd(const Scene &scene, Diagnostics &diag) const {
+    if (fsd_.enabled) return;
+    const Bounds3 b = scene.Bounds();
+    const double size = b.Empty() ? 0 : Length(b.Diagonal()), lambda = scene.Wavelengths().LambdaMax();
+    if (!(size > 0) || !(lambda >= 1e-4 * size) || !FsdOccluders(scene).Any()) return;
+    char msg[320];
+    std::snprintf(msg, sizeof msg,
+                  "free-space diffraction at edges is off (fsd = false): the scene is only %.3g wavelengths "
+                  "across (lambda up to %.3g m), so the edges of opaque geometry shadow sharply where light "
+                  "would bend around them; set fsd = true on the integrator (docs/fsd.md)",
+                  size / lambda, lambda);
+    diag.Report(Diagnostic{Severity::Note, scene.Where(&scene.GetIntegrator()), msg, {}});
+}
 
 std::string GrPathSampler::ParamString() const {
     std::string s = "max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) +

@@ -137,6 +137,9 @@ class GrPathSampler {
     const fsd::Settings &Fsd() const { return fsd_; }
     /// `max_depth = …, rr_depth = …, light_samples = …, fsd = …` for ToString.
     std::string ParamString() const;
+    /// Integrator::Validate's part for FSD: with `fsd = false` a note when the scene's longest
+    /// wavelength is at least 10⁻⁴ of its size and opaque geometry could diffract (docs/fsd.md §6).
+    void NoteFsd(const Scene &scene, Diagnostics &diag) const;
 
     /// `grt`'s estimate for pixel (x, y) (PixelIntegrator::EstimatePixel), reporting to `sink`.
     /// Kernels are prepared in `scratch` (the caller resets it between samples).

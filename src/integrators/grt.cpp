@@ -72,6 +72,10 @@ class GrtIntegrator final : public PixelIntegrator {
     }
 
     bool WaveOptical() const override { return true; }
+    void Validate(const Scene &scene, Diagnostics &diag) const override {
+        PixelIntegrator::Validate(scene, diag);
+        paths_.NoteFsd(scene, diag);
+    }
     std::string ToString() const override {
         return "grt { " + paths_.ParamString() + " }";
     }

@@ -108,6 +108,10 @@ class SampleSolveIntegrator final : public PixelIntegrator {
     }
 
     bool WaveOptical() const override { return true; }
+    void Validate(const Scene &scene, Diagnostics &diag) const override {
+        PixelIntegrator::Validate(scene, diag);
+        paths_.NoteFsd(scene, diag);
+    }
     /// grt's, and it carries polarisation.
     IntegratorSupport Support() const override {
         IntegratorSupport s = grpath::PathSupport();

@@ -70,6 +70,10 @@ TEST_P(FsdRenderKnifeEdge, RowMatchesPixelIntegratedFresnel) {
         EXPECT_NEAR(row.v[i], ref[i], 2e-2) << "scale " << scale << ", pixel " << i << " (w = " << w << ")";
     }
     EXPECT_GE(counted, 45);
+    // sample_solve samples the same paths and solves them forward: the same row.
+    const Row solved = RenderRow(kKnife, defines, "sample_solve");
+    ASSERT_EQ(solved.v.size(), row.v.size());
+    for (std::size_t i = 0; i < row.v.size(); ++i) EXPECT_NEAR(solved.v[i], row.v[i], 1e-6) << "sample_solve, pixel " << i;
     // The tolerance discriminates: the edge a tenth of a zone away, and a sharp shadow, are rejected.
     EXPECT_GT(worstMoved, 2e-2);
     const Row sharp = RenderRow(kKnife, {{"scale", std::to_string(scale)}, {"fsd", "false"}}, "grt");
