@@ -435,12 +435,14 @@ std::optional<SampledSpectrum> PathEstimate<Sink>::FsdTransmission(const Spectra
                                          settings, &ev);
     if (r == fsd::Search::None) return std::nullopt;
     if (r == fsd::Search::Blocked) return SampledSpectrum(0.0);
-    // The rest of the way, from the far side of the event's geometry (fsd_kernel.h).
+    // The rest of the way, from the far side of the event's geometry (fsd_kernel.h); nothing is
+    // left when the source lies within it.
     const double from = ev.t + fsd::LeaveDistance(ev);
-    ++stats_.rays;
-    if (!(from < dist) || scene_.GetAccel().Occluded(Ray{h.o + wi * from, wi}, 0,
-                                                   std::isinf(dist) ? Infinity : (dist - from) * (1 - 1e-7)))
-        return SampledSpectrum(0.0);
+    if (from < dist) {
+        ++stats_.rays;
+        if (scene_.GetAccel().Occluded(Ray{h.o + wi * from, wi}, 0, std::isinf(dist) ? Infinity : (dist - from) * (1 - 1e-7)))
+            return SampledSpectrum(0.0);
+    }
     h.Propagate(ev.t);
     h.o = ev.p;
     return fsd::Transmission(ev, h, wl_, settings, wi, IncidentWave{dist - ev.t});
