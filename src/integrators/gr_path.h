@@ -432,9 +432,12 @@ std::optional<SampledSpectrum> PathEstimate<Sink>::FsdTransmission(const Spectra
     fsd::Event ev;
     const fsd::Settings &settings = paths_.Fsd();
     const fsd::Search r = fsd::FindEvent(scene_, paths_.FsdOccluders(scene_), h, tEnd, si ? si->shape : nullptr,
-                                         settings, &ev);
+                                         settings, &ev, nullptr, dist);
     if (r == fsd::Search::None) return std::nullopt;
     if (r == fsd::Search::Blocked) return SampledSpectrum(0.0);
+    // A source closer than 4ϱ to the event: its spherical wave is not paraxial over the footprint
+    // (docs/fsd.md §5); measured as without FSD.
+    if (dist - ev.t < 4 * ev.halfWidth) return std::nullopt;
     // The rest of the way, from the far side of the event's geometry (fsd_kernel.h); nothing is
     // left when the source lies within it.
     const double from = ev.t + fsd::LeaveDistance(ev);

@@ -198,7 +198,7 @@ double GaussianMass(const Trapezoid &tr, double beta2) {
 }
 
 void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g, double t, const Shape *exclude,
-               const Settings &s, Event *ev, SearchCost *cost) {
+               const Settings &s, Event *ev, SearchCost *cost, double tEnd) {
     ev->t = t;
     ev->p = g.o + g.d * t;
     ev->frame = Frame::FromNormal(g.d);
@@ -216,8 +216,10 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
         const Vec3 r = x - ev->p;
         return Vec2(Dot(r, f.s), Dot(r, f.t));
     };
-    // Depth from the segment's origin: geometry behind the GR's origin is not in its way.
+    // Depth from the segment's origin: geometry behind the GR's origin or beyond the segment's end
+    // (the hit, a source) is not in its way.
     const double eps = 1e-9 * (rho + t);
+    const double far = tEnd;
     auto depth = [&](const Vec3 &x) { return Dot(x - g.o, g.d); };
 
     // Gather: every opaque primitive within gatherRadius of p.
@@ -256,24 +258,33 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
         // Exact test: the triangle meets the gather ball.
         if (LengthSquared(ClosestOnTriangle(ev->p, P[0], P[1], P[2]) - ev->p) > r2) continue;
         const double dep[3] = {depth(P[0]), depth(P[1]), depth(P[2])};
-        if (dep[0] <= eps && dep[1] <= eps && dep[2] <= eps) continue;  // behind the origin
-        const bool clipped = dep[0] <= eps || dep[1] <= eps || dep[2] <= eps;
-        reach(std::max({dep[0], dep[1], dep[2]}));
-        std::vector<Vec2> poly;
-        std::vector<int> from;  // per polygon vertex: the triangle vertex it is, or −1 if made by the clip
-        if (!clipped) {
-            for (int i = 0; i < 3; ++i) poly.push_back(toPlane(P[i])), from.push_back(i);
-        } else {
-            for (int i = 0; i < 3; ++i) {
-                const int j = (i + 1) % 3;
-                if (dep[i] > eps) poly.push_back(toPlane(P[i])), from.push_back(i);
-                if ((dep[i] > eps) != (dep[j] > eps)) {
-                    const double a = (eps - dep[i]) / (dep[j] - dep[i]);
-                    poly.push_back(toPlane(P[i] + (P[j] - P[i]) * a));
-                    from.push_back(-1);
+        // Only the part between the GR's origin and the segment's end is in its way.
+        if (std::max({dep[0], dep[1], dep[2]}) <= eps || std::min({dep[0], dep[1], dep[2]}) >= far) continue;
+        const bool clipped = std::min({dep[0], dep[1], dep[2]}) <= eps || std::max({dep[0], dep[1], dep[2]}) >= far;
+        reach(std::min(std::max({dep[0], dep[1], dep[2]}), far));
+        // The polygon (3-D points with the triangle vertex each is, −1 if made by a clip), clipped
+        // to eps < depth < far (Sutherland–Hodgman, one plane after the other).
+        std::vector<std::pair<Vec3, int>> pts = {{P[0], 0}, {P[1], 1}, {P[2], 2}};
+        if (clipped) {
+            for (int side = 0; side < 2; ++side) {
+                auto inside = [&](const Vec3 &x) { return side == 0 ? depth(x) > eps : depth(x) < far; };
+                const double bound = side == 0 ? eps : far;
+                std::vector<std::pair<Vec3, int>> out;
+                for (std::size_t i = 0; i < pts.size(); ++i) {
+                    const auto &a = pts[i], &b = pts[(i + 1) % pts.size()];
+                    if (inside(a.first)) out.push_back(a);
+                    if (inside(a.first) != inside(b.first)) {
+                        const double da = depth(a.first), db = depth(b.first);
+                        out.push_back({a.first + (b.first - a.first) * ((bound - da) / (db - da)), -1});
+                    }
                 }
+                pts.swap(out);
             }
         }
+        std::vector<Vec2> poly;
+        std::vector<int> from;
+        for (const auto &[x, i] : pts) poly.push_back(toPlane(x)), from.push_back(i);
+        if (poly.size() < 3) continue;
         double area2 = 0, size2 = 0;
         for (std::size_t i = 0; i < poly.size(); ++i) {
             const Vec2 &a = poly[i], &b = poly[(i + 1) % poly.size()];
@@ -386,7 +397,7 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
 }
 
 Search FindEvent(const Scene &scene, const Occluders &occ, const SpectralGenRay &g, double tEnd, const Shape *exclude,
-                 const Settings &s, Event *ev, SearchCost *cost) {
+                 const Settings &s, Event *ev, SearchCost *cost, double source) {
     if (!occ.Any()) return Search::None;
     const Accel &accel = scene.GetAccel();
     const auto &shapes = accel.Shapes();
@@ -448,7 +459,7 @@ Search FindEvent(const Scene &scene, const Occluders &occ, const SpectralGenRay 
         });
         if (cost) ++cost->ballQueries;
         if (std::isfinite(bestDist)) {
-            BuildMask(scene, occ, g, bestTau, exclude, s, ev, cost);
+            BuildMask(scene, occ, g, bestTau, exclude, s, ev, cost, source);
             if (ev->coveredFraction > 1 - 1e-5) return Search::Blocked;
             if (ev->coveredFraction >= 1e-5) return Search::Event;
             // Negligible (geometry at the rim of the footprint): walk on past it.
