@@ -70,7 +70,7 @@ void GrPathSampler::NoteFsd(const Scene &scene, Diagnostics &diag) const {
     if (fsd_.enabled) return;
     const Bounds3 b = scene.Bounds();
     const double size = b.Empty() ? 0 : Length(b.Diagonal()), lambda = scene.Wavelengths().LambdaMax();
-    if (!(size > 0) || !(lambda >= 1e-4 * size) || !FsdOccluders(scene).Any()) return;
+    if (!(size > 0) || !(lambda >= 1e-3 * size) || !FsdOccluders(scene).Any()) return;
     char msg[320];
     std::snprintf(msg, sizeof msg,
                   "free-space diffraction at edges is off (fsd = false): the scene is only %.3g wavelengths "

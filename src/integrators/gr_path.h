@@ -138,7 +138,7 @@ class GrPathSampler {
     /// `max_depth = …, rr_depth = …, light_samples = …, fsd = …` for ToString.
     std::string ParamString() const;
     /// Integrator::Validate's part for FSD: with `fsd = false` a note when the scene's longest
-    /// wavelength is at least 10⁻⁴ of its size and opaque geometry could diffract (docs/fsd.md §6).
+    /// wavelength is at least 10⁻³ of its size and opaque geometry could diffract (docs/fsd.md §6).
     void NoteFsd(const Scene &scene, Diagnostics &diag) const;
 
     /// `grt`'s estimate for pixel (x, y) (PixelIntegrator::EstimatePixel), reporting to `sink`.
