@@ -1,12 +1,13 @@
 #!/usr/bin/env python3
 # SPDX-License-Identifier: Apache-2.0
-# Writes the FSD test plates of scenes/assets (docs/fsd.md): flat, single-sided, zero-thickness
+# Writes the FSD test plates of scenes/validation/fsd_plates (docs/fsd.md; not scenes/assets, which
+# tools/make_assets writes): flat, single-sided, zero-thickness
 # triangle meshes in the plane z = 0 — a square [-64, 64]^2 with a hole, triangulated as a ring of
 # quads between the hole's vertices and the square's points at the same angles. Unit: the hole's
 # size (scale with to_world).
 #   fsd_disc_hole.obj  a 256-gon of the area of the unit circle (radius 1)
 #   fsd_star_hole.obj  a 5-pointed star, outer radius 1, inner radius 0.45 (the GR paper's Fig. S3)
-# Usage: scripts/make_fsd_plates.py scenes/assets
+# Usage: scripts/make_fsd_plates.py scenes/validation/fsd_plates
 import math
 import sys
 
@@ -61,4 +62,4 @@ def main(out):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1] if len(sys.argv) > 1 else "scenes/assets")
+    main(sys.argv[1] if len(sys.argv) > 1 else "scenes/validation/fsd_plates")
