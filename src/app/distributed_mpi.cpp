@@ -46,11 +46,10 @@ int NextTag() { return 100 + (gPhase++ % 30000); }  // MPI guarantees tags up to
 
 int gErr = 2;  // where a rank other than 0 reports a fatal error (its stderr before Start silenced it)
 
-// Sleeps between polls: 50 µs after activity, doubling while idle up to `cap` µs (short while an
-// answer is expected, 2 ms otherwise: a sleeping poller costs next to nothing).
+// Sleeps between the polls of a one-off wait (a collective, the last sends of a phase): 50 µs,
+// doubling up to `cap` µs.
 class Idle {
   public:
-    void Busy() { us_ = 50; }
     int Next(int cap) {
         const int us = std::min(us_, cap);
         us_ = std::min(us_ * 2, 2000);
@@ -61,7 +60,16 @@ class Idle {
   private:
     int us_ = 50;
 };
-constexpr int AwaitingUs = 100;  // the longest poll interval while items are out or asked for
+// The longest poll intervals [µs]: rank 0's server while items are out or asked for (a helper rank
+// keeps ≥ SlackSeconds of work queued, so an answer within a millisecond is in time); a helper's
+// client while it waits for items and has none queued; either while a message it receives is part-way between
+// two ranks (it moves only as both sides call MPI).
+constexpr int ServingUs = 1000;
+constexpr int AwaitingUs = 100;
+constexpr int InFlightUs = 20;
+constexpr std::size_t MessageBytes = 32000;  // the largest message of several items
+constexpr int IdleUs = 2000;  // otherwise: a stop or the end of a phase still arrives within 2 ms
+constexpr double SlackSeconds = 0.008;
 
 void WaitFor(MPI_Request &r) {
     Idle idle;
@@ -86,28 +94,47 @@ enum : char {
 
 using Bytes = std::string;
 
-// One phase's traffic on one thread: non-blocking sends kept until complete, polled receives.
+// One phase's traffic on one thread: non-blocking sends kept until complete, and non-blocking
+// receives of matched messages (MPI_Improbe + MPI_Imrecv), handed over in the order they were
+// matched once complete. Nothing here blocks: a large message moves in several steps (Open MPI's
+// rendezvous: both sides must call MPI for it to progress), and a blocking receive would spin on
+// a core the render threads need until the sender's thread next wakes up. While a receive is
+// incomplete the owner polls again soon (Receiving). A send's completion waits for the receiver
+// (its next poll), not for us, so pending sends need no faster polling: messages are kept to at
+// most MessageBytes (Open MPI's shared-memory transport sends that much with the message's
+// header, so the data needs no later step from the sender).
 class Channel {
   public:
     explicit Channel(int tag) : tag_(tag) {}
     ~Channel() { Drain(); }
     void Send(int to, Bytes &&bytes) {
-        sends_.push_back({std::move(bytes), MPI_REQUEST_NULL});
-        Out &o = sends_.back();
+        sends_.push_back({std::move(bytes), MPI_REQUEST_NULL, to});
+        Transfer &o = sends_.back();
         MPI_Isend(o.data.data(), int(o.data.size()), MPI_BYTE, to, tag_, MPI_COMM_WORLD, &o.request);
     }
     void Send(int to, char type) { Send(to, Bytes(1, type)); }
-    /// A message of this phase from `from` (MPI_ANY_SOURCE: anyone) if one has arrived.
+    /// The next complete message of this phase from `from` (MPI_ANY_SOURCE: anyone), in the order
+    /// of arrival, if there is one.
     bool Receive(int from, int *source, Bytes *bytes) {
-        int flag = 0;
-        MPI_Status st;
-        MPI_Iprobe(from, tag_, MPI_COMM_WORLD, &flag, &st);
-        if (!flag) return false;
-        int count = 0;
-        MPI_Get_count(&st, MPI_BYTE, &count);
-        bytes->resize(std::size_t(count));
-        MPI_Recv(bytes->data(), count, MPI_BYTE, st.MPI_SOURCE, tag_, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
-        *source = st.MPI_SOURCE;
+        for (;;) {  // start receiving everything that has arrived
+            int flag = 0;
+            MPI_Message message;
+            MPI_Status st;
+            MPI_Improbe(from, tag_, MPI_COMM_WORLD, &flag, &message, &st);
+            if (!flag) break;
+            int count = 0;
+            MPI_Get_count(&st, MPI_BYTE, &count);
+            receives_.push_back({Bytes(std::size_t(count), '\0'), MPI_REQUEST_NULL, st.MPI_SOURCE});
+            Transfer &in = receives_.back();
+            MPI_Imrecv(in.data.data(), count, MPI_BYTE, &message, &in.request);
+        }
+        if (receives_.empty()) return false;
+        int done = 0;
+        MPI_Test(&receives_.front().request, &done, MPI_STATUS_IGNORE);
+        if (!done) return false;
+        *source = receives_.front().peer;
+        *bytes = std::move(receives_.front().data);
+        receives_.pop_front();
         return true;
     }
     void Progress() {
@@ -117,18 +144,26 @@ class Channel {
             it = done ? sends_.erase(it) : std::next(it);
         }
     }
+    /// A send or a receive has started and not completed: it needs this thread's next poll.
+    bool Receiving() const { return !receives_.empty(); }
     void Drain() {
         Idle idle;
-        for (Progress(); !sends_.empty(); Progress()) idle.Wait();
+        for (Progress(); !sends_.empty(); Progress()) idle.Wait(InFlightUs);
+        for (Transfer &in : receives_) {  // matched and not taken (a phase that ended early)
+            for (int done = 0; MPI_Test(&in.request, &done, MPI_STATUS_IGNORE), !done;) idle.Wait(InFlightUs);
+        }
+        receives_.clear();
     }
 
   private:
-    struct Out {
+    struct Transfer {
         Bytes data;
         MPI_Request request;
+        int peer;
     };
     int tag_;
-    std::list<Out> sends_;
+    std::list<Transfer> sends_;
+    std::deque<Transfer> receives_;
 };
 
 // Rank 0's side of a phase, on its own thread: answers the other ranks' requests with items from
@@ -157,7 +192,6 @@ class Server {
         bool stopSent = false, endSent = false;
         int acks = 0;
         long long out = 0;  // items handed to other ranks and not back yet
-        Idle idle;
         for (;;) {
             bool busy = false;
             int src = 0;
@@ -188,20 +222,30 @@ class Server {
             }
             if (!endSent)
                 for (int w = 1; w < gSize; ++w) {
+                    // The items a rank asked for, in messages of at most MessageBytes unless one
+                    // item is larger.
                     ByteWriter items;
                     int32_t count = 0;
-                    items.Put(MsgItems);
-                    items.Put(count);
+                    auto send = [&] {
+                        if (count == 0) return;
+                        out += count;
+                        std::memcpy(items.bytes.data() + 1, &count, sizeof count);
+                        ch.Send(w, std::move(items.bytes));
+                        items = ByteWriter();
+                        count = 0;
+                        busy = true;
+                    };
                     for (Bytes item; want[std::size_t(w)] > 0 && next_(item); --want[std::size_t(w)]) {
+                        if (count > 0 && items.bytes.size() + sizeof(int32_t) + item.size() > MessageBytes) send();
+                        if (count == 0) {
+                            items.Put(MsgItems);
+                            items.Put(count);
+                        }
                         items.Put(int32_t(item.size()));
                         items.PutBytes(item.data(), item.size());
                         ++count;
                     }
-                    if (count == 0) continue;
-                    out += count;
-                    std::memcpy(items.bytes.data() + 1, &count, sizeof count);
-                    ch.Send(w, std::move(items.bytes));
-                    busy = true;
+                    send();
                 }
             if (finish_.load() && !endSent) {
                 for (int w = 1; w < gSize; ++w) ch.Send(w, MsgEnd);
@@ -210,8 +254,12 @@ class Server {
             if (endSent && acks == gSize - 1) break;
             ch.Progress();
             const bool awaiting = out > 0 || std::any_of(want.begin(), want.end(), [](int w) { return w > 0; });
-            if (busy) idle.Busy();
-            else idle.Wait(awaiting ? AwaitingUs : 2000);
+            // Poll again at once after activity, else after an interval fixed by what is pending:
+            // a rank's work queue holds SlackSeconds, so no shorter interval is needed (each wake-up
+            // of this thread takes the core from one of rank 0's render threads).
+            if (!busy)
+                std::this_thread::sleep_for(
+                    std::chrono::microseconds(ch.Receiving() ? InFlightUs : awaiting ? ServingUs : IdleUs));
         }
         ch.Drain();
     }
@@ -225,13 +273,15 @@ class Server {
     std::thread thread_;
 };
 
-// Another rank's side of a phase, on its own thread: keeps up to `depth` items in hand (queued or
-// being worked on), sends results, stops on rank 0's word (`stop` set) and reports its own stop
-// (`localStop` set: MsgStopped with the signal) so that rank 0 stops everyone.
+// Another rank's side of a phase, on its own thread: keeps at least `depth` items in hand (queued or
+// being worked on) — with `workers` > 0, as many more as this rank's `workers` threads finish in
+// SlackSeconds (measured as results come in), so that short items do not starve it while rank 0's
+// server sleeps between polls —, sends results, stops on rank 0's word (`stop` set) and reports its
+// own stop (`localStop` set: MsgStopped with the signal) so that rank 0 stops everyone.
 class Client {
   public:
-    Client(int tag, int depth, std::atomic<bool> *stop, const std::atomic<bool> *localStop)
-        : tag_(tag), depth_(depth), stop_(stop), localStop_(localStop) {
+    Client(int tag, int depth, std::atomic<bool> *stop, const std::atomic<bool> *localStop, int workers = 0)
+        : tag_(tag), depth_(depth), workers_(workers), stop_(stop), localStop_(localStop) {
         thread_ = std::thread([this] { Run(); });
     }
     ~Client() {
@@ -271,6 +321,13 @@ class Client {
             results_.push_back(std::move(result));
             --working_;
             event_ = true;
+            const auto now = std::chrono::steady_clock::now();
+            if (workers_ > 0 && lastDone_ != std::chrono::steady_clock::time_point{}) {
+                // Items this rank finishes per second, smoothed over ~16 results.
+                const double dt = std::chrono::duration<double>(now - lastDone_).count();
+                interval_ = interval_ > 0 ? interval_ + (dt - interval_) / 16 : dt;
+            }
+            lastDone_ = now;
         }
         wake_.notify_one();
     }
@@ -280,7 +337,6 @@ class Client {
         Channel ch(tag_);
         int requested = 0;  // asked for and not received yet
         bool stoppedSent = false, ended = false;
-        Idle idle;
         while (!ended) {
             bool busy = false;
             int src = 0;
@@ -309,11 +365,14 @@ class Client {
                 }
             }
             std::deque<Bytes> results;
-            int inHand = 0;
+            int inHand = 0, queued = 0, depth = depth_;
             {
                 std::lock_guard<std::mutex> lock(mutex_);
                 results.swap(results_);
-                inHand = int(queue_.size()) + working_;
+                queued = int(queue_.size());
+                inHand = queued + working_;
+                if (workers_ > 0 && interval_ > 0)
+                    depth = std::max(depth_, workers_ + std::min(MaxSlackItems, int(SlackSeconds / interval_) + 1));
             }
             if (!ended) {
                 for (Bytes &r : results) ch.Send(0, std::move(r));
@@ -325,7 +384,7 @@ class Client {
                     ch.Send(0, std::move(w.bytes));
                     stoppedSent = busy = true;
                 }
-                const int want = depth_ - inHand - requested;
+                const int want = depth - inHand - requested;
                 if (want > 0 && !(stop_ && stop_->load())) {
                     ByteWriter w;
                     w.Put(MsgRequest);
@@ -338,8 +397,10 @@ class Client {
             ch.Progress();
             // Wait for this rank's threads (a result, a starving thread) or the next poll: short
             // while items are asked for, else long (a stop or the end still arrive within 2 ms).
-            if (busy) idle.Busy();
-            const int us = busy ? 0 : idle.Next(requested > 0 ? AwaitingUs : 2000);
+            const int us = busy               ? 0
+                           : ch.Receiving()   ? InFlightUs
+                           : requested > 0 && queued == 0 ? AwaitingUs
+                                                          : IdleUs;
             std::unique_lock<std::mutex> lock(mutex_);
             wake_.wait_for(lock, std::chrono::microseconds(us), [&] { return event_; });
             event_ = false;
@@ -354,7 +415,10 @@ class Client {
         ch.Drain();
     }
 
-    int tag_, depth_;
+    static constexpr int MaxSlackItems = 256;
+    int tag_, depth_, workers_;
+    std::chrono::steady_clock::time_point lastDone_{};
+    double interval_ = 0;  // seconds between results, smoothed
     std::atomic<bool> *stop_;
     const std::atomic<bool> *localStop_;
     std::mutex mutex_;
@@ -408,8 +472,10 @@ void GetTile(ByteReader &r, TileTask &t, bool stokes) {
 // A helper rank's tiles: from its client, back through it.
 class RemoteTiles final : public TileSource {
   public:
-    RemoteTiles(int tag, int depth, bool stokes, std::atomic<bool> *stop, const std::atomic<bool> *localStop)
-        : stokes_(stokes), client_(tag, depth, stop, localStop) {}
+    /// `threads`: this rank's render threads (it keeps ≥ threads + 2 tiles in hand, more when tiles
+    /// are short: Client).
+    RemoteTiles(int tag, int threads, bool stokes, std::atomic<bool> *stop, const std::atomic<bool> *localStop)
+        : stokes_(stokes), client_(tag, threads + 2, stop, localStop, threads) {}
     bool Next(TileTask &task) override {
         Bytes b;
         if (!client_.Next(b)) return false;
@@ -487,10 +553,11 @@ class MpiShare final : public Share {
     }
     TileSource *HelperTiles(Film &film) override {
         // Enough tiles in hand that each render thread finds the next one waiting while the next
-        // request is answered (a 1-spp tile of a showcase scene takes ~1 ms, a round trip ~0.2 ms).
+        // request is answered (a 1-spp tile of a showcase scene takes ~1 ms; rank 0 answers within
+        // ServingUs): RemoteTiles keeps SlackSeconds of this rank's work queued.
         const int threads =
             int(std::max<std::size_t>(1, tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism)));
-        tiles_ = std::make_unique<RemoteTiles>(NextTag(), threads + 2, film.HasStokes(), &stop_, &localStop_);
+        tiles_ = std::make_unique<RemoteTiles>(NextTag(), threads, film.HasStokes(), &stop_, &localStop_);
         return tiles_.get();
     }
 
@@ -605,6 +672,12 @@ bool Available() { return true; }
 
 bool Start(int &argc, char **&argv) {
     if (!LaunchedByMpi()) return true;
+    // Open MPI's shared-memory transport sends messages above 4 KB in two steps, the second only
+    // when the sender's thread next calls MPI; a tile's message (≤ MessageBytes) then waits for
+    // rank 0's server to wake up. Sending up to 32 KB at once makes every tile one step. A value
+    // the user set is kept; other MPI libraries ignore these names.
+    for (const char *name : {"OMPI_MCA_btl_vader_eager_limit", "OMPI_MCA_btl_sm_eager_limit"})
+        ::setenv(name, "32768", 0);
     int provided = 0;
     if (MPI_Init_thread(&argc, &argv, MPI_THREAD_SERIALIZED, &provided) != MPI_SUCCESS) {
         std::fprintf(stderr, "error: MPI could not be started\n");

@@ -3,6 +3,8 @@
 #include "integrators/gr_path.h"
 
 #include "core/render/lobe_average.h"
+#include <cstdio>
+
 #include "core/render/registry.h"
 
 namespace phasor::grpath {
@@ -43,15 +45,48 @@ std::optional<GrMeasurement> GrPathSampler::MeasureOne(const Scene &scene, const
                                                        const SurfaceInteraction *si, const SampledWavelengths &wl,
                                                        PathStats &stats) {
     auto m = light.MeasureGR(g.TimeReversed(), wl);
-    if (!m || m->value.IsZero()) return std::nullopt;
-    ++stats.rays;
-    bool blocked;
-    if (si)
-        blocked = std::isinf(m->dist) ? scene.OccludedDirection(*si, m->wi) : scene.Occluded(*si, si->p + m->wi * m->dist);
-    else
-        blocked = scene.GetAccel().Occluded(Ray{g.o, m->wi}, 0, m->dist * (1 - 1e-7));
-    if (blocked) return std::nullopt;
+    if (!m || m->value.IsZero() || !Unoccluded(scene, *m, g, si, stats)) return std::nullopt;
     return m;
+}
+
+bool GrPathSampler::Unoccluded(const Scene &scene, const GrMeasurement &m, const SpectralGenRay &g,
+                               const SurfaceInteraction *si, PathStats &stats) {
+    ++stats.rays;
+    if (si) return !(std::isinf(m.dist) ? scene.OccludedDirection(*si, m.wi) : scene.Occluded(*si, si->p + m.wi * m.dist));
+    return !scene.GetAccel().Occluded(Ray{g.o, m.wi}, 0, m.dist * (1 - 1e-7));
+}
+
+std::vector<ParamSpec> PathAndFsdParams() {
+    std::vector<ParamSpec> p = PathParams();
+    for (ParamSpec &f : fsd::Params()) p.push_back(std::move(f));
+    return p;
+}
+
+GrPathSampler::GrPathSampler(const ParamDict &d)
+    : GrPathSampler(d.GetInt("max_depth"), d.GetInt("rr_depth"), d.GetInt("light_samples"),
+                    fsd::SettingsFromParams(d)) {}
+
+void GrPathSampler::NoteFsd(const Scene &scene, Diagnostics &diag) const {
+    if (fsd_.enabled) return;
+    const Bounds3 b = scene.Bounds();
+    const double size = b.Empty() ? 0 : Length(b.Diagonal()), lambda = scene.Wavelengths().LambdaMax();
+    if (!(size > 0) || !(lambda >= 1e-3 * size) || !FsdOccluders(scene).Any()) return;
+    char msg[320];
+    std::snprintf(msg, sizeof msg,
+                  "free-space diffraction at edges is off (fsd = false): the scene is only %.3g wavelengths "
+                  "across (lambda up to %.3g m), so the edges of opaque geometry shadow sharply where light "
+                  "would bend around them; set fsd = true on the integrator (docs/fsd.md)",
+                  size / lambda, lambda);
+    diag.Report(Diagnostic{Severity::Note, scene.Where(&scene.GetIntegrator()), msg, {}});
+}
+
+std::string GrPathSampler::ParamString() const {
+    std::string s = "max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) +
+                    ", light_samples = " + std::to_string(lightSamples_) + ", fsd = " + (fsd_.enabled ? "true" : "false");
+    if (fsd_.enabled)
+        s += fsd_.radius > 0 ? ", fsd_radius = " + std::to_string(fsd_.radius) + " m"
+                             : ", fsd_window = " + std::to_string(fsd_.window);
+    return s;
 }
 
 SpectralGenRay GrPathSampler::AlongLobe(const SpectralGenRay &g, const SurfaceInteraction &si,

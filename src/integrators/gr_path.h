@@ -22,6 +22,7 @@
 // to the estimate up to rounding (gr_path_test checks it sample by sample on every validation scene).
 #pragma once
 
+#include <deque>
 #include <functional>
 #include <memory>
 #include <mutex>
@@ -29,6 +30,7 @@
 
 #include "core/render/lobe_average.h"
 #include "core/render/path_common.h"
+#include "integrators/fsd/fsd_kernel.h"
 #include "integrators/lobe_incidence.h"
 
 namespace phasor::grpath {
@@ -119,14 +121,25 @@ std::vector<ParamSpec> PathParams();
 /// polarisation (sample_solve adds it).
 IntegratorSupport PathSupport();
 
+/// The parameters of the path sampling and of free-space diffraction (fsd::Params()).
+std::vector<ParamSpec> PathAndFsdParams();
+
 /// The sampler: `grt`'s parameters and the per-scene D4a-through-lobes table.
 class GrPathSampler {
   public:
-    GrPathSampler(int maxDepth, int rrDepth, int lightSamples)
-        : maxDepth_(maxDepth), rrDepth_(rrDepth), lightSamples_(lightSamples) {}
+    GrPathSampler(int maxDepth, int rrDepth, int lightSamples, const fsd::Settings &fsd = {})
+        : maxDepth_(maxDepth), rrDepth_(rrDepth), lightSamples_(lightSamples), fsd_(fsd) {}
+    /// From the parameters of PathAndFsdParams().
+    explicit GrPathSampler(const ParamDict &d);
     int MaxDepth() const { return maxDepth_; }
     int RrDepth() const { return rrDepth_; }
     int LightSamples() const { return lightSamples_; }
+    const fsd::Settings &Fsd() const { return fsd_; }
+    /// `max_depth = …, rr_depth = …, light_samples = …, fsd = …` for ToString.
+    std::string ParamString() const;
+    /// Integrator::Validate's part for FSD: with `fsd = false` a note when the scene's longest
+    /// wavelength is at least 10⁻³ of its size and opaque geometry could diffract (docs/fsd.md §6).
+    void NoteFsd(const Scene &scene, Diagnostics &diag) const;
 
     /// `grt`'s estimate for pixel (x, y) (PixelIntegrator::EstimatePixel), reporting to `sink`.
     /// Kernels are prepared in `scratch` (the caller resets it between samples).
@@ -139,6 +152,11 @@ class GrPathSampler {
         std::call_once(lobesOnce_, [&] { lobes_ = std::make_unique<const LobeIncidence>(scene); });
         return *lobes_;
     }
+    /// The shapes that cast FSD shadows in the scene: built on first use.
+    const fsd::Occluders &FsdOccluders(const Scene &scene) const {
+        std::call_once(occludersOnce_, [&] { occluders_ = std::make_unique<const fsd::Occluders>(scene); });
+        return *occluders_;
+    }
 
     // ---- helpers of the estimate ----------------------------------------------------------------
     /// Drops the companion wavelengths from the throughput (theory §0 D10); false for a line sample.
@@ -148,6 +166,9 @@ class GrPathSampler {
     static std::optional<GrMeasurement> MeasureOne(const Scene &scene, const Light &light, const SpectralGenRay &g,
                                                    const SurfaceInteraction *si, const SampledWavelengths &wl,
                                                    PathStats &stats);
+    /// The shadow ray of MeasureOne: true if nothing blocks the measurement m from g's origin (or si).
+    static bool Unoccluded(const Scene &scene, const GrMeasurement &m, const SpectralGenRay &g,
+                           const SurfaceInteraction *si, PathStats &stats);
     /// The GR leaving `si` through listed lobe `lobe` at carried wavelength i.
     static SpectralGenRay AlongLobe(const SpectralGenRay &g, const SurfaceInteraction &si, const NearDeltaLobe &lobe,
                                     int i);
@@ -163,8 +184,10 @@ class GrPathSampler {
 
   private:
     int maxDepth_, rrDepth_, lightSamples_;
-    mutable std::once_flag lobesOnce_;
+    fsd::Settings fsd_;
+    mutable std::once_flag lobesOnce_, occludersOnce_;
     mutable std::unique_ptr<const LobeIncidence> lobes_;
+    mutable std::unique_ptr<const fsd::Occluders> occluders_;
 };
 
 // ---- the estimate ---------------------------------------------------------------------------------
@@ -191,7 +214,8 @@ class PathEstimate {
     /// Next-event estimation through the continuous lobes at the vertex (si, k): `light_samples`
     /// estimates, their light positions on a rotated m×m lattice when the count is a square m²
     /// (stratified), else independent.
-    void DirectLight(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
+    /// With skipClosedForm the lights measured in closed form are left out (the GR measured them).
+    void DirectLight(const SurfaceInteraction &si, const PreparedKernel &k, int depth, bool skipClosedForm = false);
     /// D14 through every listed near-delta lobe at the vertex: delta and small sources (plane waves,
     /// lasers, point and spot lights, the sun) measured in closed form along each lobe, weighted by
     /// its a_j averaged over the plane waves each measurement integrates (ThroughLobeWeight, D15);
@@ -200,6 +224,19 @@ class PathEstimate {
     /// Samples one lobe at the vertex and turns the GR into it (theory §3.3, S6.4); Russian roulette.
     /// False if the path ends here.
     bool Continue(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
+
+    /// Free-space diffraction on the segment the current GR g_ is about to travel (docs/fsd.md §8),
+    /// `si` its mean ray's hit. Pass: no event (or the segment ends in an ordinary hit, si as it
+    /// may have been replaced by the covered share's hit); Scattered: the open share left through
+    /// the event's lobe (a vertex at `depth`); Ended: the path ends.
+    enum class FsdStep { Pass, Scattered, Ended };
+    FsdStep FreeSpaceDiffraction(std::optional<SurfaceInteraction> &si, int depth);
+    /// A closed-form wave arriving along −wi from distance `dist` at the GR g (from its origin, or
+    /// from the surface si), with an FSD event on the way: nullopt without an event (the caller's
+    /// shadow ray decides), else the factor the measurement keeps (fsd::Transmission; 0 if
+    /// blocked).
+    std::optional<SampledSpectrum> FsdTransmission(const SpectralGenRay &g, const Vec3 &wi, double dist,
+                                                   const SurfaceInteraction *si);
 
     /// Σ over the closed-form lights of their terms value(m), m what the GR `out` measures of each
     /// from `from` (MeasureOne; from the surface `si` when it leaves one), each light's term reported
@@ -242,6 +279,9 @@ class PathEstimate {
         Vec3 wo;  // local
         SampledSpectrum f;
     } footprint_;
+    /// FSD events of this sample (their kernels are the path's vertices until Run returns).
+    std::deque<fsd::EventKernel> fsdEvents_;
+    const Shape *leaving_ = nullptr;  // the shape the current GR leaves (not an FSD occluder for it)
 };
 
 template <class Sink>
@@ -282,6 +322,13 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
         // A pixel state whose ray only aims it at an aperture plate (PixelState::labelOnly) is
         // measured by a footprint-aware kernel alone.
         if (g_.pixel.LabelOnly() && !(si && si->material && si->material->IsFootprintAware())) break;
+        // Free-space diffraction at edges inside the footprint (docs/fsd.md §8); a spread-free GR
+        // is a classical ray and shadows sharply.
+        if (paths_.Fsd().enabled && !spreadFree_ && depth != maxDepth) {
+            const FsdStep step = FreeSpaceDiffraction(si, depth);
+            if (step == FsdStep::Scattered) continue;
+            if (step == FsdStep::Ended) break;
+        }
         if (!si) {
             const SampledSpectrum le = path::EscapedEmission(scene_, g_.d, wl_, mis_, closedFormDone_);
             FoundEmission(EventKind::Escape, le, depth, nullptr, Infinity);
@@ -318,8 +365,90 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
         DirectLight(*si, k, depth);
         ThroughListedLobes(*si, k, depth);
         if (!Continue(*si, k, depth)) break;
+        leaving_ = si->shape;
     }
     return L_;
+}
+
+template <class Sink>
+typename PathEstimate<Sink>::FsdStep PathEstimate<Sink>::FreeSpaceDiffraction(std::optional<SurfaceInteraction> &si,
+                                                                              int depth) {
+    fsd::Event ev;
+    const fsd::Settings &settings = paths_.Fsd();
+    if (fsd::FindEvent(scene_, paths_.FsdOccluders(scene_), g_, si ? si->t : Infinity, leaving_, settings, &ev) !=
+        fsd::Search::Event)
+        return FsdStep::Pass;  // nothing in the footprint, or all of it: the ordinary hit  // nothing in the footprint, or all of it: the ordinary hit
+    const double covered = ev.coveredFraction;
+    const fsd::EventKernel &k = fsdEvents_.emplace_back(std::move(ev), g_, wl_, settings);
+    const SurfaceInteraction &at = k.Interaction();
+    const SpectralGenRay arriving = g_;
+    g_ = k.Gr();
+    if constexpr (Sink::Records) {
+        Vertex v;
+        v.si = at;
+        v.gr = g_;
+        v.kernel = &k;
+        path_.push_back(v);
+    }
+    // Light through the open share: NEE through the lobe, f·cos·E (the closed-form lights this GR
+    // has measured already are left out: they were scaled by fsd::Transmission).
+    DirectLight(at, k, depth, closedFormDone_);
+    // The covered share goes on to the geometry, the open one leaves through the lobe: one of them,
+    // with the probabilities of their |ψ|² shares.
+    const double u = sampler_.Get1D();
+    const Vec2 u2 = sampler_.Get2D();
+    if (u < covered) {
+        if constexpr (Sink::Records) path_.pop_back();
+        double w = 0;
+        const std::optional<Vec2> x = fsd::SampleCovered(k.GetEvent(), u / covered, u2, &w);
+        if (!x) return FsdStep::Ended;
+        // A ray of the covered share: the segment's origin moved across to the sampled point.
+        const Frame &f = k.GetEvent().frame;
+        g_ = arriving;
+        g_.o += f.s * x->x + f.t * x->y;
+        T_ *= w;
+        ++stats_.rays;
+        si = scene_.Intersect(g_.MeanRay());
+        return FsdStep::Pass;
+    }
+    T_ /= 1 - covered;
+    // The lobe's GR is spread-free; it measures no closed-form light this GR has measured.
+    const bool closedFormDone = closedFormDone_;
+    if (!Continue(at, k, depth)) return FsdStep::Ended;
+    closedFormDone_ = closedFormDone;
+    leaving_ = nullptr;
+    return FsdStep::Scattered;
+}
+
+template <class Sink>
+std::optional<SampledSpectrum> PathEstimate<Sink>::FsdTransmission(const SpectralGenRay &g, const Vec3 &wi, double dist,
+                                                                   const SurfaceInteraction *si) {
+    // The GR aimed at the source (its footprint kept), on its way there.
+    SpectralGenRay h = g;
+    h.Redirect(wi, 1);
+    h.o = si ? si->SpawnOrigin(wi) : g.o;
+    double tEnd = dist;
+    if (auto hit = scene_.Intersect(h.MeanRay())) tEnd = std::min(tEnd, hit->t);
+    fsd::Event ev;
+    const fsd::Settings &settings = paths_.Fsd();
+    const fsd::Search r = fsd::FindEvent(scene_, paths_.FsdOccluders(scene_), h, tEnd, si ? si->shape : nullptr,
+                                         settings, &ev, nullptr, dist);
+    if (r == fsd::Search::None) return std::nullopt;
+    if (r == fsd::Search::Blocked) return SampledSpectrum(0.0);
+    // A source closer than 4ϱ to the event: its spherical wave is not paraxial over the footprint
+    // (docs/fsd.md §5); measured as without FSD.
+    if (dist - ev.t < 4 * ev.halfWidth) return std::nullopt;
+    // The rest of the way, from the far side of the event's geometry (fsd_kernel.h); nothing is
+    // left when the source lies within it.
+    const double from = ev.t + fsd::LeaveDistance(ev);
+    if (from < dist) {
+        ++stats_.rays;
+        if (scene_.GetAccel().Occluded(Ray{h.o + wi * from, wi}, 0, std::isinf(dist) ? Infinity : (dist - from) * (1 - 1e-7)))
+            return SampledSpectrum(0.0);
+    }
+    h.Propagate(ev.t);
+    h.o = ev.p;
+    return fsd::Transmission(ev, h, wl_, settings, wi, IncidentWave{dist - ev.t});
 }
 
 template <class Sink>
@@ -345,10 +474,25 @@ void PathEstimate<Sink>::MeasureAtDetector() {
         const Light *light = sink_.Measured(sceneLight, g_.o, wl_);
         auto inc = light->IncidenceOnGR(g_, wl_);
         if (!inc || inc->irradiance.IsZero()) continue;
-        const SampledSpectrum v = scene_.GetDetector().IntegrateIncidence(*ds_, *inc);
+        SampledSpectrum v = scene_.GetDetector().IntegrateIncidence(*ds_, *inc);
         if (v.IsZero()) continue;
-        ++stats_.rays;
-        if (scene_.GetAccel().Occluded(Ray{g_.o, inc->wi}, 0, inc->dist * (1 - 1e-7))) continue;
+        // Through an FSD event on the way, else the shadow ray. The event's transmission is taken
+        // for a GR of the pixel's sensitivity width σ_pix (β² = β_D²/2): its overlap weights the
+        // interference of the incident and diffracted waves as the pixel's integral of |U|² does
+        // (docs/fsd.md §5).
+        std::optional<SampledSpectrum> fsdT;
+        if (paths_.Fsd().enabled) {
+            SpectralGenRay pixel = g_;
+            for (int i = 0; i < pixel.count; ++i) pixel.beta2[i] *= 0.5;
+            fsdT = FsdTransmission(pixel, inc->wi, inc->dist, nullptr);
+        }
+        if (fsdT) {
+            v *= *fsdT;
+            if (v.IsZero()) continue;
+        } else {
+            ++stats_.rays;
+            if (scene_.GetAccel().Occluded(Ray{g_.o, inc->wi}, 0, inc->dist * (1 - 1e-7))) continue;
+        }
         L_ += v;
         Report([&] {
             Event e;
@@ -409,7 +553,8 @@ void PathEstimate<Sink>::FoundEmission(EventKind kind, const SampledSpectrum &le
 }
 
 template <class Sink>
-void PathEstimate<Sink>::DirectLight(const SurfaceInteraction &si, const PreparedKernel &k, int depth) {
+void PathEstimate<Sink>::DirectLight(const SurfaceInteraction &si, const PreparedKernel &k, int depth,
+                                     bool skipClosedForm) {
     // The light samples are drawn even when unused, to keep the sampler's dimensions aligned.
     const double uLight = sampler_.Get1D();
     const Vec2 uLightPos = sampler_.Get2D();
@@ -428,7 +573,8 @@ void PathEstimate<Sink>::DirectLight(const SurfaceInteraction &si, const Prepare
             u = sampler_.Get2D();
         }
         path::DirectLightInfo info;
-        const SampledSpectrum d = path::SampleDirectLight(scene_, si, k, ul, u, wl_, stats_, &info);
+        SampledSpectrum d = path::SampleDirectLight(scene_, si, k, ul, u, wl_, stats_, &info);
+        if (skipClosedForm && info.light && info.light->MeasuredInClosedForm()) d = SampledSpectrum(0.0);
         direct += d;
         Report([&]() -> std::optional<Event> {
             if (d.IsZero()) return std::nullopt;
@@ -549,8 +695,18 @@ SampledSpectrum PathEstimate<Sink>::ClosedForm(const SpectralGenRay &out, const 
     SampledSpectrum sum(0.0);
     for (const Light *sceneLight : scene_.ClosedFormLights()) {
         const Light *light = sink_.Measured(sceneLight, from, wl_);
-        auto m = GrPathSampler::MeasureOne(scene_, *light, out, si, wl_, stats_);
-        if (!m) continue;
+        std::optional<GrMeasurement> m;
+        if (paths_.Fsd().enabled) {
+            // Through an FSD event on the way to the source, else the shadow ray.
+            m = light->MeasureGR(out.TimeReversed(), wl_);
+            if (!m || m->value.IsZero()) continue;
+            if (auto fsdT = FsdTransmission(out, m->wi, m->dist, si)) m->value *= *fsdT;
+            else if (!GrPathSampler::Unoccluded(scene_, *m, out, si, stats_)) continue;
+            if (m->value.IsZero()) continue;
+        } else {
+            m = GrPathSampler::MeasureOne(scene_, *light, out, si, wl_, stats_);
+            if (!m) continue;
+        }
         const SampledSpectrum v = value(*m);
         sum += v;
         Report([&] { return event(sceneLight, light == sceneLight, *m, v); });

@@ -24,6 +24,8 @@
 //     and return spread-free samples: the path continues as a classical ray; NEE asks them for the
 //     response to a spherical wave from the light sample (EvalFrom), and a sampled lobe is
 //     re-weighted by the distance its ray travels, so both strategies integrate one function.
+// With `fsd = true` a GR also diffracts at the edges of opaque geometry inside its footprint
+// (docs/fsd.md): an FSD event on a segment is a vertex like an aperture plate's.
 // `light_samples` NEE estimates per vertex (stratified). Russian roulette starts after `rr_depth`
 // bounces and never before the first measurement (NEE or closed form). At the last vertex no
 // direction is sampled if only delta lights exist (the listed lobes have measured them). A
@@ -41,17 +43,16 @@ namespace phasor {
 
 class GrtIntegrator final : public PixelIntegrator {
   public:
-    GrtIntegrator(int maxDepth, int rrDepth, int lightSamples) : paths_(maxDepth, rrDepth, lightSamples) {}
+    explicit GrtIntegrator(const ParamDict &d) : paths_(d) {}
 
     static const Schema &GetSchema() {
         static const Schema s{"integrator", "grt",
                               "Backward generalized-ray path tracer (Algorithm 1): wave-optical transport.",
-                              grpath::PathParams()};
+                              grpath::PathAndFsdParams()};
         return s;
     }
     static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
-        return std::make_unique<GrtIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"),
-                                               d.GetInt("light_samples"));
+        return std::make_unique<GrtIntegrator>(d);
     }
     /// The integrator contract cases `grt` supports (tests/integrators/integrator_contract_test.cpp).
     /// Not yet `plane_wave_open_plate`: through a wide opening the plane wave is found by sampling
@@ -71,10 +72,12 @@ class GrtIntegrator final : public PixelIntegrator {
     }
 
     bool WaveOptical() const override { return true; }
+    void Validate(const Scene &scene, Diagnostics &diag) const override {
+        PixelIntegrator::Validate(scene, diag);
+        paths_.NoteFsd(scene, diag);
+    }
     std::string ToString() const override {
-        return "grt { max_depth = " + std::to_string(paths_.MaxDepth()) +
-               ", rr_depth = " + std::to_string(paths_.RrDepth()) +
-               ", light_samples = " + std::to_string(paths_.LightSamples()) + " }";
+        return "grt { " + paths_.ParamString() + " }";
     }
 
   private:

@@ -79,8 +79,7 @@ class CoherentMode final : public Light {
 
 class SampleSolveIntegrator final : public PixelIntegrator {
   public:
-    SampleSolveIntegrator(int maxDepth, int rrDepth, int lightSamples, bool forceCoherent)
-        : paths_(maxDepth, rrDepth, lightSamples), forceCoherent_(forceCoherent) {}
+    explicit SampleSolveIntegrator(const ParamDict &d) : paths_(d), forceCoherent_(d.GetBool("force_coherent")) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -88,7 +87,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
             "Sample-solve (supplement S7): grt's path sampling, then a forward partially coherent, polarised (PLT) "
             "solve of each sampled path; Stokes output and polarisers on the detector.",
             [] {
-                std::vector<ParamSpec> p = grpath::PathParams();
+                std::vector<ParamSpec> p = grpath::PathAndFsdParams();
                 p.push_back(P::Bool("force_coherent",
                                     "fully coherent transport (Fig. S10): distant sources measured in closed form as "
                                     "one coherent plane wave drawn from their profile per measurement (same image, "
@@ -99,8 +98,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
         return s;
     }
     static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
-        return std::make_unique<SampleSolveIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"),
-                                                       d.GetInt("light_samples"), d.GetBool("force_coherent"));
+        return std::make_unique<SampleSolveIntegrator>(d);
     }
     /// The integrator contract cases sample_solve supports (tests/integrators/integrator_contract_test.cpp):
     /// grt's (its path sampling is grt's; unpolarised sources and scalar measurements).
@@ -110,6 +108,10 @@ class SampleSolveIntegrator final : public PixelIntegrator {
     }
 
     bool WaveOptical() const override { return true; }
+    void Validate(const Scene &scene, Diagnostics &diag) const override {
+        PixelIntegrator::Validate(scene, diag);
+        paths_.NoteFsd(scene, diag);
+    }
     /// grt's, and it carries polarisation.
     IntegratorSupport Support() const override {
         IntegratorSupport s = grpath::PathSupport();
@@ -133,9 +135,7 @@ class SampleSolveIntegrator final : public PixelIntegrator {
     }
 
     std::string ToString() const override {
-        return "sample_solve { max_depth = " + std::to_string(paths_.MaxDepth()) +
-               ", rr_depth = " + std::to_string(paths_.RrDepth()) +
-               ", light_samples = " + std::to_string(paths_.LightSamples()) +
+        return "sample_solve { " + paths_.ParamString() +
                ", force_coherent = " + (forceCoherent_ ? "true" : "false") + " }";
     }
 

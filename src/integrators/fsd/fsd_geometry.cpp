@@ -198,7 +198,7 @@ double GaussianMass(const Trapezoid &tr, double beta2) {
 }
 
 void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g, double t, const Shape *exclude,
-               const Settings &s, Event *ev, SearchCost *cost) {
+               const Settings &s, Event *ev, SearchCost *cost, double tEnd) {
     ev->t = t;
     ev->p = g.o + g.d * t;
     ev->frame = Frame::FromNormal(g.d);
@@ -208,14 +208,18 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
     ev->gatherRadius = std::sqrt(5.0) * ev->halfWidth * (1 + 1e-9);
     ev->heroBeta2 = Beta2At(g.k[0], g.beta2[0], g.rho[0], t);
     ev->edges.clear();
+    ev->beyond = 0;
+    auto reach = [&](double d) { ev->beyond = std::clamp(std::max(ev->beyond, d - t), 0.0, ev->gatherRadius); };
     const Frame &f = ev->frame;
     const double rho = ev->halfWidth;
     auto toPlane = [&](const Vec3 &x) {
         const Vec3 r = x - ev->p;
         return Vec2(Dot(r, f.s), Dot(r, f.t));
     };
-    // Depth from the segment's origin: geometry behind the GR's origin is not in its way.
+    // Depth from the segment's origin: geometry behind the GR's origin or beyond the segment's end
+    // (the hit, a source) is not in its way.
     const double eps = 1e-9 * (rho + t);
+    const double far = tEnd;
     auto depth = [&](const Vec3 &x) { return Dot(x - g.o, g.d); };
 
     // Gather: every opaque primitive within gatherRadius of p.
@@ -254,23 +258,33 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
         // Exact test: the triangle meets the gather ball.
         if (LengthSquared(ClosestOnTriangle(ev->p, P[0], P[1], P[2]) - ev->p) > r2) continue;
         const double dep[3] = {depth(P[0]), depth(P[1]), depth(P[2])};
-        if (dep[0] <= eps && dep[1] <= eps && dep[2] <= eps) continue;  // behind the origin
-        const bool clipped = dep[0] <= eps || dep[1] <= eps || dep[2] <= eps;
-        std::vector<Vec2> poly;
-        std::vector<int> from;  // per polygon vertex: the triangle vertex it is, or −1 if made by the clip
-        if (!clipped) {
-            for (int i = 0; i < 3; ++i) poly.push_back(toPlane(P[i])), from.push_back(i);
-        } else {
-            for (int i = 0; i < 3; ++i) {
-                const int j = (i + 1) % 3;
-                if (dep[i] > eps) poly.push_back(toPlane(P[i])), from.push_back(i);
-                if ((dep[i] > eps) != (dep[j] > eps)) {
-                    const double a = (eps - dep[i]) / (dep[j] - dep[i]);
-                    poly.push_back(toPlane(P[i] + (P[j] - P[i]) * a));
-                    from.push_back(-1);
+        // Only the part between the GR's origin and the segment's end is in its way.
+        if (std::max({dep[0], dep[1], dep[2]}) <= eps || std::min({dep[0], dep[1], dep[2]}) >= far) continue;
+        const bool clipped = std::min({dep[0], dep[1], dep[2]}) <= eps || std::max({dep[0], dep[1], dep[2]}) >= far;
+        reach(std::min(std::max({dep[0], dep[1], dep[2]}), far));
+        // The polygon (3-D points with the triangle vertex each is, −1 if made by a clip), clipped
+        // to eps < depth < far (Sutherland–Hodgman, one plane after the other).
+        std::vector<std::pair<Vec3, int>> pts = {{P[0], 0}, {P[1], 1}, {P[2], 2}};
+        if (clipped) {
+            for (int side = 0; side < 2; ++side) {
+                auto inside = [&](const Vec3 &x) { return side == 0 ? depth(x) > eps : depth(x) < far; };
+                const double bound = side == 0 ? eps : far;
+                std::vector<std::pair<Vec3, int>> out;
+                for (std::size_t i = 0; i < pts.size(); ++i) {
+                    const auto &a = pts[i], &b = pts[(i + 1) % pts.size()];
+                    if (inside(a.first)) out.push_back(a);
+                    if (inside(a.first) != inside(b.first)) {
+                        const double da = depth(a.first), db = depth(b.first);
+                        out.push_back({a.first + (b.first - a.first) * ((bound - da) / (db - da)), -1});
+                    }
                 }
+                pts.swap(out);
             }
         }
+        std::vector<Vec2> poly;
+        std::vector<int> from;
+        for (const auto &[x, i] : pts) poly.push_back(toPlane(x)), from.push_back(i);
+        if (poly.size() < 3) continue;
         double area2 = 0, size2 = 0;
         for (std::size_t i = 0; i < poly.size(); ++i) {
             const Vec2 &a = poly[i], &b = poly[(i + 1) % poly.size()];
@@ -335,9 +349,11 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
         std::vector<Vec2> poly;
         if (const auto *sphere = dynamic_cast<const AnalyticSphere *>(shape)) {
             if (depth(sphere->Center()) <= eps) continue;
+            if (LengthSquared(g.o - sphere->Center()) < sphere->Radius() * sphere->Radius()) continue;  // a room
             const Vec2 c = toPlane(sphere->Center());
             const double r = sphere->Radius();
             if (Length(c) > r + 2 * ev->gatherRadius) continue;
+            reach(depth(sphere->Center()) + r);
             const int nv = CircleVertices(r, 1e-3 * rho);
             // Equal-area polygon: radius r·√(2π/(n sin(2π/n))).
             const double rp = r * std::sqrt(2 * Pi / (nv * std::sin(2 * Pi / nv)));
@@ -352,6 +368,7 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
             const int nv = CircleVertices(rmax, 1e-3 * rho);
             const double scale = std::sqrt(2 * Pi / (nv * std::sin(2 * Pi / nv)));
             const Vec2 c = toPlane(disk->Center());
+            reach(depth(disk->Center()) + rmax);
             for (int k = 0; k < nv; ++k) poly.push_back(c + (toPlane(disk->RimPoint(2 * Pi * k / nv)) - c) * scale);
         } else {
             continue;  // an analytic shape without a known outline casts no FSD shadow
@@ -380,7 +397,7 @@ void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g
 }
 
 Search FindEvent(const Scene &scene, const Occluders &occ, const SpectralGenRay &g, double tEnd, const Shape *exclude,
-                 const Settings &s, Event *ev, SearchCost *cost) {
+                 const Settings &s, Event *ev, SearchCost *cost, double source) {
     if (!occ.Any()) return Search::None;
     const Accel &accel = scene.GetAccel();
     const auto &shapes = accel.Shapes();
@@ -413,6 +430,9 @@ Search FindEvent(const Scene &scene, const Occluders &occ, const SpectralGenRay 
                 dist = AxisTriangle(g.o, g.d, t, tStop, mesh->positions[idx[0]], mesh->positions[idx[1]],
                                     mesh->positions[idx[2]], &tau);
             } else if (const auto *sphere = dynamic_cast<const AnalyticSphere *>(shape)) {
+                // A sphere around the GR's origin (a room) has no outline in its way: its inside
+                // is met only where the mean ray hits it.
+                if (LengthSquared(g.o - sphere->Center()) < sphere->Radius() * sphere->Radius()) return;
                 tau = std::clamp(Dot(sphere->Center() - g.o, g.d), t, tStop);
                 dist = std::max(0.0, Length(g.o + g.d * tau - sphere->Center()) - sphere->Radius());
             } else if (const auto *disk = dynamic_cast<const AnalyticDisk *>(shape)) {
@@ -439,7 +459,7 @@ Search FindEvent(const Scene &scene, const Occluders &occ, const SpectralGenRay 
         });
         if (cost) ++cost->ballQueries;
         if (std::isfinite(bestDist)) {
-            BuildMask(scene, occ, g, bestTau, exclude, s, ev, cost);
+            BuildMask(scene, occ, g, bestTau, exclude, s, ev, cost, source);
             if (ev->coveredFraction > 1 - 1e-5) return Search::Blocked;
             if (ev->coveredFraction >= 1e-5) return Search::Event;
             // Negligible (geometry at the rim of the footprint): walk on past it.

@@ -75,6 +75,9 @@ struct Event {
     std::vector<double> coveredMass;
     double coveredFraction = 0;
     double heroBeta2 = 0;                // β² of the hero at the event [m²]
+    /// How far the gathered geometry reaches beyond p along d [m], in [0, gatherRadius]: a ray
+    /// leaving the event starts there, past what the mask already accounts for (fsd_kernel.h).
+    double beyond = 0;
 };
 
 enum class Search {
@@ -93,13 +96,19 @@ struct SearchCost {
 /// from t = 0 to tEnd (the mean ray's hit, or Infinity) for the first event. `exclude` is the
 /// shape the GR leaves (its own surface does not diffract it), or nullptr. Geometry whose share
 /// of the footprint is below 10⁻⁵ is passed; a share above 1 − 10⁻⁵ is Blocked.
+/// `source`: the distance of a source the GR measures along d (a point light); geometry beyond it
+/// casts no shadow on the measurement (BuildMask's tEnd).
 Search FindEvent(const Scene &scene, const Occluders &occ, const SpectralGenRay &g, double tEnd,
-                 const Shape *exclude, const Settings &s, Event *ev, SearchCost *cost = nullptr);
+                 const Shape *exclude, const Settings &s, Event *ev, SearchCost *cost = nullptr,
+                 double source = Infinity);
 
 /// Builds the mask of an event at distance t along g (the gather and projection of FindEvent);
 /// for tests and for the search itself.
+/// Geometry beyond depth tEnd along g (a source the GR measures) is left out, as is geometry
+/// behind the origin.
 void BuildMask(const Scene &scene, const Occluders &occ, const SpectralGenRay &g, double t,
-               const Shape *exclude, const Settings &s, Event *ev, SearchCost *cost = nullptr);
+               const Shape *exclude, const Settings &s, Event *ev, SearchCost *cost = nullptr,
+               double tEnd = Infinity);
 
 /// |ψ|² mass of the hero GR (β², waist form e^{−|x|²/β²}/(πβ²)) over a trapezoid.
 double GaussianMass(const Trapezoid &tr, double beta2);

@@ -127,12 +127,25 @@ Complex Lobe::Amplitude(int i, const Vec3 &s, const IncidentWave &w) const {
                                         w.beam ? Infinity : w.dist, window_[i]);
     if (w.beam) AddIncidentBeam(&g, *w.beam, ev_.p, f.s, f.t);
     const double hu = 2 * ev_.halfWidth, hv = ev_.halfWidth;
+    // Each trapezoid in slabs at most 2β high: one window-high piece (8β) of a strongly curved
+    // GR (ρ ≳ 20) is integrated wrongly by IntegrateTrapezoid (|A|² of the open box 0.8 % off at
+    // ρ = 20, 3× at ρ = 320); in slabs of 2β it agrees with the closed form to 10⁻⁵.
+    auto piece = [&](double v0, double v1, double a0, double a1, double b0, double b1) {
+        v0 = std::max(v0, -hv);
+        v1 = std::min(v1, hv);
+        if (!(v1 > v0)) return Complex(0);
+        const int n = std::max(1, int(std::ceil((v1 - v0) / (2 * std::sqrt(beta2_[i])))));
+        Complex sum = 0;
+        for (int j = 0; j < n; ++j)
+            sum += IntegrateTrapezoid(g, v0 + (v1 - v0) * j / n, v0 + (v1 - v0) * (j + 1) / n, a0, a1, b0, b1);
+        return sum;
+    };
     Complex a = 0;
     if (babinet_) {
-        a = IntegrateTrapezoid(g, -hv, hv, -hu, 0, hu, 0);
-        for (const Trapezoid &t : ev_.mask.covered) a -= IntegrateTrapezoid(g, t.v0, t.v1, t.loA, t.loB, t.hiA, t.hiB);
+        a = piece(-hv, hv, -hu, 0, hu, 0);
+        for (const Trapezoid &t : ev_.mask.covered) a -= piece(t.v0, t.v1, t.loA, t.loB, t.hiA, t.hiB);
     } else {
-        for (const Trapezoid &t : ev_.mask.open) a += IntegrateTrapezoid(g, t.v0, t.v1, t.loA, t.loB, t.hiA, t.hiB);
+        for (const Trapezoid &t : ev_.mask.open) a += piece(t.v0, t.v1, t.loA, t.loB, t.hiA, t.hiB);
     }
     // The GR's normalisation on a plane ⊥ d: (πβ²)^{−1/2} (unit norm, theory §1.3).
     return a / std::sqrt(Pi * beta2_[i]);
