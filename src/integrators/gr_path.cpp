@@ -43,17 +43,29 @@ bool GrPathSampler::DropCompanions(SampledSpectrum &T, const SampledWavelengths 
 
 std::optional<GrMeasurement> GrPathSampler::MeasureOne(const Scene &scene, const Light &light, const SpectralGenRay &g,
                                                        const SurfaceInteraction *si, const SampledWavelengths &wl,
-                                                       PathStats &stats) {
+                                                       ScratchBuffer &scratch, PathStats &stats) {
     auto m = light.MeasureGR(g.TimeReversed(), wl);
-    if (!m || m->value.IsZero() || !Unoccluded(scene, *m, g, si, stats)) return std::nullopt;
+    if (!m || m->value.IsZero()) return std::nullopt;
+    m->value *= Transmitted(scene, *m, g, si, wl, scratch, stats);
+    if (m->value.IsZero()) return std::nullopt;
     return m;
 }
 
-bool GrPathSampler::Unoccluded(const Scene &scene, const GrMeasurement &m, const SpectralGenRay &g,
-                               const SurfaceInteraction *si, PathStats &stats) {
-    ++stats.rays;
-    if (si) return !(std::isinf(m.dist) ? scene.OccludedDirection(*si, m.wi) : scene.Occluded(*si, si->p + m.wi * m.dist));
-    return !scene.GetAccel().Occluded(Ray{g.o, m.wi}, 0, m.dist * (1 - 1e-7));
+SampledSpectrum GrPathSampler::Transmitted(const Scene &scene, const GrMeasurement &m, const SpectralGenRay &g,
+                                           const SurfaceInteraction *si, const SampledWavelengths &wl,
+                                           ScratchBuffer &scratch, PathStats &stats) {
+    double tMax = m.dist * (1 - 1e-7);
+    const bool far = std::isinf(m.dist);
+    const Ray r = si ? scene.ShadowRay(*si, far ? m.wi : si->p + m.wi * m.dist, far, &tMax) : Ray{g.o, m.wi};
+    return scene.Transmittance(r, tMax, wl, false, scratch, stats.rays,
+                               [&](const SurfaceInteraction &at, const PreparedKernel &k, const NearDeltaLobe &l, double t) {
+                                   // The GR aimed at the source, its footprint carried to the crossing.
+                                   SpectralGenRay h = g;
+                                   h.Redirect(m.wi, 1);
+                                   h.Propagate(t);
+                                   h.o = at.p;
+                                   return ThroughLobeWeight(at, k, h, l, m, -1);
+                               });
 }
 
 std::vector<ParamSpec> PathAndFsdParams() {

@@ -162,13 +162,19 @@ class GrPathSampler {
     /// Drops the companion wavelengths from the throughput (theory §0 D10); false for a line sample.
     static bool DropCompanions(SampledSpectrum &T, const SampledWavelengths &wl);
     /// One closed-form light seen by the GR g (traced; measured as its time reverse, D3) from g's
-    /// origin (from the surface `si` when g leaves one): its k²·M if unoccluded, else nullopt.
+    /// origin (from the surface `si` when g leaves one): its k²·M times the transmittance of the
+    /// way there (Transmitted), or nullopt if nothing arrives.
     static std::optional<GrMeasurement> MeasureOne(const Scene &scene, const Light &light, const SpectralGenRay &g,
                                                    const SurfaceInteraction *si, const SampledWavelengths &wl,
-                                                   PathStats &stats);
-    /// The shadow ray of MeasureOne: true if nothing blocks the measurement m from g's origin (or si).
-    static bool Unoccluded(const Scene &scene, const GrMeasurement &m, const SpectralGenRay &g,
-                           const SurfaceInteraction *si, PathStats &stats);
+                                                   ScratchBuffer &scratch, PathStats &stats);
+    /// The shadow ray of MeasureOne, from g's origin (or si) towards the measurement m's source:
+    /// 0 if blocked, else the product of the straight-through surfaces' weights on the way
+    /// (Scene::Transmittance), each averaged over the plane waves m integrates as the GR aimed
+    /// at the source meets it (ThroughLobeWeight, theory §0 D15) — what measuring m through that
+    /// surface's lobe at a vertex of its own would weigh it by.
+    static SampledSpectrum Transmitted(const Scene &scene, const GrMeasurement &m, const SpectralGenRay &g,
+                                       const SurfaceInteraction *si, const SampledWavelengths &wl,
+                                       ScratchBuffer &scratch, PathStats &stats);
     /// The GR leaving `si` through listed lobe `lobe` at carried wavelength i.
     static SpectralGenRay AlongLobe(const SpectralGenRay &g, const SurfaceInteraction &si, const NearDeltaLobe &lobe,
                                     int i);
@@ -441,14 +447,15 @@ std::optional<SampledSpectrum> PathEstimate<Sink>::FsdTransmission(const Spectra
     // The rest of the way, from the far side of the event's geometry (fsd_kernel.h); nothing is
     // left when the source lies within it.
     const double from = ev.t + fsd::LeaveDistance(ev);
+    SampledSpectrum beyond(1.0);
     if (from < dist) {
-        ++stats_.rays;
-        if (scene_.GetAccel().Occluded(Ray{h.o + wi * from, wi}, 0, std::isinf(dist) ? Infinity : (dist - from) * (1 - 1e-7)))
-            return SampledSpectrum(0.0);
+        beyond = scene_.Transmittance(Ray{h.o + wi * from, wi}, std::isinf(dist) ? Infinity : (dist - from) * (1 - 1e-7),
+                                      wl_, false, scratch_, stats_.rays);
+        if (beyond.IsZero()) return beyond;
     }
     h.Propagate(ev.t);
     h.o = ev.p;
-    return fsd::Transmission(ev, h, wl_, settings, wi, IncidentWave{dist - ev.t});
+    return beyond * fsd::Transmission(ev, h, wl_, settings, wi, IncidentWave{dist - ev.t});
 }
 
 template <class Sink>
@@ -486,13 +493,24 @@ void PathEstimate<Sink>::MeasureAtDetector() {
             for (int i = 0; i < pixel.count; ++i) pixel.beta2[i] *= 0.5;
             fsdT = FsdTransmission(pixel, inc->wi, inc->dist, nullptr);
         }
+        // Or crosses the straight-through surfaces on the way (Scene::Transmittance), each lobe's
+        // weight averaged over the source's profile as D4a through it would (D15, as LobeIncidence).
         if (fsdT) {
             v *= *fsdT;
-            if (v.IsZero()) continue;
         } else {
-            ++stats_.rays;
-            if (scene_.GetAccel().Occluded(Ray{g_.o, inc->wi}, 0, inc->dist * (1 - 1e-7))) continue;
+            const auto averaged = [&](const SurfaceInteraction &at, const PreparedKernel &k, const NearDeltaLobe &l,
+                                      double) {
+                LobeEnsemble ensemble;
+                for (LobeEnsemble::Wave &w : ensemble.wave) {
+                    w.source = at.shading.ToLocal(inc->wi);
+                    w.profile = inc->profile;
+                }
+                return AverageLobeWeight(*at.material, k, l, ensemble, LobeTransfer::Irradiance, -1);
+            };
+            v *= scene_.Transmittance(Ray{g_.o, inc->wi}, inc->dist * (1 - 1e-7), wl_, false, scratch_, stats_.rays,
+                                      averaged);
         }
+        if (v.IsZero()) continue;
         L_ += v;
         Report([&] {
             Event e;
@@ -573,7 +591,7 @@ void PathEstimate<Sink>::DirectLight(const SurfaceInteraction &si, const Prepare
             u = sampler_.Get2D();
         }
         path::DirectLightInfo info;
-        SampledSpectrum d = path::SampleDirectLight(scene_, si, k, ul, u, wl_, stats_, &info);
+        SampledSpectrum d = path::SampleDirectLight(scene_, si, k, ul, u, wl_, stats_, scratch_, spreadFree_, &info);
         if (skipClosedForm && info.light && info.light->MeasuredInClosedForm()) d = SampledSpectrum(0.0);
         direct += d;
         Report([&]() -> std::optional<Event> {
@@ -604,7 +622,11 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
     // integrated over the detector's directions already.
     const bool integrated = depth == 0 && ds_->integratesIncidence && paths_.Lobes(scene_).Covers(si.shape);
     if (!(k.Capabilities() & CapNearDelta) || spreadFree_ || scene_.ClosedFormLights().empty() || integrated) return;
+    const bool crossable = si.material->MayPassStraight();
     for (const NearDeltaLobe &lobe : k.ListNearDelta()) {
+        // Light straight through the surface was measured by the shadow rays of the vertex before,
+        // which cross it (Scene::Transmittance, theory §3.5).
+        if (crossable && IsStraightThrough(lobe, k.Query().wi, wl_.Count())) continue;
         const bool uniform = GrPathSampler::UniformLobe(lobe, wl_);
         SampledSpectrum v(0.0);
         for (int i = 0; i < (uniform ? 1 : wl_.Count()) && !lobe.weight.IsZero(); ++i) {
@@ -682,9 +704,14 @@ bool PathEstimate<Sink>::Continue(const SurfaceInteraction &si, const PreparedKe
     if (spreadFree_ && nearDelta && !scene_.DeltaLights().empty())
         stats_.counters.Add(RenderEvent::SpecularAfterSpreadFree);
     spreadFree_ = spreadFree_ || (bs->flags & ScatterSpreadFree) != 0;
-    mis_ = path::MisState{nearDelta, bs->pdf, LightSampleContext{si.p, si.n}};
-    // After a near-delta lobe of a GR the closed-form sources were measured at this vertex.
-    closedFormDone_ = nearDelta && !spreadFree_;
+    // Straight through a film the GR goes where the shadow rays of the vertex before went (they
+    // cross it): what it finds beyond is weighed as that vertex's (MIS state, closed-form sources
+    // measured or not; theory §3.5).
+    if (!(nearDelta && PassesStraight(*si.material, k, bs->lobe))) {
+        mis_ = path::MisState{nearDelta, bs->pdf, LightSampleContext{si.p, si.n}};
+        // After a near-delta lobe of a GR the closed-form sources were measured at this vertex.
+        closedFormDone_ = nearDelta && !spreadFree_;
+    }
     return !(depth + 1 >= paths_.RrDepth() && measured_ && !path::RussianRoulette(T_, sampler_.Get1D()));
 }
 
@@ -701,10 +728,10 @@ SampledSpectrum PathEstimate<Sink>::ClosedForm(const SpectralGenRay &out, const 
             m = light->MeasureGR(out.TimeReversed(), wl_);
             if (!m || m->value.IsZero()) continue;
             if (auto fsdT = FsdTransmission(out, m->wi, m->dist, si)) m->value *= *fsdT;
-            else if (!GrPathSampler::Unoccluded(scene_, *m, out, si, stats_)) continue;
+            else m->value *= GrPathSampler::Transmitted(scene_, *m, out, si, wl_, scratch_, stats_);
             if (m->value.IsZero()) continue;
         } else {
-            m = GrPathSampler::MeasureOne(scene_, *light, out, si, wl_, stats_);
+            m = GrPathSampler::MeasureOne(scene_, *light, out, si, wl_, scratch_, stats_);
             if (!m) continue;
         }
         const SampledSpectrum v = value(*m);

@@ -204,7 +204,7 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
             // followed by its id (a planar kernel lists the same ids over the surface).
             const ScratchBuffer::Mark mark = scratch.Save();
             std::span<const NearDeltaLobe> seedLobes;
-            Vec3 seed, seedHit;
+            Vec3 seed, seedHit, seedWi;
             bool found = false;
             for (const Vec3 &d : seeds) {
                 ++stats.rays;
@@ -221,6 +221,7 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                 q.gr = &gp;
                 q.si = &*si;
                 seedLobes = si->material->Prepare(q, scratch).ListNearDelta();
+                seedWi = q.wi;
                 seed = d;
                 seedHit = si->p;
                 found = true;
@@ -234,6 +235,9 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
             // seed ray meets the shape.
             if (mode) light = (*mode)(sceneLight, seedHit);
             for (const NearDeltaLobe &lobe : seedLobes) {
+                // Light straight through the surface reaches the sensor as direct incidence, whose
+                // shadow ray crosses it (Scene::Transmittance, theory §3.5).
+                if (shape->material->MayPassStraight() && IsStraightThrough(lobe, seedWi, wl.Count())) continue;
                 bool uniform = !(lobe.flags & ScatterDispersive);
                 for (int i = 1; i < wl.Count(); ++i) uniform = uniform && lobe.wo[i] == lobe.wo[0];
                 // One solve serves every wavelength of a lobe whose direction does not depend on λ;
@@ -243,11 +247,12 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                     LobeState st;
                     double absDet = 0;
                     if (!target.Solve(seed, &st, &absDet, stats)) continue;
-                    ++stats.rays;
                     const Vec3 s = st.inc.wi;
-                    const bool blocked = std::isinf(st.inc.dist) ? scene.OccludedDirection(st.si, s)
-                                                                 : scene.Occluded(st.si, st.si.p + s * st.inc.dist);
-                    if (blocked) continue;
+                    const bool far = std::isinf(st.inc.dist);
+                    double tMax = 0;
+                    const Ray shadow = scene.ShadowRay(st.si, far ? s : st.si.p + s * st.inc.dist, far, &tMax);
+                    const SampledSpectrum crossed = scene.Transmittance(shadow, tMax, wl, false, scratch, stats.rays);
+                    if (crossed.IsZero()) continue;
                     // (1): E_det = a_j·E_p/|det ∂r/∂u|, arriving at o from the hit — with a_j averaged
                     // over the light's angular profile, each plane wave weighted by the lobe's irradiance
                     // transfer relative to the central one's, which |det| holds (theory §0 D15).
@@ -265,7 +270,7 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                     GrIncidence inc;
                     inc.irradiance = SampledSpectrum(0.0);
                     for (int k = 0; k < wl.Count(); ++k)
-                        if (uniform || k == i) inc.irradiance[k] = a[k] * st.inc.irradiance[k] / absDet;
+                        if (uniform || k == i) inc.irradiance[k] = crossed[k] * a[k] * st.inc.irradiance[k] / absDet;
                     inc.wi = Normalize(st.si.p - ds.ray.o);
                     inc.dist = Length(st.si.p - ds.ray.o) + st.inc.dist;
                     inc.angularVariance = st.inc.angularVariance;

@@ -77,7 +77,7 @@ class RayIntegrator final : public PixelIntegrator {
             // Next-event estimation (the samples are drawn even when unused, to keep dimensions aligned).
             double uLight = sampler.Get1D();
             Vec2 uLightPos = sampler.Get2D();
-            if (!k.IsDeltaOnly()) L += beta * path::SampleDirectLight(scene, *si, k, uLight, uLightPos, wl, stats);
+            if (!k.IsDeltaOnly()) L += beta * path::SampleDirectLight(scene, *si, k, uLight, uLightPos, wl, stats, scratch, true);
 
             // Continue the path by sampling the kernel.
             auto bs = k.Sample(sampler.Get1D(), sampler.Get2D());
@@ -85,7 +85,10 @@ class RayIntegrator final : public PixelIntegrator {
             if (bs->flags & ScatterDispersive) wl.TerminateSecondary();
             beta *= bs->weight;
             const bool delta = (bs->flags & ScatterNearDelta) != 0;
-            mis = path::MisState{delta, bs->pdf, LightSampleContext{si->p, si->n}};
+            // Straight through a film the path is where the previous vertex's shadow rays went
+            // (they cross it): emission found beyond keeps that vertex's MIS state (theory §3.5).
+            if (!(delta && PassesStraight(*mat, k, bs->lobe)))
+                mis = path::MisState{delta, bs->pdf, LightSampleContext{si->p, si->n}};
             Vec3 wo = frame.ToWorld(bs->wo);
             ray = Ray{si->SpawnOrigin(wo), wo};
 

@@ -123,6 +123,7 @@ class MixMaterial final : public Material, public ReferenceDirection {
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
     bool HasCoherenceTerms() const override { return a_->HasCoherenceTerms() || b_->HasCoherenceTerms(); }
+    bool MayPassStraight() const override { return a_->MayPassStraight() || b_->MayPassStraight(); }
     /// Lobe 2j is a's lobe j, 2j + 1 is b's (MixId).
     std::string LobeName(int id) const override {
         const int child = id >= 0 ? id / 2 : -((-id + 1) / 2);  // floor(id / 2)

@@ -17,6 +17,8 @@ SmoothKernel::SmoothKernel(SmoothSurface surface, bool transmits)
     const double n0 = surface_.SubstrateIndex(550e-9).real();
     for (double l = 200e-9; l <= 3000e-9; l *= 1.005)
         if (std::abs(surface_.SubstrateIndex(l).real() - n0) > 1e-12 * n0) dispersive_ = true;
+    // A substrate of index 1 (a film in air): the refraction lobe goes straight on from the air.
+    passesStraight_ = !dispersive_ && n0 == 1;
 }
 
 SmoothKernel::Wave SmoothKernel::Sides(const ScatterQuery &q, int i) const {

@@ -68,6 +68,9 @@ class SmoothKernel : public Material {
     /// `substrate` (ReadSubstrate).
     const SmoothSurface &Surface() const { return surface_; }
     bool Transmits() const { return transmits_; }
+    /// A transmitting surface on a substrate of index 1 (a free-standing film, `substrate_ior = 1`):
+    /// from the air, lobe 1 goes straight on.
+    bool MayPassStraight() const override { return passesStraight_; }
 
   protected:
     /// "Name[ substrate = …, coating = …, transmits|opaque ]" for ToString.
@@ -93,6 +96,7 @@ class SmoothKernel : public Material {
     SmoothSurface surface_;
     bool transmits_ = false;
     bool dispersive_ = false;  // the refraction lobe's direction varies with λ
+    bool passesStraight_ = false;  // MayPassStraight
 };
 
 /// True if the index has κ = 0 over 360–1000 nm (the band GetComplexSpectrum checks): a substrate

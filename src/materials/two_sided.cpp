@@ -176,6 +176,7 @@ class TwoSidedMaterial final : public Material, public ReferenceDirection {
     bool IsReciprocal() const override { return sense_ == EnergySense::Reciprocal; }
     bool ConservesEnergyPerIncidentDirection() const override { return sense_ == EnergySense::PerIncidentDirection; }
     bool HasCoherenceTerms() const override { return front_->HasCoherenceTerms() || back_->HasCoherenceTerms(); }
+    bool MayPassStraight() const override { return front_->MayPassStraight() || back_->MayPassStraight(); }
     /// The front face's reference direction (the side the shading frame describes).
     std::optional<double> ReferenceAngle(const TextureEvalContext &tex) const override {
         return ReferenceAngleOf(*front_, tex);

@@ -931,6 +931,32 @@ TEST_P(MaterialContract, FootprintAwarenessIsDeclared) {
     EXPECT_FALSE(kRay_->Capabilities() & CapFootprintAware);
 }
 
+TEST_P(MaterialContract, StraightThroughIsDeclared) {
+    // A kernel that lists a straight-through lobe (shadow rays cross it, Scene::Transmittance)
+    // says so in MayPassStraight, from above and from below, in both regimes; its weight is then a
+    // transmittance (0 ≤ a ≤ 1). Footprint-aware kernels are exempt: the aperture's straight lobe
+    // (its openings in the ray-optics limit) is a diffraction problem, and its plates stop shadow
+    // rays (their light is found by sampling the plate, theory §9).
+    if (material_->IsFootprintAware()) {
+        EXPECT_FALSE(material_->MayPassStraight());
+        return;
+    }
+    for (const bool below : {false, true}) {
+        for (const bool rayOptics : {false, true}) {
+            ScatterQuery q = rayOptics ? qRay_ : q_;
+            if (below) q.wi.z = -q.wi.z;
+            const PreparedKernel &k = material_->Prepare(q, scratch_);
+            for (const NearDeltaLobe &l : k.ListNearDelta()) {
+                if (!IsStraightThrough(l, q.wi, q.wl->Count())) continue;
+                EXPECT_TRUE(material_->MayPassStraight())
+                    << "lobe " << l.id << " goes straight on (" << (below ? "from below" : "from above")
+                    << ") but MayPassStraight() is false";
+                for (int i = 0; i < q.wl->Count(); ++i) EXPECT_TRUE(l.weight[i] >= 0 && l.weight[i] <= 1 + 1e-12);
+            }
+        }
+    }
+}
+
 TEST_P(MaterialContract, EvalPdfIsEvalAndPdf) {
     // EvalPdf is a faster way to the same numbers: exactly (EvalFrom, Pdf), for a plane wave, a
     // spherical wave from 0.1 mm and, for footprint-aware kernels, from 5 µm, in both regimes.

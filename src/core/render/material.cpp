@@ -28,6 +28,19 @@ Vec3 LobeSAxis(const Vec3 &wi, const Vec3 &wo) {
     return Vec3(0, 1, 0);
 }
 
+bool IsStraightThrough(const NearDeltaLobe &lobe, const Vec3 &wi, int count) {
+    if (!(lobe.flags & ScatterTransmission) || lobe.shift.x != 0 || lobe.shift.y != 0) return false;
+    for (int i = 0; i < count; ++i)
+        if (lobe.nIn[i] != lobe.nOut[i] || !(Dot(lobe.wo[i], wi) < -1 + 1e-12)) return false;
+    return true;
+}
+
+bool PassesStraight(const Material &mat, const PreparedKernel &k, int lobeId) {
+    if (!mat.MayPassStraight()) return false;
+    const NearDeltaLobe *l = k.FindLobe(lobeId);
+    return l && IsStraightThrough(*l, k.Query().wi, k.Query().wl ? k.Query().wl->Count() : 1);
+}
+
 NearDeltaLobe &LobeList::Add() {
     if (count_ >= capacity_)
         throw Error("a kernel listed more than the " + std::to_string(capacity_) + " near-delta lobes it made room for");

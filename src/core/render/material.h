@@ -370,8 +370,25 @@ class Material {
     /// Called by the scene builder for every shape that uses this kernel; throws phasor::Error
     /// (e.g. a planar kernel on a non-planar shape).
     virtual void CheckShape(const Shape &shape) const { (void)shape; }
+    /// True if some query's listing may hold a straight-through lobe (IsStraightThrough: the same
+    /// index on both sides and no tangential shift — a free-standing film, an index-matched
+    /// boundary). Shadow rays cross the surfaces of such kernels with that lobe's weight
+    /// (Scene::Transmittance) and integrators never measure light through the lobe itself; false
+    /// (the default) promises that no listing holds one (checked by the contract suite), so shadow
+    /// rays stop at the surface.
+    virtual bool MayPassStraight() const { return false; }
     virtual std::string ToString() const = 0;
 };
+
+/// True if `lobe`, listed for a query from `wi` (local), goes straight on: a transmission lobe
+/// whose direction is −wi at every one of the `count` carried wavelengths (to 1e-12), with the same
+/// index on both sides and no tangential shift. Its weight is then the surface's transmittance
+/// along the line (the (η_i/η_t)² factor is 1).
+bool IsStraightThrough(const NearDeltaLobe &lobe, const Vec3 &wi, int count);
+/// The lobe of id `lobeId` of k (prepared for `mat`) goes straight on and `mat` lets shadow rays
+/// cross it (Material::MayPassStraight): a path that leaves through it is not a new vertex for the
+/// light it finds (theory §3.5).
+bool PassesStraight(const Material &mat, const PreparedKernel &k, int lobeId);
 
 /// The facet of a kernel with a reference direction in the tangent plane (a grating's grating
 /// vector), from which `phasor probe` measures azimuths; composite kernels forward their children's.

@@ -41,11 +41,14 @@ struct DirectLightInfo {
 /// Next-event estimation at a surface vertex (pbrt-style): one light chosen uniformly with
 /// uLight, sampled with uPos; the kernel k prepared at si answers for its continuous lobes
 /// (near-delta lobes have no density). Delta lights get f·|cosθ|·E; area and infinite lights are
-/// MIS-weighted (power heuristic) against kernel sampling. Returns the contribution without the
-/// path throughput; counts the shadow ray in stats; fills `info` (if given) with the light sample.
+/// MIS-weighted (power heuristic) against kernel sampling. The shadow ray crosses straight-through
+/// surfaces with their transmittance (Scene::Transmittance; their kernels prepared in `scratch` in
+/// the regime `rayOptics`). Returns the contribution without the path throughput; counts the
+/// shadow rays in stats; fills `info` (if given) with the light sample.
 inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceInteraction &si, const PreparedKernel &k,
                                          double uLight, const Vec2 &uPos, const SampledWavelengths &wl,
-                                         PathStats &stats, DirectLightInfo *info = nullptr) {
+                                         PathStats &stats, ScratchBuffer &scratch, bool rayOptics,
+                                         DirectLightInfo *info = nullptr) {
     const auto &lights = scene.Lights();
     if (lights.empty()) return SampledSpectrum(0.0);
     const double selectPdf = LightSelectPdf(scene);
@@ -66,13 +69,14 @@ inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceIntera
     const KernelValue v = ls->delta ? KernelValue{k.EvalFrom(wo, wave), 0} : k.EvalPdf(wo, wave);
     const SampledSpectrum f = v.f * std::abs(wo.z);
     if (f.IsZero() || incident.IsZero()) return SampledSpectrum(0.0);
-    ++stats.rays;
-    const bool blocked = std::isinf(ls->dist) ? scene.OccludedDirection(si, ls->wi)
-                                              : scene.Occluded(si, si.p + ls->wi * ls->dist);
-    if (blocked) return SampledSpectrum(0.0);
-    if (ls->delta) return f * incident / selectPdf;
+    const bool far = std::isinf(ls->dist);
+    double tMax = 0;
+    const Ray shadow = scene.ShadowRay(si, far ? ls->wi : si.p + ls->wi * ls->dist, far, &tMax);
+    const SampledSpectrum tr = scene.Transmittance(shadow, tMax, wl, rayOptics, scratch, stats.rays);
+    if (tr.IsZero()) return SampledSpectrum(0.0);
+    if (ls->delta) return f * incident * tr / selectPdf;
     const double pl = ls->pdf * selectPdf;
-    return f * incident * (PowerHeuristic(pl, v.pdf) / pl);
+    return f * incident * tr * (PowerHeuristic(pl, v.pdf) / pl);
 }
 
 /// Radiance emitted by the area light at si towards the path (direction of travel rayDir),

@@ -168,6 +168,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
         }
     }
     if (diag.HasErrors()) return nullptr;
+    for (const Shape *s : shapes) scene->straightThrough_ = scene->straightThrough_ || (s->material && s->material->MayPassStraight());
     try {
         scene->accel_ = std::make_unique<Accel>(shapes);
     } catch (const Error &e) {
@@ -226,6 +227,22 @@ bool Scene::Occluded(const SurfaceInteraction &from, const Vec3 &to) const {
     if (rayLog_) rayLog_->push_back(Ray{o, od / dist});
     // Stop just short of the target so the light's own surface does not occlude it.
     return accel_->Occluded(Ray{o, od / dist}, 0, dist * (1 - 1e-7));
+}
+
+Ray Scene::ShadowRay(const SurfaceInteraction &from, const Vec3 &to, bool toDirection, double *tMax) const {
+    if (toDirection) {
+        *tMax = Infinity;
+        return Ray{from.SpawnOrigin(to), to};
+    }
+    const Vec3 o = from.SpawnOrigin(to - from.p), od = to - o;
+    const double dist = Length(od);
+    if (!(dist > 0)) {
+        *tMax = 0;
+        return Ray{o, Normalize(to - from.p)};
+    }
+    // Stop just short of the target so the light's own surface does not occlude it.
+    *tMax = dist * (1 - 1e-7);
+    return Ray{o, od / dist};
 }
 
 bool Scene::OccludedDirection(const SurfaceInteraction &from, const Vec3 &dir) const {

@@ -14,6 +14,8 @@
 #include "core/render/light.h"
 #include "core/render/material.h"
 #include "core/render/registry.h"
+#include "core/render/texture.h"
+#include "core/scratch_buffer.h"
 #include "core/spectrum/spectrum.h"
 
 namespace phasor {
@@ -80,6 +82,35 @@ class Scene {
     bool Occluded(const SurfaceInteraction &from, const Vec3 &to) const;
     bool OccludedDirection(const SurfaceInteraction &from, const Vec3 &dir) const;
 
+    /// Shadow rays that cross straight-through surfaces (theory §3.5; pbrt's and Mitsuba's shadow
+    /// rays through null interfaces): the fraction of the light that arrives along `ray` (unit d)
+    /// from distance tMax [m] (Infinity: a direction), per carried wavelength — 1 with nothing on
+    /// the way, 0 when a surface blocks it, else the product over the surfaces crossed of their
+    /// straight-through lobes' weights (Material::MayPassStraight, IsStraightThrough; summed when a
+    /// kernel lists several). Each crossed surface's kernel is prepared for a classical ray from
+    /// −d in the regime `rayOptics` (a GR's path: false, the coherent film; `ray`: true) in
+    /// `scratch` (rewound afterwards). `weigh(si, k, lobe, t)` replaces a lobe's weight at its
+    /// mean direction (grt's average over the measurement's plane waves, theory §0 D15); t is the
+    /// distance along the ray. Counts each ray traced in `rays`. Scenes without such surfaces cost
+    /// one occlusion query, as Occluded. At most MaxCrossings surfaces are crossed; a segment
+    /// through more is taken as blocked.
+    template <class Weigh>
+    SampledSpectrum Transmittance(Ray ray, double tMax, const SampledWavelengths &wl, bool rayOptics,
+                                  ScratchBuffer &scratch, long long &rays, Weigh &&weigh) const;
+    SampledSpectrum Transmittance(const Ray &ray, double tMax, const SampledWavelengths &wl, bool rayOptics,
+                                  ScratchBuffer &scratch, long long &rays) const {
+        return Transmittance(ray, tMax, wl, rayOptics, scratch, rays,
+                             [](const SurfaceInteraction &, const PreparedKernel &, const NearDeltaLobe &l, double) {
+                                 return l.weight;
+                             });
+    }
+    /// The shadow ray from the surface point `from` to the point `to` (stopping just short of it,
+    /// as Occluded) or, with toDirection, along the direction `to` to infinity.
+    Ray ShadowRay(const SurfaceInteraction &from, const Vec3 &to, bool toDirection, double *tMax) const;
+    /// True if some surface may let shadow rays through (Material::MayPassStraight).
+    bool HasStraightThrough() const { return straightThrough_; }
+    static constexpr int MaxCrossings = 64;
+
   private:
     Scene() = default;
     /// A sensor plane against the aperture plates: an error if it lies in or crosses a plate's
@@ -95,6 +126,49 @@ class Scene {
     RenderSettings settings_;
     std::unique_ptr<SceneDesc> ownedDesc_;
     std::vector<Ray> *rayLog_ = nullptr;
+    bool straightThrough_ = false;
 };
+
+template <class Weigh>
+SampledSpectrum Scene::Transmittance(Ray ray, double tMax, const SampledWavelengths &wl, bool rayOptics,
+                                     ScratchBuffer &scratch, long long &rays, Weigh &&weigh) const {
+    ++rays;
+    if (rayLog_) rayLog_->push_back(ray);
+    if (!straightThrough_) return SampledSpectrum(accel_->Occluded(ray, 0, tMax) ? 0.0 : 1.0);
+    SampledSpectrum T(1.0);
+    double t = 0;  // distance travelled from the first origin
+    const ScratchBuffer::Mark mark = scratch.Save();
+    for (int crossed = 0;; ++crossed) {
+        const std::optional<SurfaceInteraction> si = accel_->IntersectSurface(ray, 0, tMax);
+        if (!si) break;
+        const Material *mat = si->material;
+        if (crossed == MaxCrossings || !mat || !mat->MayPassStraight()) {
+            T = SampledSpectrum(0.0);
+            break;
+        }
+        ScatterQuery q;
+        q.wi = si->shading.ToLocal(-ray.d);
+        q.wl = &wl;
+        q.rayOptics = rayOptics;
+        q.tex = TextureEvalContext(*si);
+        q.si = &*si;
+        const PreparedKernel &k = mat->Prepare(q, scratch);
+        SampledSpectrum a(0.0);
+        for (const NearDeltaLobe &l : k.ListNearDelta())
+            if (IsStraightThrough(l, q.wi, wl.Count())) a += weigh(*si, k, l, t + si->t);
+        T *= a;
+        if (T.IsZero()) break;
+        // On from the far side of the surface.
+        const Vec3 o = si->SpawnOrigin(ray.d);
+        const double moved = Dot(o - ray.o, ray.d);
+        t += moved;
+        tMax -= moved;
+        ray.o = o;
+        ++rays;
+        if (rayLog_) rayLog_->push_back(ray);
+    }
+    scratch.Rewind(mark);
+    return T;
+}
 
 }  // namespace phasor
