@@ -16,9 +16,10 @@ const RenderEventInfo &Describe(RenderEvent e) {
          "missing (theory §9 item 5)"},
         {"lobe_average_capped",
          "lobe averages needed more than 256 quadrature nodes per axis to prove their bound of 3e-4 of the "
-         "lobe's peak (films of tens of µm under sources of several degrees; theory §4.11); their error is "
-         "unproven there (measured: ≤ 2.3e-4 relative for films up to 100 µm under 10° discs, "
-         "docs/accuracy.md §3); a thinner layer or a smaller source stays within the bound"},
+         "lobe's peak (films of tens of µm under sources of several degrees, or a film met within a degree "
+         "of grazing, where its efficiency turns fastest; theory §4.11); their error is unproven there "
+         "(measured: ≤ 2.3e-4 relative for films up to 100 µm under 10° discs, docs/accuracy.md §3); a "
+         "thinner layer or a smaller source stays within the bound"},
     };
     static_assert(std::size(table) == std::size_t(RenderEvent::Count), "one entry per RenderEvent");
     return table[std::size_t(e)];
