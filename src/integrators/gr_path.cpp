@@ -21,7 +21,8 @@ std::vector<ParamSpec> PathParams() {
                        "reduce the noise from extended sources, e.g. through apertures")
                 .Default(Value::Integer(1))
                 .Min(1)
-                .Max(4096)};
+                .Max(4096),
+            LightSamplerParam()};
 }
 
 IntegratorSupport PathSupport() {
@@ -76,7 +77,7 @@ std::vector<ParamSpec> PathAndFsdParams() {
 
 GrPathSampler::GrPathSampler(const ParamDict &d)
     : GrPathSampler(d.GetInt("max_depth"), d.GetInt("rr_depth"), d.GetInt("light_samples"),
-                    fsd::SettingsFromParams(d)) {}
+                    fsd::SettingsFromParams(d), LightSelectionFromName(d.GetString("light_sampler"))) {}
 
 void GrPathSampler::NoteFsd(const Scene &scene, Diagnostics &diag) const {
     if (fsd_.enabled) return;
@@ -95,6 +96,7 @@ void GrPathSampler::NoteFsd(const Scene &scene, Diagnostics &diag) const {
 std::string GrPathSampler::ParamString() const {
     std::string s = "max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) +
                     ", light_samples = " + std::to_string(lightSamples_) + ", fsd = " + (fsd_.enabled ? "true" : "false");
+    if (lights_ == LightSelection::Power) s += ", light_sampler = power";
     if (fsd_.enabled)
         s += fsd_.radius > 0 ? ", fsd_radius = " + std::to_string(fsd_.radius) + " m"
                              : ", fsd_window = " + std::to_string(fsd_.window);

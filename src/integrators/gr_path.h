@@ -127,13 +127,16 @@ std::vector<ParamSpec> PathAndFsdParams();
 /// The sampler: `grt`'s parameters and the per-scene D4a-through-lobes table.
 class GrPathSampler {
   public:
-    GrPathSampler(int maxDepth, int rrDepth, int lightSamples, const fsd::Settings &fsd = {})
-        : maxDepth_(maxDepth), rrDepth_(rrDepth), lightSamples_(lightSamples), fsd_(fsd) {}
+    GrPathSampler(int maxDepth, int rrDepth, int lightSamples, const fsd::Settings &fsd = {},
+                  LightSelection lights = LightSelection::Uniform)
+        : maxDepth_(maxDepth), rrDepth_(rrDepth), lightSamples_(lightSamples), fsd_(fsd), lights_(lights) {}
     /// From the parameters of PathAndFsdParams().
     explicit GrPathSampler(const ParamDict &d);
     int MaxDepth() const { return maxDepth_; }
     int RrDepth() const { return rrDepth_; }
     int LightSamples() const { return lightSamples_; }
+    /// How next-event estimation picks a light (`light_sampler`).
+    LightSelection Lights() const { return lights_; }
     const fsd::Settings &Fsd() const { return fsd_; }
     /// `max_depth = …, rr_depth = …, light_samples = …, fsd = …` for ToString.
     std::string ParamString() const;
@@ -191,6 +194,7 @@ class GrPathSampler {
   private:
     int maxDepth_, rrDepth_, lightSamples_;
     fsd::Settings fsd_;
+    LightSelection lights_;
     mutable std::once_flag lobesOnce_, occludersOnce_;
     mutable std::unique_ptr<const LobeIncidence> lobes_;
     mutable std::unique_ptr<const fsd::Occluders> occluders_;
@@ -336,7 +340,7 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
             if (step == FsdStep::Ended) break;
         }
         if (!si) {
-            const SampledSpectrum le = path::EscapedEmission(scene_, g_.d, wl_, mis_, closedFormDone_);
+            const SampledSpectrum le = path::EscapedEmission(scene_, scene_.GetLightSampler(paths_.Lights()), g_.d, wl_, mis_, closedFormDone_);
             FoundEmission(EventKind::Escape, le, depth, nullptr, Infinity);
             break;
         }
@@ -352,7 +356,7 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
             T_ *= r;
             footprint_.kernel = nullptr;
         }
-        FoundEmission(EventKind::Emission, path::HitEmission(scene_, *si, g_.d, wl_, mis_), depth, si->areaLight,
+        FoundEmission(EventKind::Emission, path::HitEmission(scene_.GetLightSampler(paths_.Lights()), *si, g_.d, wl_, mis_), depth, si->areaLight,
                       si->t);
         const Material *mat = si->material;
         if (!mat || depth == maxDepth) break;
@@ -591,7 +595,8 @@ void PathEstimate<Sink>::DirectLight(const SurfaceInteraction &si, const Prepare
             u = sampler_.Get2D();
         }
         path::DirectLightInfo info;
-        SampledSpectrum d = path::SampleDirectLight(scene_, si, k, ul, u, wl_, stats_, scratch_, spreadFree_, &info);
+        SampledSpectrum d = path::SampleDirectLight(scene_, si, k, scene_.GetLightSampler(paths_.Lights()), ul, u, wl_, stats_,
+                                                    scratch_, spreadFree_, &info);
         if (skipClosedForm && info.light && info.light->MeasuredInClosedForm()) d = SampledSpectrum(0.0);
         direct += d;
         Report([&]() -> std::optional<Event> {

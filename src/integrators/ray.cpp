@@ -11,7 +11,8 @@ namespace phasor {
 
 class RayIntegrator final : public PixelIntegrator {
   public:
-    RayIntegrator(int maxDepth, int rrDepth) : maxDepth_(maxDepth), rrDepth_(rrDepth) {}
+    RayIntegrator(int maxDepth, int rrDepth, LightSelection lights = LightSelection::Uniform)
+        : maxDepth_(maxDepth), rrDepth_(rrDepth), lights_(lights) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -19,11 +20,13 @@ class RayIntegrator final : public PixelIntegrator {
             {P::Integer("max_depth", "maximum number of scattering events (-1: unlimited, Russian roulette ends paths)")
                  .Default(Value::Integer(16))
                  .Min(-1),
-             P::Integer("rr_depth", "bounces before Russian roulette starts").Default(Value::Integer(3)).Min(0)}};
+             P::Integer("rr_depth", "bounces before Russian roulette starts").Default(Value::Integer(3)).Min(0),
+             LightSamplerParam()}};
         return s;
     }
     static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
-        return std::make_unique<RayIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"));
+        return std::make_unique<RayIntegrator>(d.GetInt("max_depth"), d.GetInt("rr_depth"),
+                                               LightSelectionFromName(d.GetString("light_sampler")));
     }
     /// The integrator of a scene that names none (Render.integrator's default).
     static constexpr bool IsDefault = true;
@@ -52,16 +55,17 @@ class RayIntegrator final : public PixelIntegrator {
         Ray ray = ds->ray;
         SampledSpectrum beta(ds->weight), L(0.0);
         path::MisState mis;  // the camera vertex counts as a delta for MIS
+        const LightSampler &lights = scene.GetLightSampler(lights_);
 
         for (int depth = 0;; ++depth) {
             ++stats.rays;
             auto si = scene.Intersect(ray);
             if (!si) {
-                L += beta * path::EscapedEmission(scene, ray.d, wl, mis);
+                L += beta * path::EscapedEmission(scene, lights, ray.d, wl, mis);
                 break;
             }
             // Emission seen by the path (MIS-weighted against light sampling).
-            L += beta * path::HitEmission(scene, *si, ray.d, wl, mis);
+            L += beta * path::HitEmission(lights, *si, ray.d, wl, mis);
             const Material *mat = si->material;
             if (!mat || depth == maxDepth_) break;
 
@@ -77,7 +81,7 @@ class RayIntegrator final : public PixelIntegrator {
             // Next-event estimation (the samples are drawn even when unused, to keep dimensions aligned).
             double uLight = sampler.Get1D();
             Vec2 uLightPos = sampler.Get2D();
-            if (!k.IsDeltaOnly()) L += beta * path::SampleDirectLight(scene, *si, k, uLight, uLightPos, wl, stats, scratch, true);
+            if (!k.IsDeltaOnly()) L += beta * path::SampleDirectLight(scene, *si, k, lights, uLight, uLightPos, wl, stats, scratch, true);
 
             // Continue the path by sampling the kernel.
             auto bs = k.Sample(sampler.Get1D(), sampler.Get2D());
@@ -100,11 +104,13 @@ class RayIntegrator final : public PixelIntegrator {
 
     bool WaveOptical() const override { return false; }  // classical ray optics
     std::string ToString() const override {
-        return "ray { max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) + " }";
+        return "ray { max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) +
+               (lights_ == LightSelection::Power ? ", light_sampler = power" : "") + " }";
     }
 
   private:
     int maxDepth_, rrDepth_;
+    LightSelection lights_;
 };
 
 PHASOR_EXPORT_PLUGIN(Integrator, RayIntegrator)

@@ -26,11 +26,6 @@ struct MisState {
     LightSampleContext prevCtx;
 };
 
-/// Probability of choosing one particular light in SampleDirectLight.
-inline double LightSelectPdf(const Scene &scene) {
-    return scene.Lights().empty() ? 0 : 1.0 / double(scene.Lights().size());
-}
-
 /// What SampleDirectLight picked (for integrators that re-evaluate the connection, sample_solve).
 struct DirectLightInfo {
     const Light *light = nullptr;
@@ -38,22 +33,20 @@ struct DirectLightInfo {
     double dist = Infinity;   // distance to it (Infinity for lights at infinity)
 };
 
-/// Next-event estimation at a surface vertex (pbrt-style): one light chosen uniformly with
-/// uLight, sampled with uPos; the kernel k prepared at si answers for its continuous lobes
+/// Next-event estimation at a surface vertex (pbrt-style): one light chosen by `lights` (uniformly
+/// or by power, the integrator's `light_sampler`) with uLight, sampled with uPos; the kernel k prepared at si answers for its continuous lobes
 /// (near-delta lobes have no density). Delta lights get f·|cosθ|·E; area and infinite lights are
 /// MIS-weighted (power heuristic) against kernel sampling. The shadow ray crosses straight-through
 /// surfaces with their transmittance (Scene::Transmittance; their kernels prepared in `scratch` in
 /// the regime `rayOptics`). Returns the contribution without the path throughput; counts the
 /// shadow rays in stats; fills `info` (if given) with the light sample.
 inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceInteraction &si, const PreparedKernel &k,
-                                         double uLight, const Vec2 &uPos, const SampledWavelengths &wl,
-                                         PathStats &stats, ScratchBuffer &scratch, bool rayOptics,
-                                         DirectLightInfo *info = nullptr) {
-    const auto &lights = scene.Lights();
-    if (lights.empty()) return SampledSpectrum(0.0);
-    const double selectPdf = LightSelectPdf(scene);
-    const std::size_t li = std::min(lights.size() - 1, std::size_t(uLight * lights.size()));
-    const Light *light = lights[li];
+                                         const LightSampler &lights, double uLight, const Vec2 &uPos,
+                                         const SampledWavelengths &wl, PathStats &stats, ScratchBuffer &scratch,
+                                         bool rayOptics, DirectLightInfo *info = nullptr) {
+    double selectPdf = 0;
+    const Light *light = lights.Sample(uLight, &selectPdf);
+    if (!light || !(selectPdf > 0)) return SampledSpectrum(0.0);
     const LightSampleContext ctx{si.p, si.n};
     auto ls = light->SampleLi(ctx, uPos, wl);
     if (!ls || !(ls->pdf > 0) || (ls->L.IsZero() && !ls->beam)) return SampledSpectrum(0.0);
@@ -80,21 +73,22 @@ inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceIntera
 }
 
 /// Radiance emitted by the area light at si towards the path (direction of travel rayDir),
-/// MIS-weighted against NEE unless the path arrived through a delta lobe.
-inline SampledSpectrum HitEmission(const Scene &scene, const SurfaceInteraction &si, const Vec3 &rayDir,
+/// MIS-weighted against NEE (which picks lights by `lights`) unless the path arrived through a
+/// delta lobe.
+inline SampledSpectrum HitEmission(const LightSampler &lights, const SurfaceInteraction &si, const Vec3 &rayDir,
                                    const SampledWavelengths &wl, const MisState &mis) {
     if (!si.areaLight) return SampledSpectrum(0.0);
     const SampledSpectrum le = si.areaLight->L(si.p, si.n, -rayDir, wl);
     if (le.IsZero() || mis.deltaBounce) return le;
-    const double lightPdf = si.areaLight->PdfLi(mis.prevCtx, rayDir, si.p, si.n) * LightSelectPdf(scene);
+    const double lightPdf = si.areaLight->PdfLi(mis.prevCtx, rayDir, si.p, si.n) * lights.Pmf(si.areaLight);
     return le * PowerHeuristic(mis.prevPdf, lightPdf);
 }
 
 /// Radiance of the infinite lights along an escaping direction d, MIS-weighted against NEE unless
 /// the path arrived through a delta lobe. With skipClosedForm, the lights measured in closed form
 /// are left out (`grt` has measured them already after a near-delta lobe).
-inline SampledSpectrum EscapedEmission(const Scene &scene, const Vec3 &d, const SampledWavelengths &wl,
-                                       const MisState &mis, bool skipClosedForm = false) {
+inline SampledSpectrum EscapedEmission(const Scene &scene, const LightSampler &lights, const Vec3 &d,
+                                       const SampledWavelengths &wl, const MisState &mis, bool skipClosedForm = false) {
     SampledSpectrum sum(0.0);
     for (const Light *l : scene.InfiniteLights()) {
         if (skipClosedForm && l->MeasuredInClosedForm()) continue;
@@ -103,7 +97,7 @@ inline SampledSpectrum EscapedEmission(const Scene &scene, const Vec3 &d, const 
         if (mis.deltaBounce)
             sum += le;
         else {
-            const double lightPdf = l->PdfLi(mis.prevCtx, d, Vec3(), Vec3()) * LightSelectPdf(scene);
+            const double lightPdf = l->PdfLi(mis.prevCtx, d, Vec3(), Vec3()) * lights.Pmf(l);
             sum += le * PowerHeuristic(mis.prevPdf, lightPdf);
         }
     }

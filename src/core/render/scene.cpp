@@ -185,6 +185,8 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
         emitters.emplace_back(&l->EmissionSpectrum(), l->PowerScale());
     }
     if (scene->lights_.empty()) diag.Warning(sceneLoc, "the scene has no light; the image will be black");
+    scene->uniformLights_ = std::make_unique<LightSampler>(scene->lights_, LightSelection::Uniform);
+    scene->powerLights_ = std::make_unique<LightSampler>(scene->lights_, LightSelection::Power);
     scene->CheckSensorPlane(diag);
     scene->wavelengths_ = std::make_unique<WavelengthSampler>(emitters, scene->detector_->Response());
     if (diag.HasErrors()) return nullptr;
@@ -226,7 +228,7 @@ bool Scene::Occluded(const SurfaceInteraction &from, const Vec3 &to) const {
     if (!(dist > 0)) return false;
     if (rayLog_) rayLog_->push_back(Ray{o, od / dist});
     // Stop just short of the target so the light's own surface does not occlude it.
-    return accel_->Occluded(Ray{o, od / dist}, 0, dist * (1 - 1e-7));
+    return accel_->Occluded(Ray{o, od / dist}, 0, dist * (1 - ShadowEpsilon));
 }
 
 Ray Scene::ShadowRay(const SurfaceInteraction &from, const Vec3 &to, bool toDirection, double *tMax) const {
@@ -241,7 +243,7 @@ Ray Scene::ShadowRay(const SurfaceInteraction &from, const Vec3 &to, bool toDire
         return Ray{o, Normalize(to - from.p)};
     }
     // Stop just short of the target so the light's own surface does not occlude it.
-    *tMax = dist * (1 - 1e-7);
+    *tMax = dist * (1 - ShadowEpsilon);
     return Ray{o, od / dist};
 }
 

@@ -12,6 +12,7 @@
 #include "core/render/detector.h"
 #include "core/render/integrator.h"
 #include "core/render/light.h"
+#include "core/render/light_sampler.h"
 #include "core/render/material.h"
 #include "core/render/registry.h"
 #include "core/render/texture.h"
@@ -19,6 +20,13 @@
 #include "core/spectrum/spectrum.h"
 
 namespace phasor {
+
+/// The fraction of a shadow ray's segment left out at the far end, where the light is (pbrt's
+/// ShadowEpsilon): Embree intersects triangles in single precision, so a shadow ray that stopped
+/// 1e-7 of the way short of a point sampled on a mesh lamp still hit the lamp's own triangles for a
+/// third of the samples (tests/integrators/area_light_floor_test.cpp). An occluder closer to the
+/// lamp than 1e-4 of the distance does not shadow it.
+inline constexpr double ShadowEpsilon = 1e-4;
 
 /// Settings of the `Render` block (all optional; the CLI may override them).
 struct RenderSettings {
@@ -56,6 +64,10 @@ class Scene {
     const std::vector<const Light *> &DeltaLights() const { return deltaLights_; }
     const std::vector<const Light *> &HittableEmitters() const { return hittableEmitters_; }
     const std::vector<const Light *> &ClosedFormLights() const { return closedFormLights_; }
+    /// Next-event estimation's choice among Lights() (an integrator's `light_sampler`).
+    const LightSampler &GetLightSampler(LightSelection how) const {
+        return how == LightSelection::Power ? *powerLights_ : *uniformLights_;
+    }
     const Detector &GetDetector() const { return *detector_; }
     const Integrator &GetIntegrator() const { return *integrator_; }
     const WavelengthSampler &Wavelengths() const { return *wavelengths_; }
@@ -104,8 +116,8 @@ class Scene {
                                  return l.weight;
                              });
     }
-    /// The shadow ray from the surface point `from` to the point `to` (stopping just short of it,
-    /// as Occluded) or, with toDirection, along the direction `to` to infinity.
+    /// The shadow ray from the surface point `from` to the point `to` (stopping ShadowEpsilon of the
+    /// way short of it, as Occluded) or, with toDirection, along the direction `to` to infinity.
     Ray ShadowRay(const SurfaceInteraction &from, const Vec3 &to, bool toDirection, double *tMax) const;
     /// True if some surface may let shadow rays through (Material::MayPassStraight).
     bool HasStraightThrough() const { return straightThrough_; }
@@ -120,6 +132,7 @@ class Scene {
     std::unique_ptr<Accel> accel_;
     std::vector<std::shared_ptr<Shape>> shapes_;
     std::vector<const Light *> lights_, infiniteLights_, deltaLights_, hittableEmitters_, closedFormLights_;
+    std::unique_ptr<LightSampler> uniformLights_, powerLights_;
     std::shared_ptr<Detector> detector_;
     std::shared_ptr<Integrator> integrator_;
     std::unique_ptr<WavelengthSampler> wavelengths_;
