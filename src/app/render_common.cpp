@@ -271,7 +271,9 @@ double DisplayStops(const Detector &det, const Image &basis) {
 void StampDisplayExposure(Image &img, const Detector &det, double stops) {
     if (det.Response().GetKind() == SensorResponse::Kind::Radiometric) return;
     char buf[64];
-    std::snprintf(buf, sizeof buf, "%.6g", stops);
+    // Every digit (%.17g reads back as the same double): a reader of the EXR (the Python module's
+    // display, `phasor compare`) shows exactly the PNG this program wrote.
+    std::snprintf(buf, sizeof buf, "%.17g", stops);
     img.metadata["phasor:display_exposure"] = buf;
     img.metadata["phasor:auto_exposure"] = det.Exposure().automatic ? "true" : "false";
 }

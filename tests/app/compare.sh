@@ -236,7 +236,7 @@ no_plots)
     ;;
 reference)
     # 1. The failure this guards against: a reference that shares the graded run's random numbers.
-    #    `grt` and `biased` (grt cut after three scattering events) draw the same numbers for the same seed, so
+    #    `grt` and `biased` (grt cut after four scattering events) draw the same numbers for the same seed, so
     #    their noise cancels in biased − reference and the bias passes the test.
     common=(--spp 64 --seed 7 --sampler independent)
     run render "$bias" --integrator full "${common[@]}" -o "$out/same_seed.exr" --quiet
