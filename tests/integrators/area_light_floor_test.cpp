@@ -17,8 +17,8 @@
 #include <sstream>
 #include <string>
 
-#include "parser/parser.h"
 #include "support/replicas.h"
+#include "support/scene_text.h"
 #include "support/stats.h"
 
 namespace phasor::test {
@@ -38,13 +38,7 @@ std::unique_ptr<Scene> LampOverFloor(const std::string &integrator, double halfS
         "  fov = 0.5 deg  resolution = [2 2]  response = \"radiometric\" }\n"
         "Integrator \"" + integrator + "\" \"it\" { max_depth = 2 }\n"
         "Render { integrator = @it }\n";
-    Diagnostics diag;
-    auto desc = ParseSceneString(text, "lamp.wscene", DefineList{}, diag);
-    auto scene = desc ? Scene::Build(*desc, diag) : nullptr;
-    std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(scene) << os.str();
-    return scene;
+    return SceneFromText(text, "lamp.wscene");
 }
 
 double Expected(double halfSide) {

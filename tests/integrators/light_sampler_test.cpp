@@ -14,8 +14,8 @@
 #include <string>
 
 #include "core/render/light_sampler.h"
-#include "parser/parser.h"
 #include "support/replicas.h"
+#include "support/scene_text.h"
 #include "support/stats.h"
 
 namespace phasor::test {
@@ -43,13 +43,7 @@ std::unique_ptr<Scene> TwoPanels(const std::string &integrator, const std::strin
         "  fov = 20 deg  resolution = [8 8]  response = \"radiometric\" }\n"
         "Integrator \"" + integrator + "\" \"it\" { max_depth = 2  light_sampler = \"" + lightSampler + "\" }\n"
         "Render { integrator = @it }\n";
-    Diagnostics diag;
-    auto desc = ParseSceneString(text, "panels.wscene", DefineList{}, diag);
-    auto scene = desc ? Scene::Build(*desc, diag) : nullptr;
-    std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(scene) << os.str();
-    return scene;
+    return SceneFromText(text, "panels.wscene");
 }
 
 TEST(LightSampler, PowerIsProportionalAndSampled) {

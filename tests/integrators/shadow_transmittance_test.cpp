@@ -23,8 +23,8 @@
 #include <cmath>
 #include <string>
 
-#include "parser/parser.h"
 #include "support/replicas.h"
+#include "support/scene_text.h"
 #include "support/stats.h"
 #include "support/tmm.h"
 
@@ -49,15 +49,7 @@ std::unique_ptr<Scene> FloorScene(const std::string &integrator, double angularR
             "  fov = 3 deg  resolution = [6 6]  response = \"radiometric\" }\n"
             "Integrator \"" + integrator + "\" \"it\" { max_depth = 10 }\n"
             "Render { integrator = @it }\n";
-    Diagnostics diag;
-    auto desc = ParseSceneString(text, "floor.wscene", DefineList{}, diag);
-    EXPECT_TRUE(desc);
-    if (!desc) return nullptr;
-    auto scene = Scene::Build(*desc, diag);
-    std::ostringstream os;
-    diag.Print(os);
-    EXPECT_TRUE(scene) << os.str();
-    return scene;
+    return SceneFromText(text, "floor.wscene");
 }
 
 // The film's unpolarised transmittance at cosθ = mu in air: coherent (transfer matrices) or the
