@@ -34,8 +34,8 @@ struct DirectLightInfo {
 };
 
 /// Next-event estimation at a surface vertex (pbrt-style): one light chosen by `lights` (uniformly
-/// or by power, the integrator's `light_sampler`) with uLight, sampled with uPos; the kernel k prepared at si answers for its continuous lobes
-/// (near-delta lobes have no density). Delta lights get f·|cosθ|·E; area and infinite lights are
+/// or by power, the integrator's `light_sampler`) with uLight, sampled with uPos; the kernel k
+/// prepared at si answers for its continuous lobes (near-delta lobes have no density). Delta lights get f·|cosθ|·E; area and infinite lights are
 /// MIS-weighted (power heuristic) against kernel sampling. The shadow ray crosses straight-through
 /// surfaces with their transmittance (Scene::Transmittance; their kernels prepared in `scratch` in
 /// the regime `rayOptics`). Returns the contribution without the path throughput; counts the
