@@ -504,12 +504,8 @@ void PathEstimate<Sink>::MeasureAtDetector() {
         } else {
             const auto averaged = [&](const SurfaceInteraction &at, const PreparedKernel &k, const NearDeltaLobe &l,
                                       double) {
-                LobeEnsemble ensemble;
-                for (LobeEnsemble::Wave &w : ensemble.wave) {
-                    w.source = at.shading.ToLocal(inc->wi);
-                    w.profile = inc->profile;
-                }
-                return AverageLobeWeight(*at.material, k, l, ensemble, LobeTransfer::Irradiance, -1);
+                return AverageLobeWeight(*at.material, k, l, SourceEnsemble(at.shading, inc->wi, inc->profile),
+                                         LobeTransfer::Irradiance, -1);
             };
             v *= scene_.Transmittance(Ray{g_.o, inc->wi}, inc->dist * (1 - 1e-7), wl_, false, scratch_, stats_.rays,
                                       averaged);
@@ -627,11 +623,10 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
     // integrated over the detector's directions already.
     const bool integrated = depth == 0 && ds_->integratesIncidence && paths_.Lobes(scene_).Covers(si.shape);
     if (!(k.Capabilities() & CapNearDelta) || spreadFree_ || scene_.ClosedFormLights().empty() || integrated) return;
-    const bool crossable = si.material->MayPassStraight();
     for (const NearDeltaLobe &lobe : k.ListNearDelta()) {
         // Light straight through the surface was measured by the shadow rays of the vertex before,
         // which cross it (Scene::Transmittance, theory §3.5).
-        if (crossable && IsStraightThrough(lobe, k.Query().wi, wl_.Count())) continue;
+        if (PassesStraight(*si.material, lobe, k.Query().wi, wl_.Count())) continue;
         const bool uniform = GrPathSampler::UniformLobe(lobe, wl_);
         SampledSpectrum v(0.0);
         for (int i = 0; i < (uniform ? 1 : wl_.Count()) && !lobe.weight.IsZero(); ++i) {

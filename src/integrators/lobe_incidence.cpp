@@ -237,7 +237,7 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
             for (const NearDeltaLobe &lobe : seedLobes) {
                 // Light straight through the surface reaches the sensor as direct incidence, whose
                 // shadow ray crosses it (Scene::Transmittance, theory §3.5).
-                if (shape->material->MayPassStraight() && IsStraightThrough(lobe, seedWi, wl.Count())) continue;
+                if (PassesStraight(*shape->material, lobe, seedWi, wl.Count())) continue;
                 bool uniform = !(lobe.flags & ScatterDispersive);
                 for (int i = 1; i < wl.Count(); ++i) uniform = uniform && lobe.wo[i] == lobe.wo[0];
                 // One solve serves every wavelength of a lobe whose direction does not depend on λ;
@@ -257,11 +257,7 @@ SampledSpectrum LobeIncidence::Integrate(const Scene &scene, const DetectorGrSam
                     // over the light's angular profile, each plane wave weighted by the lobe's irradiance
                     // transfer relative to the central one's, which |det| holds (theory §0 D15).
                     const SpectralGenRay gp = target.AtHit(st.si, st.dir);
-                    LobeEnsemble ensemble;
-                    for (LobeEnsemble::Wave &w : ensemble.wave) {
-                        w.source = st.si.shading.ToLocal(st.inc.wi);
-                        w.profile = st.inc.profile;
-                    }
+                    const LobeEnsemble ensemble = SourceEnsemble(st.si.shading, st.inc.wi, st.inc.profile);
                     const ScratchBuffer::Mark hitMark = scratch.Save();
                     const PreparedKernel &k = st.si.material->Prepare(target.Query(st.si, gp), scratch);
                     const SampledSpectrum a = AverageLobeWeight(*st.si.material, k, st.lobe, ensemble,

@@ -209,12 +209,8 @@ class SampleSolveIntegrator final : public PixelIntegrator {
             if (!l) return std::nullopt;
             if (e.kind == grpath::EventKind::ThroughLobe)
                 return AverageLobeResponse(mat, k, e.lobe, MeasurementEnsemble(e.at->shading, *e.gr, *l, -e.travel, e.profile));
-            LobeEnsemble ensemble;
-            for (LobeEnsemble::Wave &w : ensemble.wave) {
-                w.source = e.at->shading.ToLocal(-e.travel);
-                w.profile = e.profile;
-            }
-            return AverageLobeResponse(mat, k, e.lobe, ensemble, LobeTransfer::Irradiance);
+            return AverageLobeResponse(mat, k, e.lobe, SourceEnsemble(e.at->shading, -e.travel, e.profile),
+                                       LobeTransfer::Irradiance);
         }
 
         /// Vertex v's sampled lobe's response (computed once per sample, at the GR's mean direction,

@@ -79,8 +79,7 @@ const Light *LightSampler::Sample(double u, double *pmf) const {
         i = std::min(n - 1, std::size_t(u * double(n)));
     } else {
         i = std::size_t(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
-        i = std::min(i, n - 1);
-        while (pmf_[i] == 0 && i > 0) --i;  // a cell of zero width cannot be picked
+        i = std::min(i, n - 1);  // every pmf is > 0 (the floor above): no empty cell to skip
     }
     *pmf = pmf_[i];
     return lights_[i];

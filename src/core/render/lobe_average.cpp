@@ -201,6 +201,15 @@ LobeEnsemble MeasurementEnsemble(const Frame &shading, const SpectralGenRay &g, 
     return e;
 }
 
+LobeEnsemble SourceEnsemble(const Frame &shading, const Vec3 &toLight, const AngularProfile &profile) {
+    LobeEnsemble e;
+    for (LobeEnsemble::Wave &w : e.wave) {
+        w.source = shading.ToLocal(toLight);
+        w.profile = profile;
+    }
+    return e;
+}
+
 SampledSpectrum AverageLobeWeight(const Material &m, const PreparedKernel &k, const NearDeltaLobe &lobe,
                                   const LobeEnsemble &e, LobeTransfer transfer, int wavelength) {
     const ScatterQuery &q = k.Query();

@@ -81,6 +81,11 @@ struct LobeEnsemble {
 LobeEnsemble MeasurementEnsemble(const Frame &shading, const SpectralGenRay &g, const NearDeltaLobe &lobe,
                                  const Vec3 &toLight, const AngularProfile &profile);
 
+/// A measurement that integrates the light's own profile only (a sensor plane's D4a through a
+/// lobe, a shadow ray crossing a film towards a sensor): every wavelength's wave is the profile
+/// about `toLight` (world, unit, towards the light), without a GR's window.
+LobeEnsemble SourceEnsemble(const Frame &shading, const Vec3 &toLight, const AngularProfile &profile);
+
 /// What is averaged.
 enum class LobeTransfer {
     /// a_j: a radiance measurement through the lobe (D14) and a sampled lobe's weight.

@@ -35,10 +35,13 @@ bool IsStraightThrough(const NearDeltaLobe &lobe, const Vec3 &wi, int count) {
     return true;
 }
 
+bool PassesStraight(const Material &mat, const NearDeltaLobe &lobe, const Vec3 &wi, int count) {
+    return mat.MayPassStraight() && IsStraightThrough(lobe, wi, count);
+}
+
 bool PassesStraight(const Material &mat, const PreparedKernel &k, int lobeId) {
-    if (!mat.MayPassStraight()) return false;
-    const NearDeltaLobe *l = k.FindLobe(lobeId);
-    return l && IsStraightThrough(*l, k.Query().wi, k.Query().wl ? k.Query().wl->Count() : 1);
+    const NearDeltaLobe *l = mat.MayPassStraight() ? k.FindLobe(lobeId) : nullptr;
+    return l && PassesStraight(mat, *l, k.Query().wi, k.Query().wl ? k.Query().wl->Count() : 1);
 }
 
 NearDeltaLobe &LobeList::Add() {

@@ -385,9 +385,11 @@ class Material {
 /// index on both sides and no tangential shift. Its weight is then the surface's transmittance
 /// along the line (the (η_i/η_t)² factor is 1).
 bool IsStraightThrough(const NearDeltaLobe &lobe, const Vec3 &wi, int count);
-/// The lobe of id `lobeId` of k (prepared for `mat`) goes straight on and `mat` lets shadow rays
-/// cross it (Material::MayPassStraight): a path that leaves through it is not a new vertex for the
-/// light it finds (theory §3.5).
+/// Shadow rays cross `lobe` (listed by `mat` for a query from `wi`): `mat` declares
+/// MayPassStraight and the lobe IsStraightThrough. Light is never measured through such a lobe,
+/// and a path that leaves through it is not a new vertex for the light it finds (theory §3.5).
+bool PassesStraight(const Material &mat, const NearDeltaLobe &lobe, const Vec3 &wi, int count);
+/// The same for the lobe of id `lobeId` of k (prepared for `mat`).
 bool PassesStraight(const Material &mat, const PreparedKernel &k, int lobeId);
 
 /// The facet of a kernel with a reference direction in the tangent plane (a grating's grating

@@ -220,17 +220,6 @@ FileLoc Scene::Where(const void *object) const {
     return e ? e->loc : FileLoc{};
 }
 
-bool Scene::Occluded(const SurfaceInteraction &from, const Vec3 &to) const {
-    Vec3 d = to - from.p;
-    Vec3 o = from.SpawnOrigin(d);
-    Vec3 od = to - o;
-    double dist = Length(od);
-    if (!(dist > 0)) return false;
-    if (rayLog_) rayLog_->push_back(Ray{o, od / dist});
-    // Stop just short of the target so the light's own surface does not occlude it.
-    return accel_->Occluded(Ray{o, od / dist}, 0, dist * (1 - ShadowEpsilon));
-}
-
 Ray Scene::ShadowRay(const SurfaceInteraction &from, const Vec3 &to, bool toDirection, double *tMax) const {
     if (toDirection) {
         *tMax = Infinity;
@@ -245,11 +234,6 @@ Ray Scene::ShadowRay(const SurfaceInteraction &from, const Vec3 &to, bool toDire
     // Stop just short of the target so the light's own surface does not occlude it.
     *tMax = dist * (1 - ShadowEpsilon);
     return Ray{o, od / dist};
-}
-
-bool Scene::OccludedDirection(const SurfaceInteraction &from, const Vec3 &dir) const {
-    if (rayLog_) rayLog_->push_back(Ray{from.SpawnOrigin(dir), dir});
-    return accel_->Occluded(Ray{from.SpawnOrigin(dir), dir}, 0, Infinity);
 }
 
 }  // namespace phasor

@@ -90,10 +90,6 @@ class Scene {
     /// Benchmarks only: appends every ray the scene is asked to trace (intersection and shadow
     /// rays) to `log`; single-threaded renders only. nullptr stops recording.
     void RecordRays(std::vector<Ray> *log) { rayLog_ = log; }
-    /// True if the segment from `from` (a surface point) to `to` is blocked.
-    bool Occluded(const SurfaceInteraction &from, const Vec3 &to) const;
-    bool OccludedDirection(const SurfaceInteraction &from, const Vec3 &dir) const;
-
     /// Shadow rays that cross straight-through surfaces (theory §3.5; pbrt's and Mitsuba's shadow
     /// rays through null interfaces): the fraction of the light that arrives along `ray` (unit d)
     /// from distance tMax [m] (Infinity: a direction), per carried wavelength — 1 with nothing on
@@ -104,7 +100,7 @@ class Scene {
     /// `scratch` (rewound afterwards). `weigh(si, k, lobe, t)` replaces a lobe's weight at its
     /// mean direction (grt's average over the measurement's plane waves, theory §0 D15); t is the
     /// distance along the ray. Counts each ray traced in `rays`. Scenes without such surfaces cost
-    /// one occlusion query, as Occluded. At most MaxCrossings surfaces are crossed; a segment
+    /// one occlusion query. At most MaxCrossings surfaces are crossed; a segment
     /// through more is taken as blocked.
     template <class Weigh>
     SampledSpectrum Transmittance(Ray ray, double tMax, const SampledWavelengths &wl, bool rayOptics,
@@ -117,10 +113,8 @@ class Scene {
                              });
     }
     /// The shadow ray from the surface point `from` to the point `to` (stopping ShadowEpsilon of the
-    /// way short of it, as Occluded) or, with toDirection, along the direction `to` to infinity.
+    /// way short of it) or, with toDirection, along the direction `to` to infinity.
     Ray ShadowRay(const SurfaceInteraction &from, const Vec3 &to, bool toDirection, double *tMax) const;
-    /// True if some surface may let shadow rays through (Material::MayPassStraight).
-    bool HasStraightThrough() const { return straightThrough_; }
     static constexpr int MaxCrossings = 64;
 
   private:
