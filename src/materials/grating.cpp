@@ -353,9 +353,25 @@ class GratingMaterial::Prepared final : public PreparedKernel {
 
     std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override;
     double AngularBandwidth(double kappaMax) const override;
+    /// One order's weight (Order) without listing the others: D15's nodes ask for one lobe.
+    std::optional<SampledSpectrum> LobeWeightAt(int id, const Vec3 &wiPrime, unsigned slots) const override;
 
   private:
     void List(const ScatterQuery &q, int maxOrder, LobeList &out) const;
+    /// Order j of one side for light leaving along wi (the query's, or a D15 node's wi′ at the same
+    /// hit), per carried wavelength slot i with bit i set in `slots` (the others untouched): its direction (the vector grating equation from wi) in wo and
+    /// its listed weight — the efficiency of order j for light arriving from that direction (see the
+    /// file comment), times (η_i/η_t)² on transmission — in weight (0 where evanescent). Returns the
+    /// first wavelength where it carries light, or −1. `scratch` holds the source's orders.
+    int Order(const Vec3 &wi, bool transmitted, int j, unsigned slots, std::array<Vec3, NumWavelengths> &wo,
+              SampledSpectrum &weight, GratingOrders &scratch) const;
+    /// The indices of wi's medium and of the far side (the substrate, or the outside when wi is
+    /// inside) at carried wavelength slot i.
+    std::pair<double, double> Indices(const Vec3 &wi, int i) const {
+        const double nSub = site_.substrate[std::size_t(i)].real();
+        const bool inside = m_->transmission_ && wi.z < 0;
+        return {inside ? nSub : q_.etaOutside, inside ? q_.etaOutside : nSub};
+    }
 
     const GratingMaterial *m_;
     Site site_;
@@ -386,44 +402,26 @@ void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeLi
     const GratingMaterial &m = *m_;
     const int count = q.wl->Count();
     const Vec2 unitShift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period);
-    // Indices of wi's medium and of the far side (the substrate, or the outside when wi is inside).
-    const bool inside = m.transmission_ && q.wi.z < 0;
-    std::array<double, NumWavelengths> nWi{}, nFar{};
-    for (int i = 0; i < count; ++i) {
-        const double nSub = site_.substrate[std::size_t(i)].real();
-        nWi[std::size_t(i)] = inside ? nSub : q.etaOutside;
-        nFar[std::size_t(i)] = inside ? q.etaOutside : nSub;
-    }
     GratingOrders scratch;
     for (const bool transmitted : {false, true}) {
         if (transmitted && !m.transmission_) break;
         for (int j = -maxOrder; j <= maxOrder; ++j) {
-            // Lobe j's direction per wavelength (vector grating equation from wi) and its weight:
-            // the efficiency of order j for light arriving from that direction (see the file comment).
             std::array<Vec3, NumWavelengths> wo{};
-            std::array<double, NumWavelengths> energy{};
-            int lit = -1;  // the first wavelength where the lobe carries light
-            for (int i = 0; i < count; ++i) {
-                const std::size_t s = std::size_t(i);
-                const double nOut = transmitted ? nFar[s] : nWi[s];
-                if (!NearDeltaDirection(q.wi, nWi[s], nOut, unitShift * double(j), q.wl->lambda[i], transmitted, &wo[s]))
-                    continue;
-                energy[s] = m.SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch);
-                if (energy[s] > 0 && lit < 0) lit = i;
-            }
+            SampledSpectrum weight;
+            const int lit = Order(q.wi, transmitted, j, ~0u, wo, weight, scratch);
             if (lit < 0) continue;
             NearDeltaLobe &l = out.Add();
             l.id = (transmitted ? TransmittedId : 0) + j;
             l.flags = ScatterNearDelta | (transmitted ? ScatterTransmission : ScatterReflection) |
                       (j != 0 || (transmitted && m.dispersive_) ? ScatterDispersive : 0u);
             l.shift = unitShift * double(j);
+            l.weight = weight;
             for (int i = 0; i < count; ++i) {
                 const std::size_t s = std::size_t(i);
-                l.nIn[s] = nWi[s];
-                l.nOut[s] = transmitted ? nFar[s] : nWi[s];
-                const double ratio = l.nIn[s] / l.nOut[s];
-                l.weight[i] = transmitted ? energy[s] * ratio * ratio : energy[s];  // (η_i/η_t)²: radiance
-                l.wo[s] = energy[s] > 0 ? wo[s] : wo[std::size_t(lit)];
+                const auto [nWi, nFar] = Indices(q.wi, i);
+                l.nIn[s] = nWi;
+                l.nOut[s] = transmitted ? nFar : nWi;
+                l.wo[s] = weight[i] > 0 ? wo[s] : wo[std::size_t(lit)];
             }
         }
     }
@@ -442,6 +440,38 @@ void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeLi
             for (int i = 0; i < count; ++i) w += l.weight[i];
         l.prob = hero > 0 ? w / hero : w / all;
     }
+}
+
+int GratingMaterial::Prepared::Order(const Vec3 &wi, bool transmitted, int j, unsigned slots,
+                                     std::array<Vec3, NumWavelengths> &wo, SampledSpectrum &weight,
+                                     GratingOrders &scratch) const {
+    const ScatterQuery &q = q_;
+    const Vec2 shift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period) * double(j);  // as List's l.shift
+    int lit = -1;
+    for (int i = 0; i < q.wl->Count(); ++i) {
+        if (!((slots >> i) & 1u)) continue;
+        const std::size_t s = std::size_t(i);
+        const auto [nWi, nFar] = Indices(wi, i);
+        const double nOut = transmitted ? nFar : nWi;
+        if (!NearDeltaDirection(wi, nWi, nOut, shift, q.wl->lambda[i], transmitted, &wo[s])) continue;
+        const double energy = m_->SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch);
+        const double ratio = nWi / nOut;
+        weight[i] = transmitted ? energy * ratio * ratio : energy;  // (η_i/η_t)²: radiance
+        if (energy > 0 && lit < 0) lit = i;
+    }
+    return lit;
+}
+
+std::optional<SampledSpectrum> GratingMaterial::Prepared::LobeWeightAt(int id, const Vec3 &wiPrime, unsigned slots) const {
+    const bool transmitted = id >= TransmittedId / 2;
+    const int j = transmitted ? id - TransmittedId : id;
+    const int maxOrder = q_.rayOptics ? 0 : m_->maxOrder_;
+    SampledSpectrum weight;
+    if (wiPrime.z == 0 || std::abs(j) > maxOrder || (transmitted && !m_->transmission_)) return weight;
+    std::array<Vec3, NumWavelengths> wo{};
+    GratingOrders scratch;
+    Order(wiPrime, transmitted, j, slots, wo, weight, scratch);
+    return weight;
 }
 
 bool GratingMaterial::HasCoherenceTerms() const { return surface_->LayerCount() > 0; }

@@ -210,6 +210,15 @@ class MixMaterial final : public Material, public ReferenceDirection {
             }
             return r;
         }
+        /// The owning child's, times its share (as the listing scales it).
+        std::optional<SampledSpectrum> LobeWeightAt(int lobe, const Vec3 &wiPrime, unsigned slots) const override {
+            const bool isB = (lobe & 1) != 0;
+            const PreparedKernel *child = isB ? b_ : a_;
+            if (!child) return SampledSpectrum();  // a child with share 0 lists nothing
+            std::optional<SampledSpectrum> a = child->LobeWeightAt((lobe - int(isB)) / 2, wiPrime, slots);
+            if (!a) return std::nullopt;
+            return *a * (isB ? w_ : 1 - w_);
+        }
 
       private:
         std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override {

@@ -74,6 +74,7 @@ class SmoothKernel::Prepared final : public PreparedKernel {
     }
 
     std::optional<LobeResponse> EvalLobe(int lobe, const Vec3 &wo) const override;
+    std::optional<SampledSpectrum> LobeWeightAt(int id, const Vec3 &wiPrime, unsigned slots) const override;
     double AngularBandwidth(double kappaMax) const override {
         return HeroToShortest(*q_.wl) * k_->surface_.Bandwidth(q_.wl->lambda[0], q_.etaOutside, kappaMax,
                                                               k_->FromInside(q_), thickness_, LobeAverageTolerance);
@@ -146,6 +147,25 @@ int SmoothKernel::Prepared::List(const ScatterQuery &q) {
         }
     }
     return listed;
+}
+
+/// List's weight of one lobe at wiPrime in the slots asked for, with the hit's layer thicknesses (no
+/// texture evaluation); the hero is evaluated in any case (no lobe is listed where it has no response).
+std::optional<SampledSpectrum> SmoothKernel::Prepared::LobeWeightAt(int id, const Vec3 &wiPrime, unsigned slots) const {
+    SampledSpectrum out;
+    if (wiPrime.z == 0 || (id != 0 && id != 1)) return out;
+    ScatterQuery q = q_;
+    q.wi = wiPrime;
+    const Wave hero = k_->Evaluate(q, 0, thickness_);
+    Vec3 wo;
+    if (!hero.ok || (id == 1 && (!k_->transmits_ || !RefractLocal(q.wi, hero.eta, &wo)))) return out;
+    for (int i = 0; i < q.wl->Count(); ++i) {
+        if (!((slots >> i) & 1u)) continue;
+        const Wave w = i == 0 ? hero : k_->Evaluate(q, i, thickness_);
+        if (id == 0) out[i] = w.R;  // 0 at every slot where List lists no reflection
+        else if (w.ok && w.T > 0 && RefractLocal(q.wi, w.eta, &wo)) out[i] = w.T / (w.eta * w.eta);
+    }
+    return out;
 }
 
 std::optional<LobeResponse> SmoothKernel::Prepared::EvalLobe(int lobe, const Vec3 &wo) const {

@@ -233,6 +233,12 @@ class TwoSidedMaterial final : public Material, public ReferenceDirection {
             }
             return r;
         }
+        /// The side's child's, at the mirrored wi′ from below; a wi′ on the other side (the other
+        /// child) is not answered.
+        std::optional<SampledSpectrum> LobeWeightAt(int lobe, const Vec3 &wiPrime, unsigned slots) const override {
+            if ((wiPrime.z < 0) != below_) return std::nullopt;
+            return child_->LobeWeightAt(lobe, below_ ? Mirror(wiPrime) : wiPrime, slots);
+        }
 
       private:
         std::optional<ScatterSample> SampleLobes(double u0, const Vec2 &u) const override {

@@ -957,6 +957,39 @@ TEST_P(MaterialContract, StraightThroughIsDeclared) {
     }
 }
 
+TEST_P(MaterialContract, LobeWeightAtIsThePreparedWeight) {
+    // A kernel that answers LobeWeightAt (one lobe's weight at another incident direction, what the
+    // angular-spectrum averages ask at every node, theory §0 D15) answers exactly what the material
+    // prepared for that direction lists: the same weight bit for bit, 0 where the lobe is not listed
+    // there, in every slot asked for. From above and below, in both regimes, at the query's own
+    // direction and at 40 others.
+    TestRng rng = Rng("lobeweightat");
+    for (const bool below : {false, true})
+        for (const bool rayOptics : {false, true}) {
+            ScatterQuery q = rayOptics ? qRay_ : q_;
+            if (below) q.wi.z = -q.wi.z;
+            const PreparedKernel &k = material_->Prepare(q, scratch_);
+            for (const NearDeltaLobe &l : k.ListNearDelta())
+                for (int n = 0; n <= 40; ++n) {
+                    Vec3 wi = k.Query().wi;
+                    if (n > 0) wi = DirectionFromCosTheta(std::max(rng.Uniform(), 1e-3), 2 * Pi * rng.Uniform());
+                    if (below && n > 0) wi.z = -wi.z;
+                    // Every slot, and one slot alone (a dispersive lobe's rule asks for one).
+                    const unsigned slots = n % 2 ? ~0u : 1u << (n / 2 % q.wl->Count());
+                    const std::optional<SampledSpectrum> at = k.LobeWeightAt(l.id, wi, slots);
+                    if (!at) continue;
+                    ScatterQuery qn = k.Query();
+                    qn.wi = wi;
+                    const NearDeltaLobe *there = material_->Prepare(qn, scratch_).FindLobe(l.id);
+                    for (int i = 0; i < q.wl->Count(); ++i)
+                        if ((slots >> i) & 1u)
+                            ASSERT_EQ((*at)[i], there ? there->weight[i] : 0.0)
+                            << "lobe " << l.id << ", slot " << i << ", wi′ " << ToString(wi)
+                            << (below ? " (below)" : "") << (rayOptics ? ", ray optics" : "");
+                }
+        }
+}
+
 TEST_P(MaterialContract, EvalPdfIsEvalAndPdf) {
     // EvalPdf is a faster way to the same numbers: exactly (EvalFrom, Pdf), for a plane wave, a
     // spherical wave from 0.1 mm and, for footprint-aware kernels, from 5 µm, in both regimes.

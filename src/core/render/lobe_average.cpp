@@ -234,13 +234,17 @@ SampledSpectrum AverageLobeWeight(const Material &m, const PreparedKernel &k, co
                 done[std::size_t(j)] = true;
             }
         const LobeEnsemble::Wave &w = e.wave[std::size_t(i)];
+        unsigned slots = 0;
+        for (int k = 0; k < members; ++k) slots |= 1u << group[std::size_t(k)];
         std::array<double, NumWavelengths> sum{};
         const double norm = ForEachNode(k, lobe, w, i, [&](const Vec3 &omega, const Vec3 &wiPrime, double weight, bool single) {
             SampledSpectrum a(0.0);
             if (single && SameDirection(omega, lobe.wo[std::size_t(i)], 1e-12)) {
                 a = lobe.weight;  // the lobe's own direction: its listed weight
             } else {
-                if (const NearDeltaLobe *l = PrepareAt(m, k, wiPrime).FindLobe(lobe.id)) a = l->weight;
+                // The kernel's answer for this lobe alone where it gives one, else a new preparation.
+                if (const std::optional<SampledSpectrum> at = k.LobeWeightAt(lobe.id, wiPrime, slots)) a = *at;
+                else if (const NearDeltaLobe *l = PrepareAt(m, k, wiPrime).FindLobe(lobe.id)) a = l->weight;
                 ++counters.evaluations;
             }
             const double t = transfer == LobeTransfer::Irradiance ? RelativeTransfer(omega, wiPrime, lobe, i, w, q.wi) : 1.0;

@@ -32,7 +32,10 @@
 // sampling integrates the GR's spectrum over that product — averaging the lobe again would smooth it
 // twice (an area lamp seen in a 10 µm film through a sensor plane read 10 % low that way).
 //
-// Cost: one rule per ensemble and distinct wavelength footprint, and one kernel preparation per node. An
+// Cost: one rule per ensemble and distinct wavelength footprint, and one kernel evaluation per node —
+// the lobe's weight alone where the prepared kernel answers PreparedKernel::LobeWeightAt (the smooth
+// kernels, grating, mix, two_sided: one order of a grating instead of its whole listing, the hit's
+// textures not evaluated again), else the material prepared again for the node's direction. An
 // ensemble whose spread meets the bound with one node (a camera pixel's ~1e-4 rad spectrum on a
 // film of a few µm) is evaluated at its mean: no extra kernel call when that is the lobe's own
 // direction, one when it is a light's direction (a plane wave seen through D14). A thick film under
@@ -102,8 +105,8 @@ enum class LobeTransfer {
 
 /// ⟨a_j⟩ of listed lobe `lobe` of `k` (kernel m prepared for the hit's query) over the ensemble, per
 /// carried wavelength (only `wavelength` when ≥ 0; the others are 0). Equals lobe.weight where the
-/// ensemble is a single direction along the lobe. Every node prepares m for its own direction in a
-/// scratch buffer of this file's (k's buffer is not touched).
+/// ensemble is a single direction along the lobe. Every node asks k.LobeWeightAt, or prepares m for
+/// its own direction in a scratch buffer of this file's (k's buffer is not touched).
 SampledSpectrum AverageLobeWeight(const Material &m, const PreparedKernel &k, const NearDeltaLobe &lobe,
                                   const LobeEnsemble &e, LobeTransfer transfer = LobeTransfer::Radiance,
                                   int wavelength = -1);

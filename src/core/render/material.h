@@ -291,6 +291,22 @@ class PreparedKernel {
         (void)kappaMax;
         return 0;
     }
+    /// The weight [radiance throughput, as NearDeltaLobe::weight] listed lobe `id` would have if the
+    /// kernel were prepared at the same hit (same textures, wavelengths, media) for the incident
+    /// direction wiPrime (local, unit, on Query().wi's side of the surface) instead of Query().wi:
+    /// per carried wavelength slot i with bit i set in `slots` (the others may be anything), 0 where
+    /// it would not be listed. Equal, bit for bit, to Prepare(query with wi = wiPrime).FindLobe(id)->
+    /// weight in those slots (the contract suite checks it). What the angular-spectrum averages of
+    /// theory §0 D15 ask at each quadrature node (core/render/lobe_average.h; a dispersive lobe's
+    /// wavelengths have rules of their own, so one slot at a time): kernels that list many lobes (a
+    /// grating's orders) or evaluate textures when prepared answer it without a listing. nullopt (the
+    /// default): the kernel does not answer, and the caller prepares the material again at wiPrime.
+    virtual std::optional<SampledSpectrum> LobeWeightAt(int id, const Vec3 &wiPrime, unsigned slots) const {
+        (void)id;
+        (void)wiPrime;
+        (void)slots;
+        return std::nullopt;
+    }
 
   protected:
     /// Keeps q without its `gr` and `si` (see above). Kernels set caps_, lobes_ and continuous_.
