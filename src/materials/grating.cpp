@@ -306,15 +306,17 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
         s.maxOrder = used;
         double jAbs[GratingSide::MaxOrder + 1];
         BesselJSequence(std::abs(a), used, jAbs);
+        // Without directions, which orders propagate is an interval found at once.
+        const OrderRange range = directions ? OrderRange{} : PropagatingOrders(q.wi, s.nIn, s.nOut, unitShift, lambda, used);
         double total = 0;
         for (int j = -used; j <= used; ++j) {
             const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
             s.amplitude[k] = SignedBessel(jAbs, j, a);
             const double e = s.amplitude[k] * s.amplitude[k];
             total += e;
-            const Vec2 shift = unitShift * double(j);
-            s.propagating[k] = directions ? NearDeltaDirection(q.wi, s.nIn, s.nOut, shift, lambda, transmitted, &s.wo[k])
-                                          : NearDeltaPropagates(q.wi, s.nIn, s.nOut, shift, lambda);
+            s.propagating[k] = directions ? NearDeltaDirection(q.wi, s.nIn, s.nOut, unitShift * double(j), lambda,
+                                                               transmitted, &s.wo[k])
+                                          : range.Contains(j);
             (s.propagating[k] ? s.propagatingSum : s.evanescent) += e;
         }
         s.truncated = std::max(0.0, 1 - total);

@@ -4,6 +4,9 @@
 // kernel.
 #include "core/render/material.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "core/diagnostics.h"
 #include "core/render/genray.h"
 
@@ -164,6 +167,36 @@ bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shi
 bool NearDeltaPropagates(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda) {
     const Vec2 t = NearDeltaTangential(wi, nIn, nOut, shift, lambda);
     return t.x * t.x + t.y * t.y < 1;
+}
+
+OrderRange PropagatingOrders(const Vec3 &wi, double nIn, double nOut, const Vec2 &unit, double lambda, int maxOrder) {
+    const auto propagates = [&](int j) { return NearDeltaPropagates(wi, nIn, nOut, unit * double(j), lambda); };
+    // |a + j·b|² < nOut² with a = −nIn·wi.xy, b = unit·λ/2π: j within w of c = −a·b/|b|².
+    const double s = lambda / (2 * Pi);
+    const Vec2 a(-nIn * wi.x, -nIn * wi.y), b = unit * s;
+    const double bb = b.x * b.x + b.y * b.y, ab = a.x * b.x + a.y * b.y, aa = a.x * a.x + a.y * a.y;
+    OrderRange r;
+    if (!(bb > 0)) {  // no shift: every order is the zeroth
+        if (propagates(0)) r = {-maxOrder, maxOrder};
+        return r;
+    }
+    const double c = -ab / bb, disc = ab * ab - bb * (aa - nOut * nOut);
+    const double w = disc > 0 ? std::sqrt(disc) / bb : 0;
+    const double lo = std::max(std::ceil(c - w), double(-maxOrder)), hi = std::min(std::floor(c + w), double(maxOrder));
+    if (lo > hi) {
+        // No integer inside the roots (or none in range): the nearest order in range, if rounding
+        // lets it propagate, is the whole range.
+        const int j = int(std::clamp(std::round(c), double(-maxOrder), double(maxOrder)));
+        if (propagates(j)) r = {j, j};
+        return r;
+    }
+    r = {int(lo), int(hi)};
+    // The ends as the predicate has them (rounding at a root moves an end by at most one order).
+    while (r.lo > -maxOrder && propagates(r.lo - 1)) --r.lo;
+    while (r.lo <= r.hi && !propagates(r.lo)) ++r.lo;
+    while (r.hi < maxOrder && propagates(r.hi + 1)) ++r.hi;
+    while (r.hi >= r.lo && !propagates(r.hi)) --r.hi;
+    return r;
 }
 
 }  // namespace phasor

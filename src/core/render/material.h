@@ -450,6 +450,16 @@ bool NearDeltaDirection(const Vec3 &wi, double nIn, double nOut, const Vec2 &shi
                         bool transmission, Vec3 *wo);
 /// Whether that lobe propagates (NearDeltaDirection's answer, without the direction).
 bool NearDeltaPropagates(const Vec3 &wi, double nIn, double nOut, const Vec2 &shift, double lambda);
+/// The orders j ∈ [−maxOrder, maxOrder] whose lobe of shift j·unit propagates: those for which
+/// NearDeltaPropagates(wi, nIn, nOut, unit·double(j), λ) holds, found without asking every order.
+/// They form an interval (the tangential wave vectors lie on a line, the propagating ones in a
+/// disc): from the roots of |−nIn·wi.xy + j·unit·λ/2π|² = nOut², its ends settled by the predicate
+/// itself. Empty when lo > hi.
+struct OrderRange {
+    int lo = 0, hi = -1;
+    bool Contains(int j) const { return j >= lo && j <= hi; }
+};
+OrderRange PropagatingOrders(const Vec3 &wi, double nIn, double nOut, const Vec2 &unit, double lambda, int maxOrder);
 
 /// A kernel's SampleLobes for lobes it has listed: picks lobe j with probability `prob` (u0) and
 /// returns its hero direction with weight a_j/p_j, pdf p_j, its id, flags and η. Nullopt if no
