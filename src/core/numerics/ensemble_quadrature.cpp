@@ -246,27 +246,53 @@ EnsembleRuleInfo Build(const EnsembleShape &shape, const RatesRef &rates, double
         info.overlap = false;
         return info;
     }
-    // The window straddles the disc's edge: Gauss–Legendre over the disc clipped to the window's box.
+    // The window straddles the disc's edge. In axes along its centre (u, radial) and across it (v,
+    // tangential) — the disc is the same disc there — Gauss–Legendre over the radial extent of the
+    // disc clipped to the window's box; on every chord that spans the window's ±6s box, Gauss–Hermite
+    // for its Gaussian across (a few nodes where the window is narrow: the Gaussian is integrated
+    // exactly, only g's rate counts), else Gauss–Legendre over the clipped chord with the Gaussian
+    // as a factor. g's rate along a unit direction e is at most |e_x|·R_x + |e_y|·R_y (Bernstein per
+    // axis, as the mixed derivatives of a band-limited g).
     const double half = GaussianBox * s;
-    const double x0 = std::max(-r, c.x - half), x1 = std::min(r, c.x + half);
-    const double y0 = std::max(-r, c.y - half), y1 = std::min(r, c.y + half);
-    const Vec2 rate = rates(EnsembleBox{Vec2(x0, y0), Vec2(x1, y1)});
-    const bool discEnds = x0 == -r || x1 == r;
-    LegendreAxis(x0, x1, (x1 - x0) * (rate.x + rate.y + GaussianRate / s), tol, discEnds, xs, &capped);
-    LegendreAxis(-1, 1, (y1 - y0) * (rate.y + GaussianRate / s), tol, false, ys, &capped);
+    const Vec2 er = d > 0 ? c * (1 / d) : Vec2(1, 0), et(-er.y, er.x);
+    const Vec2 rate = rates(EnsembleBox{Vec2(std::max(-r, c.x - half), std::max(-r, c.y - half)),
+                                        Vec2(std::min(r, c.x + half), std::min(r, c.y + half))});
+    const double ru = std::abs(er.x) * rate.x + std::abs(er.y) * rate.y;
+    const double rv = std::abs(et.x) * rate.x + std::abs(et.y) * rate.y;
+    // Radially, ±6s about the centre, or for a centre outside the disc the 6s inside its edge: the
+    // overlap there is the window's tail, and what lies beyond d − 6s is not negligible beside it.
+    const double u0 = std::max(-r, std::min(d, r) - half), u1 = std::min(r, d + half);
+    const bool discEnds = u0 == -r || u1 == r;
+    // A centre outside the disc leaves only the window's tail over it, whose logarithm falls by
+    // (d − r)/s² per unit of u at the edge: that much more rate.
+    const double tail = std::max(0.0, d - r) / var;
+    LegendreAxis(u0, u1, (u1 - u0) * (ru + rv + GaussianRate / s + tail), tol, discEnds, xs, &capped);
+    LegendreAxis(-1, 1, 2 * half * (rv + GaussianRate / s), tol, false, ys, &capped);
+    const int hermite = GaussHermiteNodesFor(std::sqrt(2.0) * s * rv, tol);
+    const GaussHermiteRule &gh = GaussHermite(hermite);
+    int ny = 0;
     for (const AxisNode &a : xs) {
         const double h = std::sqrt(std::max(0.0, r * r - a.x * a.x));
-        const double lo = std::max(-h, y0), hi = std::min(h, y1);
+        const double qu = Normal1(a.x, d, var);
+        if (h >= half && hermite <= MaxGaussHermiteNodes) {
+            for (int i = 0; i < gh.n; ++i) {
+                const double v = std::sqrt(2.0) * s * gh.x[i], q = qu * Normal1(v, 0, var);
+                out.push_back({er * a.x + et * v, a.w * qu * gh.w[i] / std::sqrt(Pi), q});
+            }
+            ny = std::max(ny, gh.n);
+            continue;
+        }
+        const double lo = std::max(-h, -half), hi = std::min(h, half);
         if (!(hi > lo)) continue;
         const double mid = 0.5 * (lo + hi), hw = 0.5 * (hi - lo);
         for (const AxisNode &b : ys) {
-            const Vec2 p(a.x, mid + hw * b.x);
-            const double q = Normal1(p.x, c.x, var) * Normal1(p.y, c.y, var);
-            out.push_back({p, a.w * hw * b.w * q, q});
+            const double v = mid + hw * b.x, q = qu * Normal1(v, 0, var);
+            out.push_back({er * a.x + et * v, a.w * hw * b.w * q, q});
         }
+        ny = std::max(ny, int(ys.size()));
     }
     info.nx = int(xs.size());
-    info.ny = int(ys.size());
+    info.ny = ny;
     if (out.empty()) {  // round-off at a tangent edge: the nearest point of the disc
         out.push_back({c * (r / std::max(d, 1e-300)), 1, 1});
         info.overlap = false;
