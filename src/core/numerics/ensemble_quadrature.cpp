@@ -157,6 +157,119 @@ void GaussianAxis(double mean, double var, double rate, double tol, std::vector<
     }
 }
 
+// ---- Gauss rules for a truncated normal --------------------------------------------------------------
+
+constexpr int MaxTruncatedNormalNodes = 12;
+
+// The eigenvalues of the symmetric n×n matrix m (row-major, overwritten) and the first component of
+// each unit eigenvector, by cyclic Jacobi rotations (n ≤ MaxTruncatedNormalNodes).
+void SymmetricEigen(int n, double *m, double *values, double *first) {
+    constexpr int N = MaxTruncatedNormalNodes;
+    double v[N * N] = {};
+    for (int i = 0; i < n; ++i) v[i * n + i] = 1;
+    double scale = 0;
+    for (int i = 0; i < n * n; ++i) scale += m[i] * m[i];
+    for (int sweep = 0; sweep < 64; ++sweep) {
+        double off = 0;
+        for (int p = 0; p < n; ++p)
+            for (int q = p + 1; q < n; ++q) off += m[p * n + q] * m[p * n + q];
+        if (off <= 1e-32 * scale) break;
+        for (int p = 0; p < n; ++p)
+            for (int q = p + 1; q < n; ++q) {
+                const double apq = m[p * n + q];
+                if (apq == 0) continue;
+                // The rotation J (J_pp = J_qq = c, J_pq = s, J_qp = −s) with (JᵀmJ)_pq = 0: t = s/c is
+                // the smaller root of t² + 2θt − 1 = 0.
+                const double theta = (m[q * n + q] - m[p * n + p]) / (2 * apq);
+                const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
+                const double c = 1 / std::sqrt(t * t + 1), sn = t * c;
+                for (int k = 0; k < n; ++k) {  // columns p, q
+                    const double kp = m[k * n + p], kq = m[k * n + q];
+                    m[k * n + p] = c * kp - sn * kq;
+                    m[k * n + q] = sn * kp + c * kq;
+                }
+                for (int k = 0; k < n; ++k) {  // rows p, q
+                    const double pk = m[p * n + k], qk = m[q * n + k];
+                    m[p * n + k] = c * pk - sn * qk;
+                    m[q * n + k] = sn * pk + c * qk;
+                }
+                for (int k = 0; k < n; ++k) {
+                    const double kp = v[k * n + p], kq = v[k * n + q];
+                    v[k * n + p] = c * kp - sn * kq;
+                    v[k * n + q] = sn * kp + c * kq;
+                }
+            }
+    }
+    for (int i = 0; i < n; ++i) {
+        values[i] = m[i * n + i];
+        first[i] = v[i];
+    }
+}
+
+}  // namespace
+
+bool TruncatedNormalRule(double a, double b, double rate, double tol, std::vector<std::pair<double, double>> &out) {
+    out.clear();
+    constexpr int M = MaxGaussLegendreNodes, N = MaxTruncatedNormalNodes;
+    // The weight φ on [a, b] as M Gauss–Legendre points: exact to round-off for the polynomials of
+    // degree ≤ 2N + 1 the recurrence below integrates against it (φ over ≤ 12 units is resolved).
+    const GaussLegendreRule &g = GaussLegendre(M);
+    std::array<double, M> x{}, w{}, prev{}, cur{};
+    const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+    double mass = 0;
+    for (int i = 0; i < M; ++i) {
+        x[std::size_t(i)] = mid + half * g.x[i];
+        w[std::size_t(i)] = half * g.w[i] * std::exp(-0.5 * x[std::size_t(i)] * x[std::size_t(i)]) / std::sqrt(2 * Pi);
+        cur[std::size_t(i)] = 1;
+        mass += w[std::size_t(i)];
+    }
+    if (!(mass > 0)) return false;
+    // Stieltjes: monic orthogonal π_k with π_{k+1} = (x − α_k)π_k − β_k π_{k−1}; Gauss's remainder for
+    // n nodes is f^{(2n)}/(2n)!·∫π_n² φ = f^{(2n)}/(2n)!·mass·β_1⋯β_n, so with |f^{(2n)}| ≤ rate^{2n}·sup|f|
+    // the average's error is at most rate^{2n}·β_1⋯β_n/(2n)! (as Gauss–Hermite's, where β_k = k).
+    std::array<double, N + 1> alpha{}, beta{};
+    double normPrev = 0, norm = mass, bound = 1;
+    int n = 0;
+    for (int k = 0; k <= N; ++k) {
+        if (k > 0) {
+            beta[std::size_t(k)] = norm / normPrev;
+            bound *= Sqr(rate) * beta[std::size_t(k)] / ((2.0 * k - 1) * (2.0 * k));
+            if (bound <= tol) {
+                n = k;
+                break;
+            }
+        }
+        if (k == N) break;
+        double xs = 0;
+        for (int i = 0; i < M; ++i) xs += w[std::size_t(i)] * x[std::size_t(i)] * Sqr(cur[std::size_t(i)]);
+        alpha[std::size_t(k)] = xs / norm;
+        double next = 0;
+        for (int i = 0; i < M; ++i) {
+            const std::size_t j = std::size_t(i);
+            const double p = (x[j] - alpha[std::size_t(k)]) * cur[j] - (k > 0 ? beta[std::size_t(k)] * prev[j] : 0.0);
+            prev[j] = cur[j];
+            cur[j] = p;
+            next += w[j] * p * p;
+        }
+        normPrev = norm;
+        norm = next;
+        if (!(norm > 0)) return false;
+    }
+    if (n == 0) return false;
+    // Golub–Welsch: the nodes are the eigenvalues of the Jacobi matrix, the weights mass·v₀².
+    double jm[N * N] = {}, values[N], first[N];
+    for (int i = 0; i < n; ++i) {
+        jm[i * n + i] = alpha[std::size_t(i)];
+        if (i + 1 < n) jm[i * n + i + 1] = jm[(i + 1) * n + i] = std::sqrt(beta[std::size_t(i + 1)]);
+    }
+    SymmetricEigen(n, jm, values, first);
+    for (int i = 0; i < n; ++i) out.push_back({values[i], mass * first[i] * first[i]});
+    std::sort(out.begin(), out.end());
+    return true;
+}
+
+namespace {
+
 void Tensor(const std::vector<AxisNode> &xs, const std::vector<AxisNode> &ys, std::vector<EnsembleNode> &out) {
     for (const AxisNode &a : xs)
         for (const AxisNode &b : ys) out.push_back({Vec2(a.x, b.x), a.w * b.w, a.q * b.q});
@@ -247,51 +360,71 @@ EnsembleRuleInfo Build(const EnsembleShape &shape, const RatesRef &rates, double
         return info;
     }
     // The window straddles the disc's edge. In axes along its centre (u, radial) and across it (v,
-    // tangential) — the disc is the same disc there — Gauss–Legendre over the radial extent of the
-    // disc clipped to the window's box; on every chord that spans the window's ±6s box, Gauss–Hermite
-    // for its Gaussian across (a few nodes where the window is narrow: the Gaussian is integrated
-    // exactly, only g's rate counts), else Gauss–Legendre over the clipped chord with the Gaussian
-    // as a factor. g's rate along a unit direction e is at most |e_x|·R_x + |e_y|·R_y (Bernstein per
-    // axis, as the mixed derivatives of a band-limited g).
+    // tangential) — the disc is the same disc there — the disc within ±6s of the centre radially
+    // (for a centre outside the disc, the 6s inside its edge: the overlap is the window's tail, and
+    // what lies beyond d − 6s is not negligible beside it). Across, on every chord that spans the
+    // window's ±6s, Gauss–Hermite (the Gaussian exactly, only g's rate counts); on the shorter chords
+    // near the edge, the truncated normal's Gauss rule (Gauss–Legendre with the Gaussian as a factor
+    // if that needs more than 12 nodes). Radially,
+    // where the chords span the window (u ≤ e, e = √(r² − 36s²)) the integrand is g's average across
+    // times the Gaussian: the truncated normal's own Gauss rule; beyond e, Gauss–Legendre with the
+    // Gaussian counted as a rate of 2.5/s plus the tail's log-slope (d − r)/s², and the chord's
+    // square-root end mapped away. g's rate along a unit direction e is at most |e_x|·R_x + |e_y|·R_y
+    // (Bernstein per axis, as the mixed derivatives of a band-limited g).
     const double half = GaussianBox * s;
     const Vec2 er = d > 0 ? c * (1 / d) : Vec2(1, 0), et(-er.y, er.x);
     const Vec2 rate = rates(EnsembleBox{Vec2(std::max(-r, c.x - half), std::max(-r, c.y - half)),
                                         Vec2(std::min(r, c.x + half), std::min(r, c.y + half))});
     const double ru = std::abs(er.x) * rate.x + std::abs(er.y) * rate.y;
     const double rv = std::abs(et.x) * rate.x + std::abs(et.y) * rate.y;
-    // Radially, ±6s about the centre, or for a centre outside the disc the 6s inside its edge: the
-    // overlap there is the window's tail, and what lies beyond d − 6s is not negligible beside it.
     const double u0 = std::max(-r, std::min(d, r) - half), u1 = std::min(r, d + half);
-    const bool discEnds = u0 == -r || u1 == r;
-    // A centre outside the disc leaves only the window's tail over it, whose logarithm falls by
-    // (d − r)/s² per unit of u at the edge: that much more rate.
-    const double tail = std::max(0.0, d - r) / var;
-    LegendreAxis(u0, u1, (u1 - u0) * (ru + rv + GaussianRate / s + tail), tol, discEnds, xs, &capped);
-    LegendreAxis(-1, 1, 2 * half * (rv + GaussianRate / s), tol, false, ys, &capped);
+    const double e = half < r ? std::sqrt(r * r - half * half) : -r;
     const int hermite = GaussHermiteNodesFor(std::sqrt(2.0) * s * rv, tol);
     const GaussHermiteRule &gh = GaussHermite(hermite);
     int ny = 0;
-    for (const AxisNode &a : xs) {
-        const double h = std::sqrt(std::max(0.0, r * r - a.x * a.x));
-        const double qu = Normal1(a.x, d, var);
+    thread_local std::vector<AxisNode> chord;
+    thread_local std::vector<std::pair<double, double>> tnv;
+    // The nodes of the chord at u, whose radial weight (the Gaussian's factor included) is wu.
+    auto across = [&](double u, double wu) {
+        const double h = std::sqrt(std::max(0.0, r * r - u * u));
+        const double qu = Normal1(u, d, var);
         if (h >= half && hermite <= MaxGaussHermiteNodes) {
             for (int i = 0; i < gh.n; ++i) {
-                const double v = std::sqrt(2.0) * s * gh.x[i], q = qu * Normal1(v, 0, var);
-                out.push_back({er * a.x + et * v, a.w * qu * gh.w[i] / std::sqrt(Pi), q});
+                const double v = std::sqrt(2.0) * s * gh.x[i];
+                out.push_back({er * u + et * v, wu * gh.w[i] / std::sqrt(Pi), qu * Normal1(v, 0, var)});
             }
             ny = std::max(ny, gh.n);
-            continue;
+            return;
         }
         const double lo = std::max(-h, -half), hi = std::min(h, half);
-        if (!(hi > lo)) continue;
-        const double mid = 0.5 * (lo + hi), hw = 0.5 * (hi - lo);
-        for (const AxisNode &b : ys) {
-            const double v = mid + hw * b.x, q = qu * Normal1(v, 0, var);
-            out.push_back({er * a.x + et * v, a.w * hw * b.w * q, q});
+        if (!(hi > lo)) return;
+        if (TruncatedNormalRule(lo / s, hi / s, s * rv, tol, tnv)) {
+            for (const auto &[x, w] : tnv) out.push_back({er * u + et * (s * x), wu * w, qu * Normal1(s * x, 0, var)});
+            ny = std::max(ny, int(tnv.size()));
+            return;
         }
-        ny = std::max(ny, int(ys.size()));
+        LegendreAxis(lo, hi, (hi - lo) * (rv + GaussianRate / s), tol, false, chord, &capped);
+        for (const AxisNode &b : chord) {
+            const double q = Normal1(b.x, 0, var);
+            out.push_back({er * u + et * b.x, wu * b.w * q, qu * q});
+        }
+        ny = std::max(ny, int(chord.size()));
+    };
+    int nx = 0;
+    double uB = u0;  // where the radial Gauss–Legendre part starts
+    thread_local std::vector<std::pair<double, double>> tn;
+    if (e > u0 && TruncatedNormalRule((u0 - d) / s, (std::min(e, u1) - d) / s, s * (ru + rv), tol, tn)) {
+        for (const auto &[x, w] : tn) across(d + s * x, w);
+        nx += int(tn.size());
+        uB = std::min(e, u1);
     }
-    info.nx = int(xs.size());
+    if (u1 > uB) {
+        const double tail = std::max(0.0, d - r) / var;
+        LegendreAxis(uB, u1, (u1 - uB) * (ru + rv + GaussianRate / s + tail), tol, uB == -r || u1 == r, xs, &capped);
+        for (const AxisNode &a : xs) across(a.x, a.w * Normal1(a.x, d, var));
+        nx += int(xs.size());
+    }
+    info.nx = nx;
     info.ny = ny;
     if (out.empty()) {  // round-off at a tangent edge: the nearest point of the disc
         out.push_back({c * (r / std::max(d, 1e-300)), 1, 1});

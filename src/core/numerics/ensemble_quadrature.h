@@ -24,8 +24,12 @@
 //       |E| ≤ L^{2n+1}(n!)⁴/((2n+1)((2n)!)³)·R^{2n}·sup|g| (GaussLegendreMaxPhase);
 //     the outer axis of a disc is mapped by x = mid − h·cos t, which removes the square-root
 //     ends of its chords (the integrand in t is analytic; its rate is h·R plus 2 for the chord);
-//   * a Gaussian window clipped by a disc's edge is integrated with Gauss–Legendre over the
-//     clipped interval, the Gaussian counted as a rate of 2.5/s (a model, checked by the tests).
+//   * a Gaussian window clipped by a disc's edge is integrated in axes along (u) and across (v) its
+//     centre: Gauss–Legendre in u over the disc within ±6s of the centre (for a centre outside the
+//     disc, the 6s inside the edge, where its tail lies), the Gaussian counted as a rate of 2.5/s
+//     plus the tail's log-slope (d − r)/s² (a model, checked by the tests against brute force);
+//     across, Gauss–Hermite on every chord that spans ±6s (the Gaussian exactly, g's rate only),
+//     Gauss–Legendre on the clipped chords near the edge's tip.
 // Over the two axes the error of an average (Σ w g/Σ w) is then at most 3·tol·sup|g| (each axis's
 // bound relative to the ensemble's mass; a disc's outer axis carries the chord's Jacobian, ≤ 2·tol).
 // Every rule has at most MaxEnsembleNodesPerAxis nodes per axis (composite Gauss–Legendre panels
@@ -34,6 +38,7 @@
 // order appearing) converges algebraically, not as bounded.
 #pragma once
 
+#include <utility>
 #include <vector>
 
 #include "core/math.h"
@@ -57,6 +62,15 @@ int GaussHermiteNodesFor(double rateT, double tol);
 /// The fewest Gauss–Legendre nodes (≤ 64) whose remainder for a total phase Φ = rate·L over the
 /// interval is ≤ tol·L·sup|g|; 65 if none suffices.
 int GaussLegendreNodesFor(double phase, double tol);
+
+/// The Gauss rule for ∫_a^b f(x)·φ(x) dx, φ the standard normal density (a truncated normal): the
+/// fewest nodes n ≤ 12 whose remainder for a function of rate `rate` [rad per unit of x] is ≤ tol
+/// relative to ∫_a^b φ — rate^{2n}·β_1⋯β_n/(2n)! with β_k the recurrence coefficients of the
+/// weight (k for the untruncated normal: Gauss–Hermite's bound) — as (node, weight) pairs, weights
+/// summing to ∫_a^b φ, nodes ascending. From a 64-point Gauss–Legendre discretisation of φ on [a, b]
+/// (b − a ≤ 12) by the Stieltjes procedure and the Jacobi matrix's eigen-decomposition
+/// (Golub–Welsch). False (out empty) if no n ≤ 12 meets the bound.
+bool TruncatedNormalRule(double a, double b, double rate, double tol, std::vector<std::pair<double, double>> &out);
 
 /// Most nodes per axis of an EnsembleRule.
 constexpr int MaxEnsembleNodesPerAxis = 256;
