@@ -981,11 +981,12 @@ TEST_P(MaterialContract, LobeWeightAtIsThePreparedWeight) {
                     ScatterQuery qn = k.Query();
                     qn.wi = wi;
                     const NearDeltaLobe *there = material_->Prepare(qn, scratch_).FindLobe(l.id);
-                    for (int i = 0; i < q.wl->Count(); ++i)
-                        if ((slots >> i) & 1u)
-                            ASSERT_EQ((*at)[i], there ? there->weight[i] : 0.0)
+                    for (int i = 0; i < q.wl->Count(); ++i) {
+                        if (!((slots >> i) & 1u)) continue;
+                        ASSERT_EQ((*at)[i], there ? there->weight[i] : 0.0)
                             << "lobe " << l.id << ", slot " << i << ", wi′ " << ToString(wi)
                             << (below ? " (below)" : "") << (rayOptics ? ", ray optics" : "");
+                    }
                 }
         }
 }
