@@ -210,6 +210,8 @@ void SymmetricEigen(int n, double *m, double *values, double *first) {
 
 bool TruncatedNormalRule(double a, double b, double rate, double tol, std::vector<std::pair<double, double>> &out) {
     out.clear();
+    // The discretisation below resolves φ over at most 12 units (its stated range): refuse beyond.
+    if (!(b > a) || b - a > 12 * (1 + 1e-12)) return false;
     constexpr int M = MaxGaussLegendreNodes, N = MaxTruncatedNormalNodes;
     // The weight φ on [a, b] as M Gauss–Legendre points: exact to round-off for the polynomials of
     // degree ≤ 2N + 1 the recurrence below integrates against it (φ over ≤ 12 units is resolved).

@@ -69,7 +69,7 @@ int GaussLegendreNodesFor(double phase, double tol);
 /// weight (k for the untruncated normal: Gauss–Hermite's bound) — as (node, weight) pairs, weights
 /// summing to ∫_a^b φ, nodes ascending. From a 64-point Gauss–Legendre discretisation of φ on [a, b]
 /// (b − a ≤ 12) by the Stieltjes procedure and the Jacobi matrix's eigen-decomposition
-/// (Golub–Welsch). False (out empty) if no n ≤ 12 meets the bound.
+/// (Golub–Welsch). False (out empty) if no n ≤ 12 meets the bound, or b − a is not in (0, 12].
 bool TruncatedNormalRule(double a, double b, double rate, double tol, std::vector<std::pair<double, double>> &out);
 
 /// Most nodes per axis of an EnsembleRule.

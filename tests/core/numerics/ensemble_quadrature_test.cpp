@@ -127,6 +127,8 @@ TEST(TruncatedNormalRule, MeetsItsRemainderBound) {
     std::vector<std::pair<double, double>> rule;
     EXPECT_FALSE(TruncatedNormalRule(-6, 6, 8.0, tol, rule)) << "more than 12 nodes: the caller falls back";
     EXPECT_TRUE(rule.empty());
+    EXPECT_FALSE(TruncatedNormalRule(-7, 7, 0.1, tol, rule)) << "beyond 12 units the discretisation is not resolved";
+    EXPECT_FALSE(TruncatedNormalRule(1, 1, 0.1, tol, rule)) << "an empty interval";
 }
 
 TEST(GaussLegendre, NodeCountMeetsThePhaseBound) {
