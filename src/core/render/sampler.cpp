@@ -28,16 +28,6 @@ double Pcg32::Uniform() {
     return double(((hi << 32) | lo) >> 11) * 0x1p-53;
 }
 
-uint64_t MixBits(uint64_t v) {
-    // splitmix64 finaliser.
-    v ^= v >> 30;
-    v *= 0xbf58476d1ce4e5b9ULL;
-    v ^= v >> 27;
-    v *= 0x94d049bb133111ebULL;
-    v ^= v >> 31;
-    return v;
-}
-
 uint64_t Hash(uint64_t a, uint64_t b, uint64_t c, uint64_t d) {
     uint64_t h = MixBits(a + 0x9e3779b97f4a7c15ULL);
     h = MixBits(h ^ (b + 0x9e3779b97f4a7c15ULL));
