@@ -137,17 +137,12 @@ MeshShape::MeshShape(TriangleMesh mesh) : mesh_(std::move(mesh)) {
     area_ = sum;
 }
 
-SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, double b1, double b2) const {
+MeshShape::PointNormals MeshShape::PointAt(unsigned prim, double b1, double b2) const {
     const uint32_t *idx = &mesh_.indices[3 * std::size_t(prim)];
     const Vec3 &p0 = mesh_.positions[idx[0]], &p1 = mesh_.positions[idx[1]], &p2 = mesh_.positions[idx[2]];
-    double b0 = 1 - b1 - b2;
-
-    SurfaceInteraction si;
-    si.t = t;
-    si.shape = this;
-    si.material = material;
-    si.areaLight = areaLight;
-    si.p = b0 * p0 + b1 * p1 + b2 * p2;
+    const double b0 = 1 - b1 - b2;
+    PointNormals r;
+    r.p = b0 * p0 + b1 * p1 + b2 * p2;
 
     // Geometric normal from the winding (counter-clockwise seen from outside).
     Vec3 ng = Cross(p1 - p0, p2 - p0);
@@ -165,7 +160,25 @@ SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, 
             if (Dot(ng, ns) < 0) ng = -ng;
         }
     }
-    si.n = ng;
+    r.ng = ng;
+    r.ns = ns;
+    return r;
+}
+
+SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, double b1, double b2) const {
+    const uint32_t *idx = &mesh_.indices[3 * std::size_t(prim)];
+    const Vec3 &p0 = mesh_.positions[idx[0]], &p1 = mesh_.positions[idx[1]], &p2 = mesh_.positions[idx[2]];
+    const double b0 = 1 - b1 - b2;
+    const PointNormals pn = PointAt(prim, b1, b2);
+
+    SurfaceInteraction si;
+    si.t = t;
+    si.shape = this;
+    si.material = material;
+    si.areaLight = areaLight;
+    si.p = pn.p;
+    si.n = pn.ng;
+    const Vec3 &ns = pn.ns;
 
     // Texture coordinates (default parameterisation (0,0), (1,0), (1,1) as in pbrt) and dp/du
     // from the 2×2 system dp02 = duv02.u·dpdu + duv02.v·dpdv, dp12 = duv12.u·dpdu + duv12.v·dpdv.
@@ -205,9 +218,9 @@ ShapeSample MeshShape::Sample(const Vec2 &u) const {
     // Uniform point on the triangle (square-root parameterisation, Osada et al. 2002).
     double su = std::sqrt(ux);
     double b1 = (1 - u.y) * su, b2 = u.y * su;
-    SurfaceInteraction si = Interaction(Ray{}, 0, unsigned(i), b1, b2);
-    ss.p = si.p;
-    ss.n = si.n;
+    const PointNormals pn = PointAt(unsigned(i), b1, b2);  // (no shading frame: not needed here)
+    ss.p = pn.p;
+    ss.n = pn.ng;
     ss.pdfArea = 1 / area_;
     return ss;
 }

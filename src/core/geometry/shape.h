@@ -105,6 +105,14 @@ class MeshShape : public Shape {
     std::string ToString() const override;
 
   protected:
+    /// The point at barycentrics (b1, b2) of triangle `prim` [m, world], its unit geometric normal
+    /// (from the winding, flipped to the side of the interpolated vertex normals when the mesh has
+    /// them) and its unit shading normal (the interpolated vertex normals; else the geometric one).
+    struct PointNormals {
+        Vec3 p, ng, ns;
+    };
+    PointNormals PointAt(unsigned prim, double b1, double b2) const;
+
     TriangleMesh mesh_;
     Bounds3 bounds_;
     double area_ = 0;
