@@ -38,9 +38,10 @@ bool Film::AddSample(int x, int y, const SampledSpectrum &L, const SampledWavele
     double intensity = 0;
     for (int i = 0; i < count; ++i) {
         if (wl.pdf[i] == 0) continue;
-        double f = L[i] / wl.pdf[i];
-        channels += response_.Channels(wl.lambda[i]) * f;
-        intensity += response_.Intensity(wl.lambda[i]) * f;
+        const double f = L[i] / wl.pdf[i];
+        const SensorResponse::Weights w = response_.At(wl.lambda[i]);
+        channels += w.channels * f;
+        intensity += w.intensity * f;
     }
     return AddReduced(x, y, channels / count, intensity / count);
 }

@@ -112,10 +112,13 @@ Vec3 LinearSrgbToXyz(const Vec3 &rgb) { return Mul(RgbToXyz(), rgb); }
 
 // ---- SensorResponse -----------------------------------------------------------------------
 
-Vec3 SensorResponse::Channels(double lambda) const {
-    if (kind_ == Kind::Radiometric) return {1, 1, 1};
-    return CieXyz(lambda) / CieYIntegral();
+SensorResponse::Weights SensorResponse::At(double lambda) const {
+    if (kind_ == Kind::Radiometric) return {{1, 1, 1}, 1};
+    const Vec3 c = CieXyz(lambda) / CieYIntegral();
+    return {c, c.y};
 }
+
+Vec3 SensorResponse::Channels(double lambda) const { return At(lambda).channels; }
 
 Vec3 SensorResponse::WhiteBalance(const Vec3 &xyz) const {
     if (!balanced_) return xyz;
@@ -146,10 +149,7 @@ void SensorResponse::SetWhiteBalance(const Spectrum &illuminant) {
     balanced_ = true;
 }
 
-double SensorResponse::Intensity(double lambda) const {
-    if (kind_ == Kind::Radiometric) return 1;
-    return CieXyz(lambda).y / CieYIntegral();
-}
+double SensorResponse::Intensity(double lambda) const { return At(lambda).intensity; }
 
 double SensorResponse::Importance(double lambda) const {
     if (kind_ == Kind::Radiometric) return 1;

@@ -136,6 +136,13 @@ class SensorResponse {
     Vec3 Channels(double lambda) const;
     /// Weight of the monochrome `intensity` channel (ȳ/∫ȳ for CIE, 1 for radiometric).
     double Intensity(double lambda) const;
+    /// Both at once, from one look-up of the colour matching functions (the film, per sample):
+    /// {Channels(lambda), Intensity(lambda)}.
+    struct Weights {
+        Vec3 channels;
+        double intensity;
+    };
+    Weights At(double lambda) const;
     /// A sampling density shape (unnormalised, ≥ 0) over wavelength for this response.
     double Importance(double lambda) const;
     std::string Name() const { return kind_ == Kind::CieXyz ? "cie_xyz" : "radiometric"; }

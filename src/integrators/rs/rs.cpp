@@ -198,12 +198,11 @@ class RsIntegrator final : public Integrator {
                     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
                 return stats;
             }
-            const Vec3 wc = film.Response().Channels(job.lambda);
-            const double wi = film.Response().Intensity(job.lambda);
+            const SensorResponse::Weights w = film.Response().At(job.lambda);
             for (std::size_t p = 0; p < flux.size(); ++p) {
                 const double v = flux[p] / eRef;
-                channels[p] += wc * v;
-                intensity[p] += wi * v;
+                channels[p] += w.channels * v;
+                intensity[p] += w.intensity * v;
             }
         }
         if (opt.work && !opt.work->Coordinates()) {
