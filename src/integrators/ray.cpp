@@ -59,7 +59,8 @@ class RayIntegrator final : public PixelIntegrator {
 
         for (int depth = 0;; ++depth) {
             ++stats.rays;
-            auto si = scene.Intersect(ray);
+            // No phase is carried: Embree's float distance is enough (HitPrecision).
+            auto si = scene.Intersect(ray, Infinity, HitPrecision::Embree);
             if (!si) {
                 L += beta * path::EscapedEmission(scene, lights, ray.d, wl, mis);
                 break;

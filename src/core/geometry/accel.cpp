@@ -231,7 +231,7 @@ Accel::Accel(std::vector<const Shape *> shapes)
 
 Accel::~Accel() = default;
 
-std::optional<Hit> Accel::Intersect(const Ray &ray, double tMin, double tMax) const {
+std::optional<Hit> Accel::Intersect(const Ray &ray, double tMin, double tMax, HitPrecision precision) const {
     FtzDazScope ftz;
     QueryContext qc;
     rtcInitIntersectContext(&qc.context);
@@ -252,8 +252,9 @@ std::optional<Hit> Accel::Intersect(const Ray &ray, double tMin, double tMax) co
     if (const TriangleMesh *mesh = shape->Mesh()) {
         // Recompute t and the barycentrics of the winning triangle in double precision.
         const uint32_t *idx = &mesh->indices[3 * std::size_t(hit.prim)];
-        auto th =
-            RayTrianglePlane(ray, mesh->positions[idx[0]], mesh->positions[idx[1]], mesh->positions[idx[2]]);
+        auto th = precision == HitPrecision::Double ? RayTrianglePlane(ray, mesh->positions[idx[0]],
+                                                                       mesh->positions[idx[1]], mesh->positions[idx[2]])
+                                                    : std::nullopt;
         if (th) {
             hit.t = th->t;
             hit.b1 = th->b1;
@@ -283,8 +284,9 @@ bool Accel::Occluded(const Ray &ray, double tMin, double tMax) const {
     return r.tfar == -INFINITY;
 }
 
-std::optional<SurfaceInteraction> Accel::IntersectSurface(const Ray &ray, double tMin, double tMax) const {
-    std::optional<Hit> hit = Intersect(ray, tMin, tMax);
+std::optional<SurfaceInteraction> Accel::IntersectSurface(const Ray &ray, double tMin, double tMax,
+                                                          HitPrecision precision) const {
+    std::optional<Hit> hit = Intersect(ray, tMin, tMax, precision);
     if (!hit) return std::nullopt;
     return shapes_[hit->shapeIndex]->Interaction(ray, hit->t, hit->prim, hit->b1, hit->b2);
 }

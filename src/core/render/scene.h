@@ -83,9 +83,12 @@ class Scene {
     RenderSettings &Settings() { return settings_; }
     Bounds3 Bounds() const { return accel_->Bounds(); }
 
-    std::optional<SurfaceInteraction> Intersect(const Ray &ray, double tMax = Infinity) const {
+    /// The nearest surface along `ray` before tMax [m]; `precision` as in Accel (HitPrecision):
+    /// Double wherever a phase is carried.
+    std::optional<SurfaceInteraction> Intersect(const Ray &ray, double tMax = Infinity,
+                                                HitPrecision precision = HitPrecision::Double) const {
         if (rayLog_) rayLog_->push_back(ray);
-        return accel_->IntersectSurface(ray, 0, tMax);
+        return accel_->IntersectSurface(ray, 0, tMax, precision);
     }
     /// Benchmarks only: appends every ray the scene is asked to trace (intersection and shadow
     /// rays) to `log`; single-threaded renders only. nullptr stops recording.
