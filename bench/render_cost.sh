@@ -34,15 +34,9 @@ scenes=${SCENES:-"scenes/validation/grt_cornell.wscene $(cd "$root" && ls scenes
 old_root=${OLD_ROOT:+$(realpath "$OLD_ROOT")}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-# Valgrind 3.19 stops at an instruction of libhwy's timer probe (an OpenImageIO dependency, run
-# when the library loads): a stub of that one function, preloaded, lets the program start.
-preload=()
-if ldd "$new" | grep libhwy > /dev/null; then  # (not grep -q: with pipefail, ldd could die of SIGPIPE)
-    printf '#include <cstdint>\nnamespace hwy { namespace platform { uint64_t TimerResolution() { return 1; } } }\n' \
-        > "$work/hwy_stub.cpp"
-    c++ -O2 -shared -fPIC "$work/hwy_stub.cpp" -o "$work/libhwy_stub.so"
-    preload=(env LD_PRELOAD="$work/libhwy_stub.so")
-fi
+# shellcheck source=bench/callgrind_env.sh
+. "$root/bench/callgrind_env.sh"
+callgrind_preload "$work" "$new"
 
 # Instructions of one render's estimates (the "summary:" line of callgrind's output). Collection is
 # toggled on entering and leaving each EstimatePixel (toggling on PixelIntegrator::Render, as this
