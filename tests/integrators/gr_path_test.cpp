@@ -150,7 +150,12 @@ TEST(GrPath, EventsSumToTheEstimateOnEveryValidationScene) {
         if (e.path().extension() == ".wscene") files.push_back(e.path().filename().string());
     std::sort(files.begin(), files.end());
     ASSERT_GE(files.size(), 17u);
-    for (const std::string &f : files) CheckScene(f, 4, 4, 2, {});
+    for (const std::string &f : files) {
+        // The periscope's screen sees its source only through two near-delta vertices, found by a
+        // few per cent of the sampled paths (its header: what listed-lobe incidence leaves to them).
+        const int spp = f == "screen_behind_two_mirrors.wscene" ? 64 : 2;
+        CheckScene(f, 4, 4, spp, {});
+    }
 }
 
 TEST(GrPath, EventsSumToTheEstimateCornell) {

@@ -22,10 +22,13 @@ namespace phasor::test {
 namespace {
 
 const std::string ScenePath = std::string(PHASOR_SOURCE_DIR) + "/scenes/validation/screen_behind_mirror.wscene";
+const std::string TwoMirrorsPath =
+    std::string(PHASOR_SOURCE_DIR) + "/scenes/validation/screen_behind_two_mirrors.wscene";
 
-std::unique_ptr<Scene> Load(const DefineList &defines, const std::function<void(SceneDesc &)> &edit = {}) {
+std::unique_ptr<Scene> Load(const DefineList &defines, const std::function<void(SceneDesc &)> &edit = {},
+                            const std::string &path = ScenePath) {
     Diagnostics diag;
-    auto desc = ParseSceneFile(ScenePath, defines, diag);
+    auto desc = ParseSceneFile(path, defines, diag);
     EXPECT_TRUE(desc);
     if (!desc) return nullptr;
     if (edit) edit(*desc);
@@ -161,6 +164,23 @@ TEST(ScreenBehindLobe, SampledPathDoesNotMeasureTheMirrorAgain) {
         EXPECT_GT(analytic, 0.5);
         EXPECT_NEAR(row[x], analytic, 1e-6 * analytic) << "pixel " << x;
     }
+}
+
+TEST(ScreenBehindLobe, TwoMirrorsAreFoundBySampledPathsAtTheDocumentedCost) {
+    // A periscope (scenes/validation/screen_behind_two_mirrors.wscene): the wave reaches the
+    // screen only through two near-delta vertices. Listed-lobe incidence follows the first vertex
+    // only, so the sampled path finds the wave at its second vertex (D14): right — R²·E, here at
+    // 64² spp on the pixels' lattice (D4b), measured error 1e-4 — but dear: at 16² spp the error is
+    // tens of per cent, as the scene's header documents. If chains are ever integrated in closed
+    // form the second check fails: then update that header and docs/generalized_rays.md.
+    auto scene = Load({{"pixels", "3"}}, {}, TwoMirrorsPath);
+    ASSERT_TRUE(scene);
+    const double R = FresnelR(std::cos(Radians(30.0)), Gold550), expected = R * R;
+    for (double v : Row(*scene, 4096)) EXPECT_NEAR(v, expected, 2e-3 * expected);
+    double sum2 = 0;
+    const std::vector<double> coarse = Row(*scene, 256);
+    for (double v : coarse) sum2 += (v - expected) * (v - expected);
+    EXPECT_GT(std::sqrt(sum2 / double(coarse.size())), 0.2 * expected);
 }
 
 }  // namespace
