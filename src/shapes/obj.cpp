@@ -20,10 +20,11 @@ class ObjShape final : public MeshShape {
     static std::unique_ptr<Shape> Create(const ParamDict &d, BuildContext &ctx) {
         std::string path = ctx.ResolveFile(d, "file").string();
         Transform toWorld = ctx.GetTransform(d, "to_world");
-        auto shape = shape_common::AtParam(d, "file", [&] {
+        auto key = [&] { return GeometryKey("obj").File("file", path).Matrix("to_world", toWorld); };
+        auto shape = shape_common::CachedMeshShape<ObjShape>(d, "file", key, [&] {
             TriangleMesh m = LoadObj(path);
             m.Transform(toWorld);
-            return std::make_unique<ObjShape>(std::move(m));
+            return m;
         });
         return shape_common::Finish(std::move(shape), d, ctx);
     }

@@ -24,14 +24,18 @@ class RectangleShape final : public MeshShape {
         return s;
     }
     static std::unique_ptr<Shape> Create(const ParamDict &d, BuildContext &ctx) {
-        double hw = 0.5 * d.GetNumber("width"), hh = 0.5 * d.GetNumber("height");
-        TriangleMesh m;
-        m.positions = {{-hw, -hh, 0}, {hw, -hh, 0}, {hw, hh, 0}, {-hw, hh, 0}};
-        m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-        m.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from +z
-        m.Transform(ctx.GetTransform(d, "to_world"));
-        auto shape = shape_common::AtParam(d, "to_world",
-                                           [&] { return std::make_unique<RectangleShape>(std::move(m)); });
+        const double w = d.GetNumber("width"), h = d.GetNumber("height");
+        const Transform toWorld = ctx.GetTransform(d, "to_world");
+        auto key = [&] { return GeometryKey("rectangle").Number("width", w).Number("height", h).Matrix("to_world", toWorld); };
+        auto shape = shape_common::CachedMeshShape<RectangleShape>(d, "to_world", key, [&] {
+            const double hw = 0.5 * w, hh = 0.5 * h;
+            TriangleMesh m;
+            m.positions = {{-hw, -hh, 0}, {hw, -hh, 0}, {hw, hh, 0}, {-hw, hh, 0}};
+            m.uvs = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+            m.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from +z
+            m.Transform(toWorld);
+            return m;
+        });
         return shape_common::Finish(std::move(shape), d, ctx);
     }
     static std::vector<ParamDict> TestPresets() {

@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — helpers shared by the shape plug-ins: the parameters every shape takes (material,
-// to_world) and error relocation for loaders.
+// to_world), error relocation for loaders and meshes from the geometry cache.
 #pragma once
 
 #include <memory>
@@ -8,6 +8,7 @@
 #include <utility>
 
 #include "core/diagnostics.h"
+#include "core/geometry/geometry_cache.h"
 #include "core/render/material.h"
 #include "core/params/dict.h"
 #include "core/render/registry.h"
@@ -44,6 +45,14 @@ auto AtParam(const ParamDict &d, const std::string &param, F &&f) -> decltype(f(
         relocated.notes = e.notes;
         throw relocated;
     }
+}
+
+/// A mesh shape S over the process-wide cached mesh of the key `makeKey()` returns, built by
+/// `build()` (a TriangleMesh in world space) if no scene or recent use holds it; an error without
+/// a location (a file that cannot be read, a loader's) is reported at parameter `param`.
+template <typename S, typename MakeKey, typename Build>
+std::unique_ptr<S> CachedMeshShape(const ParamDict &d, const std::string &param, MakeKey &&makeKey, Build &&build) {
+    return AtParam(d, param, [&] { return std::make_unique<S>(CachedMesh(makeKey(), build)); });
 }
 
 }  // namespace phasor::shape_common

@@ -31,19 +31,21 @@ class SubdivisionShape final : public MeshShape {
                         "subdivision: give exactly one of 'file' (an OBJ cage) or 'cage = \"cube\"'");
         int levels = d.GetInt("levels");
         Transform toWorld = ctx.GetTransform(d, "to_world");
-        std::string param = d.Has("file") ? "file" : "cage";
-        PolyMesh cage;
-        if (d.Has("file")) {
-            std::string path = ctx.ResolveFile(d, "file").string();
-            cage = shape_common::AtParam(d, "file", [&] { return LoadObjPolygons(path); });
-        } else {
-            d.GetString("cage");  // "cube" (the only choice)
-            cage = CubeCage();
-        }
-        auto shape = shape_common::AtParam(d, param, [&] {
-            TriangleMesh m = SubdivideCatmullClark(cage, levels);
+        const bool fromFile = d.Has("file");
+        const std::string param = fromFile ? "file" : "cage";
+        const std::string path = fromFile ? ctx.ResolveFile(d, "file").string() : "";
+        if (!fromFile) d.GetString("cage");  // "cube" (the only choice)
+        // The mesh is a function of the cage (the file's content), the levels and to_world.
+        auto key = [&] {
+            GeometryKey k("subdivision");
+            if (fromFile) k.File("file", path);
+            else k.Text("cage", "cube");
+            return k.Integer("levels", levels).Matrix("to_world", toWorld);
+        };
+        auto shape = shape_common::CachedMeshShape<SubdivisionShape>(d, param, key, [&] {
+            TriangleMesh m = SubdivideCatmullClark(fromFile ? LoadObjPolygons(path) : CubeCage(), levels);
             m.Transform(toWorld);
-            return std::make_unique<SubdivisionShape>(std::move(m));
+            return m;
         });
         return shape_common::Finish(std::move(shape), d, ctx);
     }

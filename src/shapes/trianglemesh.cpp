@@ -62,9 +62,17 @@ class TriangleMeshShape final : public MeshShape {
                                               "); got " + std::to_string(uv.size()));
             for (std::size_t i = 0; i < nv; ++i) m.uvs.push_back(Vec2(uv[2 * i], uv[2 * i + 1]));
         }
-        m.Transform(ctx.GetTransform(d, "to_world"));
-        auto shape = shape_common::AtParam(d, "positions",
-                                           [&] { return std::make_unique<TriangleMeshShape>(std::move(m)); });
+        const Transform toWorld = ctx.GetTransform(d, "to_world");
+        m.Transform(toWorld);
+        // The mesh is a function of the lists given and to_world.
+        auto key = [&] {
+            GeometryKey k("trianglemesh");
+            k.Numbers("positions", p).Numbers("indices", std::vector<double>(idx.begin(), idx.end()));
+            for (const char *list : {"normals", "uvs"})
+                if (d.Has(list)) k.Numbers(list, d.GetNumbers(list));
+            return k.Matrix("to_world", toWorld);
+        };
+        auto shape = shape_common::CachedMeshShape<TriangleMeshShape>(d, "positions", key, [&] { return std::move(m); });
         return shape_common::Finish(std::move(shape), d, ctx);
     }
     static std::vector<ParamDict> TestPresets() {

@@ -6,6 +6,11 @@
 // triangle against the caller's double ray, analytic shapes (Embree user geometry) by calling
 // Shape::Intersect with the caller's double ray, which reaches the callbacks through an extended
 // RTCIntersectContext. Float only decides *which* primitive is nearest.
+//
+// Sharing (core/geometry/geometry_cache.h): the Embree scene holds copies of the meshes' vertices
+// and indices and, for an analytic shape, only its bounds; the callbacks find the shape through
+// the querying Accel's shape list, never through a pointer kept in Embree. So one BVH serves every
+// Accel whose shapes have the same geometry keys in the same order, whichever Scene owns them.
 #include "core/geometry/accel.h"
 
 #include <embree3/rtcore.h>
@@ -21,6 +26,7 @@
 #endif
 
 #include "core/diagnostics.h"
+#include "core/geometry/geometry_cache.h"
 #include "core/geometry/intersect.h"
 
 namespace phasor {
@@ -45,6 +51,7 @@ class FtzDazScope {
 /// hands the callbacks a pointer to it).
 struct QueryContext {
     RTCIntersectContext context;
+    const std::vector<const Shape *> *shapes = nullptr;  // the querying Accel's, by geomID
     const Ray *ray = nullptr;   // the caller's double-precision ray (null: use Embree's float ray)
     double tMin = 0, tMax = 0;  // the caller's interval
     float tMaxF = 0;            // tMax as handed to Embree (tfar still equal → no hit so far)
@@ -71,8 +78,7 @@ Ray CallbackRay(const QueryContext &qc, const RTCRay &r, double *tMin, double *t
 }
 
 void UserBounds(const RTCBoundsFunctionArguments *args) {
-    const auto *shape = static_cast<const Shape *>(args->geometryUserPtr);
-    Bounds3 b = shape->Bounds();
+    const Bounds3 &b = *static_cast<const Bounds3 *>(args->geometryUserPtr);
     // Round outwards (plus a relative margin) so float traversal never culls a double hit.
     Vec3 pad = 1e-6 * (Max(b.hi, -b.lo) + Vec3(1e-30, 1e-30, 1e-30));
     Vec3 lo = b.lo - pad, hi = b.hi + pad;
@@ -89,7 +95,7 @@ void UserIntersect(const RTCIntersectFunctionNArguments *args) {
     if (args->N != 1 || !args->valid[0]) return;  // only rtcIntersect1 is used
     auto *qc = reinterpret_cast<QueryContext *>(args->context);
     auto *rh = reinterpret_cast<RTCRayHit *>(args->rayhit);
-    const auto *shape = static_cast<const Shape *>(args->geometryUserPtr);
+    const Shape *shape = (*qc->shapes)[args->geomID];
     double tMin, tMax;
     Ray ray = CallbackRay(*qc, rh->ray, &tMin, &tMax);
     std::optional<double> t = shape->Intersect(ray, tMin, tMax);
@@ -112,7 +118,7 @@ void UserOccluded(const RTCOccludedFunctionNArguments *args) {
     if (args->N != 1 || !args->valid[0]) return;
     auto *qc = reinterpret_cast<QueryContext *>(args->context);
     auto *r = reinterpret_cast<RTCRay *>(args->ray);
-    const auto *shape = static_cast<const Shape *>(args->geometryUserPtr);
+    const Shape *shape = (*qc->shapes)[args->geomID];
     double tMin, tMax;
     Ray ray = CallbackRay(*qc, *r, &tMin, &tMax);
     if (shape->Intersect(ray, tMin, tMax)) r->tfar = -INFINITY;  // Embree's "occluded" marker
@@ -125,15 +131,23 @@ void ErrorCallback(void *user, RTCError code, const char *message) {
 
 }  // namespace
 
-struct Accel::Impl {
+/// One Embree BVH, immutable once built; shared by the Accels whose shapes have its key.
+struct Accel::Bvh {
     RTCDevice device = nullptr;
     RTCScene scene = nullptr;
+    std::vector<Bounds3> userBounds;  // analytic shapes' bounds by shape index (Embree's user data)
+    std::size_t triangles = 0, vertices = 0;
     std::string error;  // first error reported by Embree's callback
 
-    ~Impl() {
+    /// Builds the BVH over `shapes`. Throws phasor::Error.
+    static std::shared_ptr<const Bvh> Build(const std::vector<const Shape *> &shapes);
+    Bvh() = default;
+    ~Bvh() {
         if (scene) rtcReleaseScene(scene);
         if (device) rtcReleaseDevice(device);
     }
+    Bvh(const Bvh &) = delete;
+    Bvh &operator=(const Bvh &) = delete;
     void Check(const char *what) {
         RTCError code = rtcGetDeviceError(device);
         if (code != RTC_ERROR_NONE || !error.empty()) {
@@ -141,6 +155,8 @@ struct Accel::Impl {
             throw Error(std::string("accelerator: ") + what + ": " + msg);
         }
     }
+    /// Memory held [bytes], roughly (Embree's BVH nodes and its copy of the triangles).
+    std::size_t Bytes() const { return 64 * triangles + 16 * vertices + 256 * userBounds.size(); }
 
     /// Initialises a float ray for Embree from the caller's double ray.
     static void SetRay(RTCRay &r, const Ray &ray, float tnear, float tfar) {
@@ -165,30 +181,58 @@ struct Accel::Impl {
     }
 };
 
-Accel::Accel(std::vector<const Shape *> shapes)
-    : impl_(std::make_unique<Impl>()), shapes_(std::move(shapes)) {
+namespace {
+
+SharedCache<Accel::Bvh> &Bvhs() {
+    // As the meshes' budget (geometry_cache.cpp): recent BVHs up to 1 GiB stay between scenes.
+    static SharedCache<Accel::Bvh> cache(std::size_t(1) << 30, [](const Accel::Bvh &b) { return b.Bytes(); });
+    return cache;
+}
+
+/// What determines the BVH of `shapes` exactly: each mesh's geometry key and each analytic shape's
+/// bounds, in order; "" if a mesh has no key (its BVH is then built for this Accel alone).
+std::string BvhKey(const std::vector<const Shape *> &shapes) {
+    GeometryKey key("bvh");
+    for (const Shape *shape : shapes) {
+        if (shape->Mesh()) {
+            const std::string k = shape->MeshKey();
+            if (k.empty()) return "";
+            key.Text("mesh", k);
+        } else {
+            const Bounds3 b = shape->Bounds();
+            key.Numbers("user", {b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z});
+        }
+    }
+    return key.Str();
+}
+
+}  // namespace
+
+std::shared_ptr<const Accel::Bvh> Accel::Bvh::Build(const std::vector<const Shape *> &shapes) {
     FtzDazScope ftz;
-    Impl &im = *impl_;
-    im.device = rtcNewDevice(nullptr);
-    if (!im.device)
+    auto bvh = std::make_shared<Bvh>();  // released by its destructor if anything below throws
+    Bvh &b = *bvh;
+    RTCDevice &device = b.device;
+    RTCScene &scene = b.scene;
+    b.userBounds.resize(shapes.size());
+    device = rtcNewDevice(nullptr);
+    if (!device)
         throw Error("accelerator: cannot create the Embree device (error " +
                     std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
-    rtcSetDeviceErrorFunction(im.device, ErrorCallback, &im.error);
-    im.scene = rtcNewScene(im.device);
-    im.Check("creating the scene");
-    rtcSetSceneFlags(im.scene, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(im.scene, RTC_BUILD_QUALITY_MEDIUM);
+    rtcSetDeviceErrorFunction(device, ErrorCallback, &b.error);
+    scene = rtcNewScene(device);
+    b.Check("creating the scene");
+    rtcSetSceneFlags(scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(scene, RTC_BUILD_QUALITY_MEDIUM);
 
-    for (std::size_t i = 0; i < shapes_.size(); ++i) {
-        const Shape *shape = shapes_[i];
-        if (!shape) throw Error("accelerator: shape " + std::to_string(i) + " is null");
-        bounds_.Extend(shape->Bounds());
+    for (std::size_t i = 0; i < shapes.size(); ++i) {
+        const Shape *shape = shapes[i];
         RTCGeometry geom;
         if (const TriangleMesh *mesh = shape->Mesh()) {
             if (mesh->TriangleCount() == 0) continue;
             if (mesh->positions.size() > 0xFFFFFFFFull || mesh->TriangleCount() > 0xFFFFFFFFull)
                 throw Error("accelerator: mesh " + std::to_string(i) + " is too large for Embree");
-            geom = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_TRIANGLE);
+            geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
             auto *v = static_cast<float *>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0,
                                                                    RTC_FORMAT_FLOAT3, 3 * sizeof(float),
                                                                    mesh->positions.size()));
@@ -197,7 +241,7 @@ Accel::Accel(std::vector<const Shape *> shapes)
                                         3 * sizeof(unsigned), mesh->TriangleCount()));
             if (!v || !idx) {
                 rtcReleaseGeometry(geom);
-                im.Check("allocating mesh buffers");
+                b.Check("allocating mesh buffers");
                 throw Error("accelerator: cannot allocate mesh buffers");
             }
             for (std::size_t k = 0; k < mesh->positions.size(); ++k) {
@@ -212,22 +256,40 @@ Accel::Accel(std::vector<const Shape *> shapes)
                 }
                 idx[k] = mesh->indices[k];
             }
+            b.triangles += mesh->TriangleCount();
+            b.vertices += mesh->positions.size();
         } else {
-            geom = rtcNewGeometry(im.device, RTC_GEOMETRY_TYPE_USER);
+            b.userBounds[i] = shape->Bounds();
+            geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_USER);
             rtcSetGeometryUserPrimitiveCount(geom, 1);
-            rtcSetGeometryUserData(geom, const_cast<Shape *>(shape));
+            rtcSetGeometryUserData(geom, &b.userBounds[i]);
             rtcSetGeometryBoundsFunction(geom, UserBounds, nullptr);
             rtcSetGeometryIntersectFunction(geom, UserIntersect);
             rtcSetGeometryOccludedFunction(geom, UserOccluded);
         }
         rtcCommitGeometry(geom);
-        rtcAttachGeometryByID(im.scene, geom, unsigned(i));  // geomID == shape index
+        rtcAttachGeometryByID(scene, geom, unsigned(i));  // geomID == shape index
         rtcReleaseGeometry(geom);
-        im.Check("adding a shape");
+        b.Check("adding a shape");
     }
-    rtcCommitScene(im.scene);
-    im.Check("building the BVH");
+    rtcCommitScene(scene);
+    b.Check("building the BVH");
+    return bvh;
 }
+
+Accel::Accel(std::vector<const Shape *> shapes) : shapes_(std::move(shapes)) {
+    for (std::size_t i = 0; i < shapes_.size(); ++i) {
+        if (!shapes_[i]) throw Error("accelerator: shape " + std::to_string(i) + " is null");
+        bounds_.Extend(shapes_[i]->Bounds());
+    }
+    const std::string key = BvhKey(shapes_);
+    const auto build = [&] { return Bvh::Build(shapes_); };
+    bvh_ = key.empty() ? build() : Bvhs().GetOrBuild(key, build);
+}
+
+Accel::CacheCounts Accel::BvhCacheCounts() { return CacheCounts{Bvhs().Builds(), Bvhs().Reuses()}; }
+
+void Accel::ClearBvhCache() { Bvhs().Clear(); }
 
 Accel::~Accel() = default;
 
@@ -235,14 +297,15 @@ std::optional<Hit> Accel::Intersect(const Ray &ray, double tMin, double tMax, Hi
     FtzDazScope ftz;
     QueryContext qc;
     rtcInitIntersectContext(&qc.context);
+    qc.shapes = &shapes_;
     qc.ray = &ray;
     qc.tMin = tMin;
     qc.tMax = tMax;
     qc.tMaxF = ToFloat(tMax);
     RTCRayHit rh;
-    Impl::SetRay(rh.ray, ray, std::max(0.f, ToFloat(tMin)), qc.tMaxF);
-    Impl::ResetHit(rh.hit);
-    rtcIntersect1(impl_->scene, &qc.context, &rh);
+    Bvh::SetRay(rh.ray, ray, std::max(0.f, ToFloat(tMin)), qc.tMaxF);
+    Bvh::ResetHit(rh.hit);
+    rtcIntersect1(bvh_->scene, &qc.context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return std::nullopt;
 
     Hit hit;
@@ -274,13 +337,14 @@ bool Accel::Occluded(const Ray &ray, double tMin, double tMax) const {
     FtzDazScope ftz;
     QueryContext qc;
     rtcInitIntersectContext(&qc.context);
+    qc.shapes = &shapes_;
     qc.ray = &ray;
     qc.tMin = tMin;
     qc.tMax = tMax;
     qc.tMaxF = ToFloat(tMax);
     RTCRay r;
-    Impl::SetRay(r, ray, std::max(0.f, ToFloat(tMin)), qc.tMaxF);
-    rtcOccluded1(impl_->scene, &qc.context, &r);
+    Bvh::SetRay(r, ray, std::max(0.f, ToFloat(tMin)), qc.tMaxF);
+    rtcOccluded1(bvh_->scene, &qc.context, &r);
     return r.tfar == -INFINITY;
 }
 
@@ -320,7 +384,7 @@ void Accel::ForEachNear(const Vec3 &center, double radius,
     RTCPointQueryContext ctx;
     rtcInitPointQueryContext(&ctx);
     NearQuery nq{&f};
-    rtcPointQuery(impl_->scene, &q, &ctx, NearCallback, &nq);
+    rtcPointQuery(bvh_->scene, &q, &ctx, NearCallback, &nq);
 }
 
 std::size_t Accel::RawIntersectCount(const std::vector<Ray> &rays) const {
@@ -328,11 +392,12 @@ std::size_t Accel::RawIntersectCount(const std::vector<Ray> &rays) const {
     std::size_t hits = 0;
     QueryContext qc;
     RTCRayHit rh;
+    qc.shapes = &shapes_;
     for (const Ray &ray : rays) {
         rtcInitIntersectContext(&qc.context);
-        Impl::SetRay(rh.ray, ray, 0.f, INFINITY);
-        Impl::ResetHit(rh.hit);
-        rtcIntersect1(impl_->scene, &qc.context, &rh);
+        Bvh::SetRay(rh.ray, ray, 0.f, INFINITY);
+        Bvh::ResetHit(rh.hit);
+        rtcIntersect1(bvh_->scene, &qc.context, &rh);
         hits += rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     }
     return hits;

@@ -29,8 +29,9 @@ enum class HitPrecision { Double, Embree };
 
 class Accel {
   public:
-    /// Builds the BVH over `shapes` (pointers must outlive the Accel). Throws phasor::Error if
-    /// Embree cannot be initialised.
+    /// The BVH over `shapes` (pointers must outlive the Accel): the one an earlier Accel built if
+    /// its shapes had the same geometry keys in the same order (core/geometry/geometry_cache.h),
+    /// else a new one. Throws phasor::Error if Embree cannot be initialised.
     explicit Accel(std::vector<const Shape *> shapes);
     ~Accel();
     Accel(const Accel &) = delete;
@@ -56,9 +57,17 @@ class Accel {
     /// nothing else; returns the number of hits.
     std::size_t RawIntersectCount(const std::vector<Ray> &rays) const;
 
+    /// BVHs built and shared by the process-wide cache (GetGeometryCacheStats reports them).
+    struct CacheCounts {
+        long long builds = 0, reuses = 0;
+    };
+    static CacheCounts BvhCacheCounts();
+    static void ClearBvhCache();
+
+    struct Bvh;  // the Embree device and scene (accel.cpp)
+
   private:
-    struct Impl;
-    std::unique_ptr<Impl> impl_;
+    std::shared_ptr<const Bvh> bvh_;
     std::vector<const Shape *> shapes_;
     Bounds3 bounds_;
 };

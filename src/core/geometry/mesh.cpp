@@ -120,26 +120,36 @@ std::optional<double> Shape::Intersect(const Ray &ray, double tMin, double tMax)
 
 // ---- MeshShape ------------------------------------------------------------------------------
 
-MeshShape::MeshShape(TriangleMesh mesh) : mesh_(std::move(mesh)) {
-    mesh_.Validate("triangle mesh");
-    bounds_ = mesh_.Bounds();
+MeshGeometry::MeshGeometry(TriangleMesh m, std::string k) : mesh(std::move(m)), key(std::move(k)) {
+    mesh.Validate("triangle mesh");
+    bounds = mesh.Bounds();
     // CDF over triangles by area for area-uniform sampling.
-    std::size_t n = mesh_.TriangleCount();
-    areaCdf_.resize(n);
+    std::size_t n = mesh.TriangleCount();
+    areaCdf.resize(n);
     double sum = 0;
     for (std::size_t i = 0; i < n; ++i) {
-        const Vec3 &p0 = mesh_.positions[mesh_.indices[3 * i]];
-        const Vec3 &p1 = mesh_.positions[mesh_.indices[3 * i + 1]];
-        const Vec3 &p2 = mesh_.positions[mesh_.indices[3 * i + 2]];
+        const Vec3 &p0 = mesh.positions[mesh.indices[3 * i]];
+        const Vec3 &p1 = mesh.positions[mesh.indices[3 * i + 1]];
+        const Vec3 &p2 = mesh.positions[mesh.indices[3 * i + 2]];
         sum += 0.5 * Length(Cross(p1 - p0, p2 - p0));
-        areaCdf_[i] = sum;
+        areaCdf[i] = sum;
     }
-    area_ = sum;
+    area = sum;
 }
 
+std::size_t MeshGeometry::Bytes() const {
+    return sizeof(*this) + key.size() + (mesh.positions.size() + mesh.normals.size()) * sizeof(Vec3) +
+           mesh.uvs.size() * sizeof(Vec2) + mesh.indices.size() * sizeof(uint32_t) + areaCdf.size() * sizeof(double);
+}
+
+MeshShape::MeshShape(TriangleMesh mesh) : geom_(std::make_shared<const MeshGeometry>(std::move(mesh), "")) {}
+
+MeshShape::MeshShape(std::shared_ptr<const MeshGeometry> geometry) : geom_(std::move(geometry)) {}
+
 MeshShape::PointNormals MeshShape::PointAt(unsigned prim, double b1, double b2) const {
-    const uint32_t *idx = &mesh_.indices[3 * std::size_t(prim)];
-    const Vec3 &p0 = mesh_.positions[idx[0]], &p1 = mesh_.positions[idx[1]], &p2 = mesh_.positions[idx[2]];
+    const TriangleMesh &mesh = geom_->mesh;
+    const uint32_t *idx = &mesh.indices[3 * std::size_t(prim)];
+    const Vec3 &p0 = mesh.positions[idx[0]], &p1 = mesh.positions[idx[1]], &p2 = mesh.positions[idx[2]];
     const double b0 = 1 - b1 - b2;
     PointNormals r;
     r.p = b0 * p0 + b1 * p1 + b2 * p2;
@@ -152,8 +162,8 @@ MeshShape::PointNormals MeshShape::PointAt(unsigned prim, double b1, double b2) 
     // Shading normal: interpolated vertex normals; the geometric normal is flipped to its side
     // so that both describe the same "outside" even when the winding disagrees with the normals.
     Vec3 ns = ng;
-    if (!mesh_.normals.empty()) {
-        Vec3 m = b0 * mesh_.normals[idx[0]] + b1 * mesh_.normals[idx[1]] + b2 * mesh_.normals[idx[2]];
+    if (!mesh.normals.empty()) {
+        Vec3 m = b0 * mesh.normals[idx[0]] + b1 * mesh.normals[idx[1]] + b2 * mesh.normals[idx[2]];
         double ml = Length(m);
         if (ml > 0) {
             ns = m / ml;
@@ -166,8 +176,9 @@ MeshShape::PointNormals MeshShape::PointAt(unsigned prim, double b1, double b2) 
 }
 
 SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, double b1, double b2) const {
-    const uint32_t *idx = &mesh_.indices[3 * std::size_t(prim)];
-    const Vec3 &p0 = mesh_.positions[idx[0]], &p1 = mesh_.positions[idx[1]], &p2 = mesh_.positions[idx[2]];
+    const TriangleMesh &mesh = geom_->mesh;
+    const uint32_t *idx = &mesh.indices[3 * std::size_t(prim)];
+    const Vec3 &p0 = mesh.positions[idx[0]], &p1 = mesh.positions[idx[1]], &p2 = mesh.positions[idx[2]];
     const double b0 = 1 - b1 - b2;
     const PointNormals pn = PointAt(prim, b1, b2);
 
@@ -183,10 +194,10 @@ SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, 
     // Texture coordinates (default parameterisation (0,0), (1,0), (1,1) as in pbrt) and dp/du
     // from the 2×2 system dp02 = duv02.u·dpdu + duv02.v·dpdv, dp12 = duv12.u·dpdu + duv12.v·dpdv.
     Vec2 uv0(0, 0), uv1(1, 0), uv2(1, 1);
-    if (!mesh_.uvs.empty()) {
-        uv0 = mesh_.uvs[idx[0]];
-        uv1 = mesh_.uvs[idx[1]];
-        uv2 = mesh_.uvs[idx[2]];
+    if (!mesh.uvs.empty()) {
+        uv0 = mesh.uvs[idx[0]];
+        uv1 = mesh.uvs[idx[1]];
+        uv2 = mesh.uvs[idx[2]];
     }
     si.uv = b0 * uv0 + b1 * uv1 + b2 * uv2;
     Vec2 duv02 = uv0 - uv2, duv12 = uv1 - uv2;
@@ -205,14 +216,16 @@ SurfaceInteraction MeshShape::Interaction(const Ray &, double t, unsigned prim, 
 }
 
 ShapeSample MeshShape::Sample(const Vec2 &u) const {
+    const double area = geom_->area;
+    const std::vector<double> &cdf = geom_->areaCdf;
     ShapeSample ss;
-    if (!(area_ > 0)) return ss;
+    if (!(area > 0)) return ss;
     // Choose a triangle with probability proportional to its area, then reuse u.x.
-    double target = u.x * area_;
-    auto it = std::upper_bound(areaCdf_.begin(), areaCdf_.end(), target);
-    std::size_t i = std::min<std::size_t>(it - areaCdf_.begin(), areaCdf_.size() - 1);
-    while (i > 0 && areaCdf_[i] == areaCdf_[i - 1]) --i;  // never a zero-area triangle
-    double lo = i > 0 ? areaCdf_[i - 1] : 0, hi = areaCdf_[i];
+    double target = u.x * area;
+    auto it = std::upper_bound(cdf.begin(), cdf.end(), target);
+    std::size_t i = std::min<std::size_t>(it - cdf.begin(), cdf.size() - 1);
+    while (i > 0 && cdf[i] == cdf[i - 1]) --i;  // never a zero-area triangle
+    double lo = i > 0 ? cdf[i - 1] : 0, hi = cdf[i];
     double ux = hi > lo ? Clamp((target - lo) / (hi - lo), 0, 1) : 0.5;
 
     // Uniform point on the triangle (square-root parameterisation, Osada et al. 2002).
@@ -221,15 +234,17 @@ ShapeSample MeshShape::Sample(const Vec2 &u) const {
     const PointNormals pn = PointAt(unsigned(i), b1, b2);  // (no shading frame: not needed here)
     ss.p = pn.p;
     ss.n = pn.ng;
-    ss.pdfArea = 1 / area_;
+    ss.pdfArea = 1 / area;
     return ss;
 }
 
 std::string MeshShape::ToString() const {
+    const TriangleMesh &mesh = geom_->mesh;
+    const double area = geom_->area;
     std::ostringstream os;
-    os << "MeshShape[triangles=" << mesh_.TriangleCount() << ", vertices=" << mesh_.positions.size()
-       << ", normals=" << (mesh_.normals.empty() ? "no" : "yes")
-       << ", uvs=" << (mesh_.uvs.empty() ? "no" : "yes") << ", area=" << area_ << " m^2]";
+    os << "MeshShape[triangles=" << mesh.TriangleCount() << ", vertices=" << mesh.positions.size()
+       << ", normals=" << (mesh.normals.empty() ? "no" : "yes")
+       << ", uvs=" << (mesh.uvs.empty() ? "no" : "yes") << ", area=" << area << " m^2]";
     return os.str();
 }
 

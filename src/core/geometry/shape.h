@@ -85,6 +85,9 @@ class Shape {
     /// True for shapes that lie in their object-space plane z = 0 (rectangle, disk): planar
     /// kernels such as `aperture` need one.
     virtual bool IsPlanar() const { return false; }
+    /// Mesh shapes: what determines Mesh() exactly (core/geometry/geometry_cache.h), or "" if
+    /// unknown; an accelerator over a shape without one is never shared between scenes.
+    virtual std::string MeshKey() const { return ""; }
 
     const Material *material = nullptr;  // set by the builder from `material = @…`
     phasor::Transform objectToWorld;     // the shape's `to_world` (identity if it has none)
@@ -92,15 +95,34 @@ class Shape {
     std::string name;
 };
 
+/// A triangle mesh with what sampling it needs, immutable once built: shared by every MeshShape
+/// built from the same geometry (core/geometry/geometry_cache.h).
+struct MeshGeometry {
+    /// Validates `mesh` (throws phasor::Error) and computes its bounds and area table. `key` states
+    /// what determines the mesh exactly ("" if nothing does: then it is never shared).
+    MeshGeometry(TriangleMesh mesh, std::string key);
+    TriangleMesh mesh;
+    Bounds3 bounds;
+    double area = 0;                // [m²]
+    std::vector<double> areaCdf;    // running sum of triangle areas [m²]
+    std::string key;
+    /// Memory held [bytes], roughly.
+    std::size_t Bytes() const;
+};
+
 /// Shared implementation for triangle meshes (used by every mesh-producing shape plug-in).
 class MeshShape : public Shape {
   public:
+    /// A mesh of its own (never shared).
     explicit MeshShape(TriangleMesh mesh);
-    const TriangleMesh *Mesh() const override { return &mesh_; }
+    /// A mesh shared with other shapes (from the geometry cache).
+    explicit MeshShape(std::shared_ptr<const MeshGeometry> geometry);
+    const TriangleMesh *Mesh() const override { return &geom_->mesh; }
+    std::string MeshKey() const override { return geom_->key; }
     SurfaceInteraction Interaction(const Ray &ray, double t, unsigned prim, double b1,
                                    double b2) const override;
-    Bounds3 Bounds() const override { return bounds_; }
-    double Area() const override { return area_; }
+    Bounds3 Bounds() const override { return geom_->bounds; }
+    double Area() const override { return geom_->area; }
     ShapeSample Sample(const Vec2 &u) const override;  // area-weighted triangle choice
     std::string ToString() const override;
 
@@ -113,10 +135,8 @@ class MeshShape : public Shape {
     };
     PointNormals PointAt(unsigned prim, double b1, double b2) const;
 
-    TriangleMesh mesh_;
-    Bounds3 bounds_;
-    double area_ = 0;
-    std::vector<double> areaCdf_;
+  private:
+    std::shared_ptr<const MeshGeometry> geom_;
 };
 
 }  // namespace phasor
