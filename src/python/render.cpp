@@ -6,6 +6,7 @@
 
 #include <thread>
 
+#include "core/geometry/geometry_cache.h"
 #include "python/common.h"
 
 namespace phasor::python {
@@ -366,6 +367,26 @@ Renders the scene file at `path` once per value of the Define `name` -> list of 
 sweep("double_slit.wscene", "d", ["100um", "200um"]) or sweep(..., "d", [1e-4, 2e-4]) (numbers in
 SI units). `defines` holds further fixed defines. As Scene.render_many (one load per value, the
 GIL released, Ctrl-C -> phasor.RenderCancelled with .images); other arguments as render().)doc");
+
+    m.def(
+        "geometry_cache",
+        [](bool clear) {
+            const GeometryCacheStats s = GetGeometryCacheStats();
+            py::dict d;
+            d["mesh_builds"] = s.meshBuilds;
+            d["mesh_reuses"] = s.meshReuses;
+            d["bvh_builds"] = s.bvhBuilds;
+            d["bvh_reuses"] = s.bvhReuses;
+            if (clear) ClearGeometryCache();
+            return d;
+        },
+        py::arg("clear") = false, R"doc(
+How often this process built and reused geometry -> {"mesh_builds", "mesh_reuses", "bvh_builds",
+"bvh_reuses"}. Meshes (subdivision surfaces, OBJ files, ...) and the BVH are built once per process
+and shared by every scene whose geometry is the same (a sweep over a material Define builds them
+once); a Define that changes the geometry, or a mesh file rewritten on disk, builds them again.
+clear=True then drops the cache's own references to recently used geometry (up to about 1 GiB of
+meshes and 1 GiB of BVHs; scenes alive keep theirs) and zeroes the counts.)doc");
 }
 
 }  // namespace phasor::python

@@ -165,6 +165,31 @@ def test_render_many_and_sweep(small_scene):
         phasor.sweep(small_scene, "size", ["1m", "2"], spp=1, progress=False)
 
 
+def test_sweep_builds_geometry_once(tmp_path):
+    """Variants that differ in a material share one mesh and one BVH; one that changes the mesh's
+    transform builds its own; the cleared cache starts again."""
+    (tmp_path / "s.wscene").write_text("""wscene 2
+Define grey = 0.5
+Define size = 0.3
+Material "diffuse" "paint" { reflectance = $grey }
+Shape "subdivision" "blob" { cage = "cube"  levels = 2  material = @paint  to_world = scale($size) }
+Shape "rectangle" "panel" { to_world = lookat(eye = [0 2 1] m, target = [0 0 0] m, up = [0 0 1]) }
+Light "area" "lamp" { shape = @panel  radiance = 1 W/m^2/sr }
+Detector "perspective" "cam" { resolution = [8 6]  to_world = lookat(eye = [0 1 3] m, target = [0 0 0] m, up = [0 1 0]) }
+""")
+    phasor.geometry_cache(clear=True)
+    grey = phasor.sweep(tmp_path / "s.wscene", "grey", [0.2, 0.4, 0.8], spp=1, progress=False)
+    assert phasor.geometry_cache() == {"mesh_builds": 2, "mesh_reuses": 4, "bvh_builds": 1, "bvh_reuses": 2}
+    for image, g in ((grey[0], 0.2), (grey[2], 0.8)):
+        phasor.geometry_cache(clear=True)  # as a process that renders this value alone
+        fresh = phasor.load(tmp_path / "s.wscene", {"grey": g}).render(spp=1, progress=False)
+        assert np.array_equal(bits(image.array), bits(fresh.array))
+    phasor.geometry_cache(clear=True)
+    phasor.sweep(tmp_path / "s.wscene", "size", [0.3, 0.4], spp=1, progress=False)
+    assert phasor.geometry_cache(clear=True)["mesh_builds"] == 3  # the panel, and the blob twice
+    assert phasor.geometry_cache() == {"mesh_builds": 0, "mesh_reuses": 0, "bvh_builds": 0, "bvh_reuses": 0}
+
+
 def test_images_keep_their_scene_alive(small_scene):
     intensity = phasor.load(small_scene).render(spp=1, progress=False)["intensity"]
     image = phasor.load(small_scene).render(spp=1, progress=False)
