@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 
 #include "core/numerics/gauss_legendre.h"
 
@@ -161,49 +162,52 @@ void GaussianAxis(double mean, double var, double rate, double tol, std::vector<
 
 constexpr int MaxTruncatedNormalNodes = 12;
 
-// The eigenvalues of the symmetric n×n matrix m (row-major, overwritten) and the first component of
-// each unit eigenvector, by cyclic Jacobi rotations (n ≤ MaxTruncatedNormalNodes).
-void SymmetricEigen(int n, double *m, double *values, double *first) {
-    constexpr int N = MaxTruncatedNormalNodes;
-    double v[N * N] = {};
-    for (int i = 0; i < n; ++i) v[i * n + i] = 1;
-    double scale = 0;
-    for (int i = 0; i < n * n; ++i) scale += m[i] * m[i];
-    for (int sweep = 0; sweep < 64; ++sweep) {
-        double off = 0;
-        for (int p = 0; p < n; ++p)
-            for (int q = p + 1; q < n; ++q) off += m[p * n + q] * m[p * n + q];
-        if (off <= 1e-32 * scale) break;
-        for (int p = 0; p < n; ++p)
-            for (int q = p + 1; q < n; ++q) {
-                const double apq = m[p * n + q];
-                if (apq == 0) continue;
-                // The rotation J (J_pp = J_qq = c, J_pq = s, J_qp = −s) with (JᵀmJ)_pq = 0: t = s/c is
-                // the smaller root of t² + 2θt − 1 = 0.
-                const double theta = (m[q * n + q] - m[p * n + p]) / (2 * apq);
-                const double t = (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1));
-                const double c = 1 / std::sqrt(t * t + 1), sn = t * c;
-                for (int k = 0; k < n; ++k) {  // columns p, q
-                    const double kp = m[k * n + p], kq = m[k * n + q];
-                    m[k * n + p] = c * kp - sn * kq;
-                    m[k * n + q] = sn * kp + c * kq;
-                }
-                for (int k = 0; k < n; ++k) {  // rows p, q
-                    const double pk = m[p * n + k], qk = m[q * n + k];
-                    m[p * n + k] = c * pk - sn * qk;
-                    m[q * n + k] = sn * pk + c * qk;
-                }
-                for (int k = 0; k < n; ++k) {
-                    const double kp = v[k * n + p], kq = v[k * n + q];
-                    v[k * n + p] = c * kp - sn * kq;
-                    v[k * n + q] = sn * kp + c * kq;
-                }
+// The eigenvalues of the symmetric tridiagonal n×n matrix T with diagonal d[0..n) and off-diagonal
+// e[0..n−1) (e[i] = T(i, i + 1); both overwritten; eigenvalues into d) and the first component of
+// each unit eigenvector, n ≤ MaxTruncatedNormalNodes: implicit QR steps with Wilkinson's shift on
+// the lowest unreduced block (Golub & Van Loan, Matrix Computations, §8.3), an off-diagonal being
+// dropped once it is below round-off of its neighbours. Golub–Welsch needs only the eigenvectors'
+// first components, so each Givens rotation updates the first row of Q alone: O(n) per step
+// instead of the O(n³) of a dense method. False if 30·n steps do not converge.
+bool TridiagonalEigen(int n, double *d, double *e, double *first) {
+    for (int i = 0; i < n; ++i) first[i] = i == 0 ? 1 : 0;
+    constexpr double Eps = std::numeric_limits<double>::epsilon();
+    auto negligible = [&](int i) { return std::abs(e[i]) <= Eps * (std::abs(d[i]) + std::abs(d[i + 1])); };
+    int hi = n - 1, steps = 0;
+    while (hi > 0) {
+        if (negligible(hi - 1)) {  // T(hi, hi) is an eigenvalue
+            e[hi - 1] = 0;
+            --hi;
+            continue;
+        }
+        int lo = hi - 1;  // the unreduced block [lo, hi]
+        while (lo > 0 && !negligible(lo - 1)) --lo;
+        if (++steps > 30 * n) return false;
+        // Wilkinson's shift: the eigenvalue of the trailing 2×2 nearer T(hi, hi).
+        const double delta = 0.5 * (d[hi - 1] - d[hi]), b = e[hi - 1];
+        const double mu = d[hi] - b * b / (delta + std::copysign(std::hypot(delta, b), delta));
+        // The step: G_lo from the shifted first column, then rotations chasing the bulge down.
+        double x = d[lo] - mu, z = e[lo];
+        for (int k = lo; k < hi; ++k) {
+            const double r = std::hypot(x, z);
+            const double c = r > 0 ? x / r : 1, s = r > 0 ? z / r : 0;  // Gᵀ(x, z) = (r, 0)
+            if (k > lo) e[k - 1] = r;  // the bulge T(k + 1, k − 1) is gone
+            // T ← GᵀTG on rows and columns k, k + 1.
+            const double dk = d[k], dk1 = d[k + 1], ek = e[k];
+            d[k] = c * c * dk + 2 * c * s * ek + s * s * dk1;
+            d[k + 1] = s * s * dk - 2 * c * s * ek + c * c * dk1;
+            e[k] = c * s * (dk1 - dk) + (c * c - s * s) * ek;
+            if (k + 1 < hi) {  // the new bulge T(k + 2, k) = s·e[k + 1]
+                x = e[k];
+                z = s * e[k + 1];
+                e[k + 1] *= c;
             }
+            const double q0 = first[k], q1 = first[k + 1];  // Q ← QG, its first row
+            first[k] = c * q0 + s * q1;
+            first[k + 1] = c * q1 - s * q0;
+        }
     }
-    for (int i = 0; i < n; ++i) {
-        values[i] = m[i * n + i];
-        first[i] = v[i];
-    }
+    return true;
 }
 
 }  // namespace
@@ -259,12 +263,12 @@ bool TruncatedNormalRule(double a, double b, double rate, double tol, std::vecto
     }
     if (n == 0) return false;
     // Golub–Welsch: the nodes are the eigenvalues of the Jacobi matrix, the weights mass·v₀².
-    double jm[N * N] = {}, values[N], first[N];
+    double values[N], off[N], first[N];
     for (int i = 0; i < n; ++i) {
-        jm[i * n + i] = alpha[std::size_t(i)];
-        if (i + 1 < n) jm[i * n + i + 1] = jm[(i + 1) * n + i] = std::sqrt(beta[std::size_t(i + 1)]);
+        values[i] = alpha[std::size_t(i)];
+        if (i + 1 < n) off[i] = std::sqrt(beta[std::size_t(i + 1)]);
     }
-    SymmetricEigen(n, jm, values, first);
+    if (!TridiagonalEigen(n, values, off, first)) return false;
     for (int i = 0; i < n; ++i) out.push_back({values[i], mass * first[i] * first[i]});
     std::sort(out.begin(), out.end());
     return true;
