@@ -14,6 +14,7 @@
 #include <sstream>
 #include <thread>
 
+#include "core/hash.h"
 #include "core/image/output_file.h"
 #include "core/render/sampler.h"
 
@@ -27,46 +28,13 @@ constexpr uint32_t Format = 1;
 
 // A 64-bit hash of a byte stream, eight bytes at a time through the splitmix64 finaliser: not
 // cryptographic, but any corruption changes it with probability 1 − 2⁻⁶⁴.
-class Hasher {
-  public:
-    void Add(const void *data, std::size_t n) {
-        const unsigned char *p = static_cast<const unsigned char *>(data);
-        for (; n > 0; --n) {
-            word_ |= uint64_t(*p++) << (8 * fill_);
-            if (++fill_ == 8) Flush();
-        }
-    }
-    template <typename T>
-    void AddValue(const T &v) {
-        Add(&v, sizeof v);
-    }
-    void AddString(const std::string &s) {
-        AddValue(uint64_t(s.size()));
-        Add(s.data(), s.size());
-    }
-    uint64_t Digest() {
-        if (fill_ > 0) Flush();
-        return MixBits(h_ ^ count_);
-    }
-
-  private:
-    void Flush() {
-        h_ = MixBits(h_ ^ word_) + 0x9e3779b97f4a7c15ULL;
-        word_ = 0;
-        fill_ = 0;
-        ++count_;
-    }
-    uint64_t h_ = 0x70686173'6f72636bULL, word_ = 0, count_ = 0;
-    int fill_ = 0;
-};
-
 std::string Hex(uint64_t v) {
     char buf[17];
     std::snprintf(buf, sizeof buf, "%016" PRIx64, v);
     return buf;
 }
 
-void HashValue(Hasher &h, const Value &v) {
+void HashValue(ContentHasher &h, const Value &v) {
     h.AddValue(uint8_t(v.kind));
     switch (v.kind) {
         case Value::Kind::Number:
@@ -93,15 +61,13 @@ void HashValue(Hasher &h, const Value &v) {
 }
 
 // The contents of a file a parameter names (a mesh, a texture), resolved as BuildContext does.
-void HashFile(Hasher &h, const SceneDesc &desc, const Param &p) {
+void HashFile(ContentHasher &h, const SceneDesc &desc, const Param &p) {
     fs::path path(p.value.text);
     if (path.is_relative()) {
         const std::string base = p.loc.file.empty() ? desc.sourceFile : p.loc.file;
         if (!base.empty()) path = fs::path(base).parent_path() / path;
     }
-    std::ifstream in(path, std::ios::binary);
-    char buf[1 << 16];
-    while (in.read(buf, sizeof buf) || in.gcount() > 0) h.Add(buf, std::size_t(in.gcount()));
+    h.AddFile(path.string());  // an unreadable file adds nothing (the scene's load reports it)
 }
 
 // Header lines "key=value"; values are single-line.
@@ -120,7 +86,7 @@ std::string Number(double v) {
 }  // namespace
 
 std::string SceneFingerprint(const SceneDesc &desc) {
-    Hasher h;
+    ContentHasher h;
     for (const SceneEntity &e : desc.entities) {
         h.AddString(e.keyword);
         h.AddString(e.type);
@@ -174,7 +140,7 @@ void WriteCheckpoint(const std::string &path, const Checkpoint &c) {
     put(uint64_t(c.pixels.size()));
     put(uint32_t(sizeof(Film::PixelState)));
     bytes.append(reinterpret_cast<const char *>(c.pixels.data()), c.pixels.size() * sizeof(Film::PixelState));
-    Hasher h;
+    ContentHasher h;
     h.Add(bytes.data(), bytes.size());
     put(h.Digest());
 
@@ -222,7 +188,7 @@ Checkpoint ReadCheckpoint(const std::string &path) {
                                                 std::to_string(expected) + " bytes): it was not written to the end"
                                           : "corrupt (" + std::to_string(bytes.size() - expected) +
                                                 " bytes more than its header says)");
-    Hasher h;
+    ContentHasher h;
     h.Add(bytes.data(), bytes.size() - sizeof(uint64_t));
     std::memcpy(&stored, bytes.data() + bytes.size() - sizeof stored, sizeof stored);
     if (h.Digest() != stored) Bad(path, "corrupt (its checksum does not match its contents)");

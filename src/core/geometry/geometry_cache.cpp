@@ -3,10 +3,10 @@
 
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <vector>
 
 #include "core/diagnostics.h"
+#include "core/hash.h"
 #include "core/geometry/accel.h"
 
 namespace phasor {
@@ -26,26 +26,6 @@ std::string Hex(double v) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%a", v);
     return buf;
-}
-
-/// FNV-1a, 64 bits, of the file's bytes. Throws phasor::Error if it cannot be read.
-uint64_t HashFile(const std::string &path, std::size_t *size) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot read '" + path + "'");
-    uint64_t h = 14695981039346656037ull;
-    std::vector<char> buf(std::size_t(1) << 20);
-    *size = 0;
-    while (in) {
-        in.read(buf.data(), std::streamsize(buf.size()));
-        const std::size_t n = std::size_t(in.gcount());
-        for (std::size_t i = 0; i < n; ++i) {
-            h ^= static_cast<unsigned char>(buf[i]);
-            h *= 1099511628211ull;
-        }
-        *size += n;
-    }
-    if (in.bad()) throw Error("cannot read '" + path + "'");
-    return h;
 }
 
 }  // namespace
@@ -81,7 +61,9 @@ GeometryKey &GeometryKey::File(std::string_view name, const std::string &path) {
     std::error_code ec;
     std::filesystem::path abs = std::filesystem::absolute(path, ec);
     std::size_t size = 0;
-    const uint64_t hash = HashFile(path, &size);
+    ContentHasher hasher;
+    if (!hasher.AddFile(path, &size)) throw Error("cannot read '" + path + "'");
+    const uint64_t hash = hasher.Digest();
     char h[24];
     std::snprintf(h, sizeof h, "%016llx", static_cast<unsigned long long>(hash));
     return Text(name, (ec ? path : abs.lexically_normal().string()) + " " + std::to_string(size) + " bytes " + h);

@@ -9,6 +9,7 @@
 #include <memory>
 #include <string>
 
+#include "core/hash.h"  // MixBits
 #include "core/math.h"
 
 namespace phasor {
@@ -27,16 +28,6 @@ class Pcg32 {
     uint64_t state_ = 0, inc_ = 1;
 };
 
-/// 64-bit mix (splitmix64 finaliser) for hashing seeds and indices. Inline: the samplers call it
-/// for every dimension of every sample.
-inline uint64_t MixBits(uint64_t v) {
-    v ^= v >> 30;
-    v *= 0xbf58476d1ce4e5b9ULL;
-    v ^= v >> 27;
-    v *= 0x94d049bb133111ebULL;
-    v ^= v >> 31;
-    return v;
-}
 uint64_t Hash(uint64_t a, uint64_t b, uint64_t c = 0, uint64_t d = 0);
 /// A pixel's coordinates as one 64-bit key (for hashing).
 inline uint64_t PixelKey(int x, int y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); }
