@@ -89,8 +89,9 @@ TEST(LightSampler, PowerSelectionKeepsTheMeanAndCutsTheNoise) {
                     u.mean, u.StdError(), p.mean, p.StdError());
         const TTestResult same = WelchTTest(p.mean, p.varianceOfMean, p.dof, u.mean, u.varianceOfMean, u.dof);
         EXPECT_GT(same.pValue, 1e-3) << "power " << p.mean << " vs uniform " << u.mean << ": " << same.ToString();
-        // The test can fail: a mean 4 % off is rejected.
-        const TTestResult biased = WelchTTest(1.04 * p.mean, 1.04 * 1.04 * p.varianceOfMean, p.dof, u.mean,
+        // The test can fail: a mean 6 % off is rejected (≈ 10 standard errors of the uniform
+        // estimate, which with 9 degrees of freedom leaves room for its own scatter).
+        const TTestResult biased = WelchTTest(1.06 * p.mean, 1.06 * 1.06 * p.varianceOfMean, p.dof, u.mean,
                                               u.varianceOfMean, u.dof);
         EXPECT_LT(biased.pValue, 1e-3) << biased.ToString();
         // The point of it: the bright panel no longer waits for half of the samples.

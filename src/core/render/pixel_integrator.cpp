@@ -36,7 +36,7 @@ double PixelIntegrator::EstimateWork(const Scene &scene, int w, int h, const Ren
         const int index = int((uint64_t(n) * 2654435761u + 7) % uint64_t(opt.spp));
         sampler->StartPixelSample(x, y, index);
         ps.sample = PixelSampleIndex{index, opt.spp, opt.seed};
-        SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get1D());
+        SampledWavelengths wl = scene.Wavelengths().Sample(sampler->Get2D());
         EstimatePixel(scene, x, y, wl, *sampler, buffer, ps);
         buffer.Reset();
     };
@@ -109,7 +109,7 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                     sampler.StartPixelSample(x, y, s);
                     ps.sample = PixelSampleIndex{s, opt.spp, opt.seed};
                     // Wavelengths first, so they are stratified across the pixel's samples.
-                    SampledWavelengths wl = scene.Wavelengths().Sample(sampler.Get1D());
+                    SampledWavelengths wl = scene.Wavelengths().Sample(sampler.Get2D());
                     if (scratch.HasStokes()) {
                         scratch.AddStokesSample(lx, ly, EstimatePixelStokes(scene, x, y, wl, sampler, buffer, ps), wl);
                     } else {

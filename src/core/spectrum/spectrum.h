@@ -173,8 +173,13 @@ class WavelengthSampler {
     /// an area light) telling its relative contribution.
     WavelengthSampler(const std::vector<std::pair<const Spectrum *, double>> &emitters,
                       const SensorResponse &response);
-    /// u in [0,1): one uniform number drives the whole choice.
+    /// u in [0,1): one uniform number drives the whole choice (the hero at CDF value u).
     SampledWavelengths Sample(double u) const;
+    /// A pixel sample's wavelengths from a 2-D sample (what the render loop uses): the same
+    /// distribution per sample as Sample(u), but when u.x is stratified over a pixel's n samples
+    /// (Sobol') the n·NumWavelengths wavelengths are stratified in as many CDF cells — Sample(u)
+    /// stratifies only n, repeating them for each companion.
+    SampledWavelengths Sample(Vec2 u) const;
     /// Probability density [1/m] of the continuous part at lambda (already including the
     /// probability of choosing the continuous part).
     double Pdf(double lambda) const;
@@ -182,6 +187,8 @@ class WavelengthSampler {
     double LambdaMax() const { return hi_; }
 
   private:
+    SampledWavelengths SampleContinuous(double uc) const;  // hero at CDF value uc of the continuum
+    SampledWavelengths SampleLine(double ul) const;        // ul in [0, Σ lineProb_)
     double lo_ = 360e-9, hi_ = 830e-9;
     std::vector<double> grid_, cdf_;   // continuous part: piecewise-constant density on grid cells
     std::vector<uint32_t> guide_;      // guide table: first cell whose CDF interval reaches j/size

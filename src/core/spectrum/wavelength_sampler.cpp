@@ -185,26 +185,45 @@ WavelengthSampler::WavelengthSampler(const std::vector<std::pair<const Spectrum 
 }
 
 SampledWavelengths WavelengthSampler::Sample(double u) const {
-    SampledWavelengths wl;
     u = std::clamp(u, 0.0, std::nextafter(1.0, 0.0));
-    if (!grid_.empty() && (u < continuousProb_ || lines_.empty())) {
-        double uc = std::min(u / continuousProb_, std::nextafter(1.0, 0.0));
-        for (int i = 0; i < NumWavelengths; ++i) {
-            double ui = uc + double(i) / NumWavelengths;  // stratified companions (theory §0 D10)
-            if (ui >= 1) ui -= 1;
-            // First cell whose upper CDF value exceeds ui (cells of zero mass are skipped).
-            const std::size_t cells = cdf_.size() - 1;
-            std::size_t k = guide_[std::min(cells - 1, std::size_t(ui * double(cells)))];
-            while (k + 1 < cells && cdf_[k + 1] <= ui) ++k;
-            const double c0 = cdf_[k], c1 = cdf_[k + 1], a = grid_[k], b = grid_[k + 1];
-            const double t = c1 > c0 ? (ui - c0) / (c1 - c0) : 0.5;
-            wl.lambda[i] = std::clamp(a + t * (b - a), a, b);
-            wl.pdf[i] = continuousProb_ * (c1 - c0) / (b - a);
-        }
-        return wl;
+    if (!grid_.empty() && (u < continuousProb_ || lines_.empty()))
+        return SampleContinuous(std::min(u / continuousProb_, std::nextafter(1.0, 0.0)));
+    return SampleLine(u - (grid_.empty() ? 0.0 : continuousProb_));
+}
+
+SampledWavelengths WavelengthSampler::Sample(Vec2 u) const {
+    // u.y picks the part as Sample(u.y) does; in the continuum, what is left of it picks which of
+    // the N equal CDF strata holds the hero and u.x places all N wavelengths inside their strata.
+    // Per sample this is Sample(u) with u uniform (hero at (j + u.x)/N, companions i/N on); across
+    // a pixel's n samples with u.x stratified in n cells the n·N wavelengths fall one per 1/(n·N)
+    // of the CDF, where Sample(u) would put N of them in each of n cells.
+    const double uy = std::clamp(u.y, 0.0, std::nextafter(1.0, 0.0));
+    if (grid_.empty() || (uy >= continuousProb_ && !lines_.empty()))
+        return SampleLine(uy - (grid_.empty() ? 0.0 : continuousProb_));
+    const double stratum = std::min(std::floor(uy / continuousProb_ * NumWavelengths), NumWavelengths - 1.0);
+    const double v = std::clamp(u.x, 0.0, std::nextafter(1.0, 0.0));
+    return SampleContinuous(std::min((stratum + v) / NumWavelengths, std::nextafter(1.0, 0.0)));
+}
+
+SampledWavelengths WavelengthSampler::SampleContinuous(double uc) const {
+    SampledWavelengths wl;
+    for (int i = 0; i < NumWavelengths; ++i) {
+        double ui = uc + double(i) / NumWavelengths;  // stratified companions (theory §0 D10)
+        if (ui >= 1) ui -= 1;
+        // First cell whose upper CDF value exceeds ui (cells of zero mass are skipped).
+        const std::size_t cells = cdf_.size() - 1;
+        std::size_t k = guide_[std::min(cells - 1, std::size_t(ui * double(cells)))];
+        while (k + 1 < cells && cdf_[k + 1] <= ui) ++k;
+        const double c0 = cdf_[k], c1 = cdf_[k + 1], a = grid_[k], b = grid_[k + 1];
+        const double t = c1 > c0 ? (ui - c0) / (c1 - c0) : 0.5;
+        wl.lambda[i] = std::clamp(a + t * (b - a), a, b);
+        wl.pdf[i] = continuousProb_ * (c1 - c0) / (b - a);
     }
-    // A discrete line.
-    double ul = u - (grid_.empty() ? 0.0 : continuousProb_);
+    return wl;
+}
+
+SampledWavelengths WavelengthSampler::SampleLine(double ul) const {
+    SampledWavelengths wl;
     std::size_t pick = lines_.size() - 1;
     for (std::size_t j = 0; j < lines_.size(); ++j) {
         if (ul < lineProb_[j]) {

@@ -43,13 +43,15 @@ double PdfIntegral(const WavelengthSampler &ws, double a, double b, int m = 2000
 
 // χ² of wavelength entry `which` of the continuous samples against N·∫Pdf over `edges`; one extra
 // cell collects everything else (delta samples, samples outside the edges).
+// With `twoD` the samples are Sample(Vec2) (the render loop's), otherwise Sample(u).
 test::Chi2Result Chi2Entry(const WavelengthSampler &ws, int which, const std::vector<double> &edges, int n,
-                           uint64_t seed, int pointsPerBin) {
+                           uint64_t seed, int pointsPerBin, bool twoD) {
     const int bins = int(edges.size()) - 1;
     std::vector<double> observed(bins + 1, 0.0), expected(bins + 1, 0.0);
     test::TestRng rng(seed);
     for (int s = 0; s < n; ++s) {
-        const SampledWavelengths wl = ws.Sample(rng.Uniform());
+        const double u = rng.Uniform();
+        const SampledWavelengths wl = twoD ? ws.Sample(Vec2(u, rng.Uniform())) : ws.Sample(u);
         const double l = wl.lambda[which];
         auto it = std::upper_bound(edges.begin(), edges.end(), l);
         const long b = long(it - edges.begin()) - 1;
@@ -69,13 +71,15 @@ test::Chi2Result Chi2Entry(const WavelengthSampler &ws, int which, const std::ve
 
 void ExpectChi2Passes(const WavelengthSampler &ws, const std::vector<double> &edges, const char *what,
                       int pointsPerBin = 2000) {
-    // Hero and one companion (each is marginally distributed with the tabulated density).
-    const double alpha = test::SidakAlpha(0.01, 2);
-    for (int which : {0, 2}) {
-        const test::Chi2Result r = Chi2Entry(ws, which, edges, 300000, 17 + which, pointsPerBin);
-        EXPECT_GE(r.pValue, alpha) << what << ", entry " << which << ": " << r.ToString();
-        EXPECT_EQ(r.observedInEmptyCells, 0) << what;
-    }
+    // Hero and one companion (each is marginally distributed with the tabulated density), from
+    // Sample(u) and from Sample(Vec2).
+    const double alpha = test::SidakAlpha(0.01, 4);
+    for (bool twoD : {false, true})
+        for (int which : {0, 2}) {
+            const test::Chi2Result r = Chi2Entry(ws, which, edges, 300000, 17 + which + 4 * twoD, pointsPerBin, twoD);
+            EXPECT_GE(r.pValue, alpha) << what << ", entry " << which << (twoD ? " (2-D)" : "") << ": " << r.ToString();
+            EXPECT_EQ(r.observedInEmptyCells, 0) << what;
+        }
 }
 
 TEST(WavelengthSampler, Chi2PlanckWithCie) {
@@ -124,24 +128,27 @@ TEST(WavelengthSampler, LinesAreChosenWithTheirProbability) {
     const std::vector<double> probs = {cont / total, mGreen / total, mRed / total};
 
     const int n = 400000;
-    std::vector<double> observed(3, 0.0), expected(3);
-    test::TestRng rng(5);
-    for (int s = 0; s < n; ++s) {
-        const SampledWavelengths wl = ws.Sample(rng.Uniform());
-        if (!wl.delta) {
-            observed[0] += 1;
-            continue;
+    for (bool twoD : {false, true}) {
+        std::vector<double> observed(3, 0.0), expected(3);
+        test::TestRng rng(5 + twoD);
+        for (int s = 0; s < n; ++s) {
+            const double u = rng.Uniform();
+            const SampledWavelengths wl = twoD ? ws.Sample(Vec2(rng.Uniform(), u)) : ws.Sample(u);
+            if (!wl.delta) {
+                observed[0] += 1;
+                continue;
+            }
+            ASSERT_EQ(wl.Count(), 1);
+            ASSERT_TRUE(wl.lambda[0] == 532e-9 || wl.lambda[0] == 632.8e-9) << wl.lambda[0];
+            const int k = wl.lambda[0] == 532e-9 ? 1 : 2;
+            observed[k] += 1;
+            EXPECT_NEAR(wl.pdf[0], probs[k], 1e-6 * probs[k]);
+            for (int i = 1; i < NumWavelengths; ++i) EXPECT_EQ(wl.pdf[i], 0.0);
         }
-        ASSERT_EQ(wl.Count(), 1);
-        ASSERT_TRUE(wl.lambda[0] == 532e-9 || wl.lambda[0] == 632.8e-9) << wl.lambda[0];
-        const int k = wl.lambda[0] == 532e-9 ? 1 : 2;
-        observed[k] += 1;
-        EXPECT_NEAR(wl.pdf[0], probs[k], 1e-6 * probs[k]);
-        for (int i = 1; i < NumWavelengths; ++i) EXPECT_EQ(wl.pdf[i], 0.0);
+        for (int k = 0; k < 3; ++k) expected[k] = n * probs[k];
+        const test::Chi2Result r = test::Chi2Test(observed, expected);
+        EXPECT_GE(r.pValue, test::SidakAlpha(0.01, 2)) << (twoD ? "2-D: " : "") << r.ToString();
     }
-    for (int k = 0; k < 3; ++k) expected[k] = n * probs[k];
-    const test::Chi2Result r = test::Chi2Test(observed, expected);
-    EXPECT_GE(r.pValue, 0.01) << r.ToString();
     // The continuous density carries the probability of the continuous part.
     EXPECT_NEAR(PdfIntegral(ws, CieLambdaMin, CieLambdaMax, 200000), probs[0], 1e-6);
 }
@@ -213,6 +220,12 @@ TEST(WavelengthSampler, CompanionsAreStratified) {
     for (int i = 1; i < NumWavelengths; ++i) EXPECT_GT(wl.lambda[i], wl.lambda[i - 1]);
     for (int i = 0; i < NumWavelengths; ++i) EXPECT_NEAR(wl.pdf[i], ws.Pdf(wl.lambda[i]), 1e-9 * wl.pdf[i]);
     EXPECT_NEAR(PdfIntegral(ws, CieLambdaMin, wl.lambda[2], 200000), 0.5, 1e-5);
+    // Sample(Vec2): u.y picks the hero's quarter, u.x its place in it; the companions follow at
+    // quarter steps, so (0.3, 0.6) is Sample((2 + 0.3)/4) and (0.3, 0.1) is Sample(0.3/4).
+    for (auto [uy, quarter] : {std::pair{0.6, 2}, std::pair{0.1, 0}, std::pair{0.99, 3}}) {
+        const SampledWavelengths a = ws.Sample(Vec2(0.3, uy)), b = ws.Sample((quarter + 0.3) / NumWavelengths);
+        for (int i = 0; i < NumWavelengths; ++i) EXPECT_NEAR(a.lambda[i], b.lambda[i], 1e-15) << uy << " " << i;
+    }
 }
 
 // ---- unbiasedness -------------------------------------------------------------------------
@@ -226,13 +239,14 @@ struct Weighted {
 // against `reference`.
 test::TTestResult EstimatorTTest(const WavelengthSampler &ws, const std::vector<Weighted> &emitters,
                                  const std::function<double(double)> &g, double reference, bool heroOnly,
-                                 uint64_t seed) {
+                                 uint64_t seed, bool twoD = false) {
     test::TestRng rng(seed);
     std::vector<double> samples;
     const int n = 200000;
     samples.reserve(n);
     for (int s = 0; s < n; ++s) {
-        SampledWavelengths wl = ws.Sample(rng.Uniform());
+        const double u = rng.Uniform();
+        SampledWavelengths wl = twoD ? ws.Sample(Vec2(u, rng.Uniform())) : ws.Sample(u);
         if (heroOnly) wl.TerminateSecondary();
         SampledSpectrum L;
         for (const Weighted &e : emitters) L += EvalEmission(*e.s, wl) * e.scale;
@@ -261,11 +275,12 @@ TEST(WavelengthSampler, EstimatorIsUnbiasedCie) {
         ref += w * (2 * planck.Eval(l) + band.Eval(l)) * g(l);
     }
     ref = ref * h / 3 + 3 * 1e-8 * g(532e-9);
-    for (bool heroOnly : {false, true}) {
-        const test::TTestResult t = EstimatorTTest(ws, emitters, g, ref, heroOnly, 11 + heroOnly);
-        EXPECT_GE(t.pValue, test::SidakAlpha(0.01, 2))
-            << (heroOnly ? "hero only: " : "hero+companions: ") << t.ToString() << " reference " << ref;
-    }
+    for (bool twoD : {false, true})
+        for (bool heroOnly : {false, true}) {
+            const test::TTestResult t = EstimatorTTest(ws, emitters, g, ref, heroOnly, 11 + heroOnly + 2 * twoD, twoD);
+            EXPECT_GE(t.pValue, test::SidakAlpha(0.01, 4)) << (twoD ? "2-D, " : "")
+                << (heroOnly ? "hero only: " : "hero+companions: ") << t.ToString() << " reference " << ref;
+        }
 }
 
 TEST(WavelengthSampler, EstimatorIsUnbiasedRadiometric) {
