@@ -2,7 +2,9 @@
 // `area`: a diffuse (Lambertian, spatially incoherent thermal) emitter on a shape. `radiance` is the
 // total radiance over the spectrum, whose shape is normalised (lights/strength.h): L(λ) =
 // radiance · spectrum(λ) / ∫spectrum dλ, from the side the shape's normal points to (both sides if
-// two_sided). Sampled uniformly by area for next-event estimation.
+// two_sided). Next-event estimation samples it by solid angle where the shape offers that (a
+// rectangle: uniformly over the solid angle it subtends, Shape::SampleSolidAngle), else uniformly
+// by area.
 #include "core/render/light.h"
 #include "core/render/registry.h"
 #include "lights/strength.h"
@@ -19,7 +21,9 @@ class AreaLight final : public Light {
 
     static const Schema &GetSchema() {
         static const Schema s{
-            "light", "area", "Diffuse emitter on a shape (spatially incoherent, Lambertian).",
+            "light", "area",
+            "Diffuse emitter on a shape (spatially incoherent, Lambertian); next-event estimation samples a "
+            "rectangle uniformly by its solid angle, other shapes by area.",
             {P::Ref("shape", "shape", "the emitting shape").Required(),
              P::Number("radiance", "emitted radiance, the total over the spectrum", Dim::Radiance())
                  .Default(Value::Number(1, Dim::Radiance()))
@@ -55,7 +59,8 @@ class AreaLight final : public Light {
     }
     std::optional<LightSample> SampleLi(const LightSampleContext &ctx, const Vec2 &u,
                                         const SampledWavelengths &wl) const override {
-        ShapeSample ss = shape_->Sample(u);
+        const std::optional<ShapeSolidAngleSample> sa = shape_->SampleSolidAngle(ctx.p, u);
+        const ShapeSample ss = sa ? ShapeSample{sa->p, sa->n, 0} : shape_->Sample(u);
         Vec3 d = ss.p - ctx.p;
         double r2 = LengthSquared(d);
         if (!(r2 > 0)) return std::nullopt;
@@ -65,12 +70,13 @@ class AreaLight final : public Light {
         if (cosL < 1e-12) return std::nullopt;
         SampledSpectrum Le = L(ss.p, ss.n, -wi, wl);
         if (Le.IsZero()) return std::nullopt;
-        // Area density → solid-angle density: p_ω = p_A · r² / |cos θ_light|.
-        return LightSample{Le, wi, r, ss.pdfArea * r2 / cosL, false};
+        // By area: area density → solid-angle density, p_ω = p_A · r² / |cos θ_light|.
+        return LightSample{Le, wi, r, sa ? sa->pdf : ss.pdfArea * r2 / cosL, false};
     }
     double PdfLi(const LightSampleContext &ctx, const Vec3 &wi, const Vec3 &pLight, const Vec3 &nLight) const override {
         double cosL = std::abs(Dot(nLight, wi));
         if (cosL < 1e-12) return 0;
+        if (const double pdf = shape_->PdfSolidAngle(ctx.p); pdf > 0) return pdf;
         return LengthSquared(pLight - ctx.p) / (cosL * shape_->Area());
     }
     LightType Type() const override { return LightType::Area; }

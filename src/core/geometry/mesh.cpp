@@ -101,6 +101,9 @@ Vec3 SurfaceInteraction::SpawnOrigin(const Vec3 &w) const {
 
 // ---- Shape ----------------------------------------------------------------------------------
 
+std::optional<ShapeSolidAngleSample> Shape::SampleSolidAngle(const Vec3 &, const Vec2 &) const { return std::nullopt; }
+double Shape::PdfSolidAngle(const Vec3 &) const { return 0; }
+
 std::optional<double> Shape::Intersect(const Ray &ray, double tMin, double tMax) const {
     // Reference implementation for meshes: brute force over every triangle in double precision
     // (Embree is used for real queries; this serves tests and tiny meshes).

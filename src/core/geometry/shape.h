@@ -63,6 +63,12 @@ struct ShapeSample {
     double pdfArea = 0;  // density w.r.t. surface area [1/m²]
 };
 
+/// A point sampled on a shape by the solid angle it subtends at a reference point.
+struct ShapeSolidAngleSample {
+    Vec3 p, n;        // position, outward unit normal
+    double pdf = 0;   // density of the direction from the reference point [1/sr]
+};
+
 /// A shape plug-in. Triangle-based shapes (rectangle, meshes, glTF, subdivision) hand Embree a
 /// mesh; analytic ones (sphere, disk) are Embree user geometry that calls Intersect().
 class Shape {
@@ -81,6 +87,12 @@ class Shape {
     virtual double Area() const = 0;
     /// Uniform sampling by area.
     virtual ShapeSample Sample(const Vec2 &u) const = 0;
+    /// Sampling by solid angle as seen from `ref` [m, world], where the shape offers it for that
+    /// point (a rectangle: uniform over its solid angle, core/geometry/spherical_rectangle.h);
+    /// nullopt elsewhere, and then callers sample by area. PdfSolidAngle(ref) is the density it
+    /// gives every direction from ref that meets the shape [1/sr], 0 exactly where it declines.
+    virtual std::optional<ShapeSolidAngleSample> SampleSolidAngle(const Vec3 &ref, const Vec2 &u) const;
+    virtual double PdfSolidAngle(const Vec3 &ref) const;
     virtual std::string ToString() const = 0;
     /// True for shapes that lie in their object-space plane z = 0 (rectangle, disk): planar
     /// kernels such as `aperture` need one.

@@ -108,7 +108,8 @@ RenderStats PixelIntegrator::Render(const Scene &scene, Film &film, const Render
                 for (int s = int(scratch.SampleCount(lx, ly)); s < task.sampleEnd; ++s) {
                     sampler.StartPixelSample(x, y, s);
                     ps.sample = PixelSampleIndex{s, opt.spp, opt.seed};
-                    // Wavelengths first, so they are stratified across the pixel's samples.
+                    // Wavelengths first, from a 2-D sample: the pixel's n samples carry n·N wavelengths, one
+                    // per 1/(n·N) of the CDF (theory §4.10).
                     SampledWavelengths wl = scene.Wavelengths().Sample(sampler.Get2D());
                     if (scratch.HasStokes()) {
                         scratch.AddStokesSample(lx, ly, EstimatePixelStokes(scene, x, y, wl, sampler, buffer, ps), wl);
