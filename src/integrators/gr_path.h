@@ -14,14 +14,17 @@
 //
 // The estimate is one pass over the path in named steps (PathEstimate below; pbrt-v4's Li and
 // SampleLd): MeasureAtDetector (the primary GR's closed-form measurements), FoundEmission (emission
-// where the path hits an area light or escapes), DirectLight (NEE), ThroughListedLobes (D14) and
-// Continue (the sampled lobe, Russian roulette). Each step computes each term once, adds it to the
-// estimate and reports it as an event; a Sink that does not record (`grt`'s NullSink) has the
-// reports compiled away. The estimate groups some terms before multiplying by the throughput
+// where the path hits an area light or escapes), DirectLight (NEE), ThroughListedLobes (D14),
+// EmissionThroughListedLobes (area lights met along the listed lobes; `grt` only, with a sink that
+// does not record, GrPathSampler::SetListedEmission) and Continue (the sampled lobe, Russian
+// roulette). Each step computes each term once, adds it to the estimate and reports it as an event;
+// a Sink that does not record (`grt`'s NullSink) has the reports compiled away. The estimate groups some terms before multiplying by the throughput
 // (T·Σ_lights M, T·Σ_j d_j/n) where each event carries its own product (T·M_l), so the events sum
 // to the estimate up to rounding (gr_path_test checks it sample by sample on every validation scene).
 #pragma once
 
+#include <algorithm>
+#include <array>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -138,6 +141,14 @@ class GrPathSampler {
     /// How next-event estimation picks a light (`light_sampler`).
     LightSelection Lights() const { return lights_; }
     const fsd::Settings &Fsd() const { return fsd_; }
+    /// Area emission through the listed near-delta lobes (`grt`): at each vertex every listed lobe
+    /// that is the same at all carried wavelengths (not dispersive) and does not pass straight
+    /// through a film is traced once, and the area light it meets is counted with the lobe's a_j —
+    /// the expectation of what the path finds when it samples that lobe (a_j/p_j with probability
+    /// p_j), whose hit emission is then not counted again. Off for integrators that record the
+    /// sampled chain (sample_solve's forward solve): they find emission by the sampled lobe alone.
+    void SetListedEmission(bool on) { listedEmission_ = on; }
+    bool ListedEmission() const { return listedEmission_; }
     /// `max_depth = …, rr_depth = …, light_samples = …, fsd = …` for ToString.
     std::string ParamString() const;
     /// Integrator::Validate's part for FSD: with `fsd = false` a note when the scene's longest
@@ -195,6 +206,7 @@ class GrPathSampler {
     int maxDepth_, rrDepth_, lightSamples_;
     fsd::Settings fsd_;
     LightSelection lights_;
+    bool listedEmission_ = false;
     mutable std::once_flag lobesOnce_, occludersOnce_;
     mutable std::unique_ptr<const LobeIncidence> lobes_;
     mutable std::unique_ptr<const fsd::Occluders> occluders_;
@@ -231,6 +243,9 @@ class PathEstimate {
     /// its a_j averaged over the plane waves each measurement integrates (ThroughLobeWeight, D15);
     /// a dispersive lobe per carried wavelength along its own direction.
     void ThroughListedLobes(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
+    /// Area emission through the listed non-dispersive near-delta lobes at the vertex
+    /// (GrPathSampler::SetListedEmission); remembers which lobes it traced for Continue.
+    void EmissionThroughListedLobes(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
     /// Samples one lobe at the vertex and turns the GR into it (theory §3.3, S6.4); Russian roulette.
     /// False if the path ends here.
     bool Continue(const SurfaceInteraction &si, const PreparedKernel &k, int depth);
@@ -276,6 +291,12 @@ class PathEstimate {
     std::vector<Vertex> path_;             // the recorded vertices (recording sinks only)
     path::MisState mis_;                   // the detector counts as a delta vertex
     bool closedFormDone_ = true;           // the current GR has measured the closed-form sources
+    /// The lobes EmissionThroughListedLobes traced at the current vertex, and whether the GR now
+    /// follows one of them (then the emission at its next hit was counted already).
+    static constexpr int MaxListedEmission = 8;
+    std::array<int, MaxListedEmission> listedEmissionLobes_{};
+    int listedEmissionCount_ = 0;
+    bool emissionListed_ = false;
     /// After a footprint-aware kernel the GR is spread-free (theory §9 item 5): its angular spread
     /// is inside that kernel's lobe, so later vertices see a classical ray (near-delta lobes become
     /// deltas, delta sources are not measured again, area and distant sources by direction only).
@@ -356,8 +377,9 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
             T_ *= r;
             footprint_.kernel = nullptr;
         }
-        FoundEmission(EventKind::Emission, path::HitEmission(scene_.GetLightSampler(paths_.Lights()), *si, g_.d, wl_, mis_), depth, si->areaLight,
-                      si->t);
+        if (!emissionListed_)
+            FoundEmission(EventKind::Emission, path::HitEmission(scene_.GetLightSampler(paths_.Lights()), *si, g_.d, wl_, mis_),
+                          depth, si->areaLight, si->t);
         const Material *mat = si->material;
         if (!mat || depth == maxDepth) break;
 
@@ -374,6 +396,7 @@ SampledSpectrum PathEstimate<Sink>::Run(int x, int y) {
         if (spreadFree_ && mat->IsFootprintAware()) stats_.counters.Add(RenderEvent::FootprintAfterSpreadFree);
         DirectLight(*si, k, depth);
         ThroughListedLobes(*si, k, depth);
+        EmissionThroughListedLobes(*si, k, depth);
         if (!Continue(*si, k, depth)) break;
         leaving_ = si->shape;
     }
@@ -669,6 +692,37 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
 }
 
 template <class Sink>
+void PathEstimate<Sink>::EmissionThroughListedLobes(const SurfaceInteraction &si, const PreparedKernel &k, int depth) {
+    listedEmissionCount_ = 0;
+    if constexpr (!Sink::Records) {
+        // Where the sampled lobe's ray is not a plain ray to the next hit, the path keeps finding
+        // emission by sampling: FSD on the way, a footprint-aware kernel (EvalFrom re-weighting), a
+        // pixel state that only labels an aperture, a detector that integrated the lobes' incidence.
+        if (!paths_.ListedEmission() || !(k.Capabilities() & CapNearDelta) || scene_.HittableEmitters().empty() ||
+            paths_.Fsd().enabled || si.material->IsFootprintAware() || g_.pixel.LabelOnly() ||
+            (depth == 0 && ds_->integratesIncidence && paths_.Lobes(scene_).Covers(si.shape)))
+            return;
+        SampledSpectrum v(0.0);
+        for (const NearDeltaLobe &lobe : k.ListNearDelta()) {
+            if (listedEmissionCount_ == MaxListedEmission) break;
+            // A dispersive lobe would need a ray per wavelength; straight through a film the shadow
+            // rays of the vertex before measured what lies beyond (theory §3.5): both stay sampled.
+            if (lobe.weight.IsZero() || !GrPathSampler::UniformLobe(lobe, wl_) ||
+                PassesStraight(*si.material, lobe, k.Query().wi, wl_.Count()))
+                continue;
+            listedEmissionLobes_[std::size_t(listedEmissionCount_++)] = lobe.id;
+            const Vec3 wo = si.shading.ToWorld(lobe.wo[0]);
+            ++stats_.rays;
+            const std::optional<SurfaceInteraction> hit = scene_.Intersect(Ray{si.SpawnOrigin(wo), wo});
+            if (!hit || !hit->areaLight) continue;
+            // As the path would find it after this lobe: L_e in full (no MIS after a near-delta lobe).
+            v += lobe.weight * hit->areaLight->L(hit->p, hit->n, -wo, wl_);
+        }
+        L_ += T_ * v;
+    }
+}
+
+template <class Sink>
 bool PathEstimate<Sink>::Continue(const SurfaceInteraction &si, const PreparedKernel &k, int depth) {
     // A sampled direction at the last vertex can only find emission; without emitters a ray can
     // hit (only delta lights), it would contribute nothing.
@@ -701,6 +755,8 @@ bool PathEstimate<Sink>::Continue(const SurfaceInteraction &si, const PreparedKe
     g_.Redirect(wo, bs->eta);
     g_.o = si.SpawnOrigin(wo);
     const bool nearDelta = (bs->flags & ScatterNearDelta) != 0;
+    emissionListed_ = nearDelta && std::find(listedEmissionLobes_.begin(), listedEmissionLobes_.begin() + listedEmissionCount_,
+                                             bs->lobe) != listedEmissionLobes_.begin() + listedEmissionCount_;
     if (spreadFree_ && nearDelta && !scene_.DeltaLights().empty())
         stats_.counters.Add(RenderEvent::SpecularAfterSpreadFree);
     spreadFree_ = spreadFree_ || (bs->flags & ScatterSpreadFree) != 0;

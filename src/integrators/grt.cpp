@@ -43,12 +43,20 @@ namespace phasor {
 
 class GrtIntegrator final : public PixelIntegrator {
   public:
-    explicit GrtIntegrator(const ParamDict &d) : paths_(d) {}
+    explicit GrtIntegrator(const ParamDict &d) : paths_(d) { paths_.SetListedEmission(d.GetBool("listed_emission")); }
 
     static const Schema &GetSchema() {
-        static const Schema s{"integrator", "grt",
-                              "Backward generalized-ray path tracer (Algorithm 1): wave-optical transport.",
-                              grpath::PathAndFsdParams()};
+        static const Schema s = [] {
+            std::vector<ParamSpec> params = grpath::PathAndFsdParams();
+            params.push_back(P::Bool("listed_emission",
+                                     "count the area lights met along each listed non-dispersive near-delta lobe "
+                                     "at every vertex (one ray per lobe) instead of only along the lobe the path "
+                                     "samples: the same mean, less noise in reflections of lamps in glossy, coated "
+                                     "and glass surfaces")
+                                 .Default(Value::Bool(true)));
+            return Schema{"integrator", "grt",
+                          "Backward generalized-ray path tracer (Algorithm 1): wave-optical transport.", params};
+        }();
         return s;
     }
     static std::unique_ptr<Integrator> Create(const ParamDict &d, BuildContext &) {
@@ -77,7 +85,7 @@ class GrtIntegrator final : public PixelIntegrator {
         paths_.NoteFsd(scene, diag);
     }
     std::string ToString() const override {
-        return "grt { " + paths_.ParamString() + " }";
+        return "grt { " + paths_.ParamString() + (paths_.ListedEmission() ? "" : ", listed_emission = false") + " }";
     }
 
   private:
