@@ -698,7 +698,7 @@ void PathEstimate<Sink>::EmissionThroughListedLobes(const SurfaceInteraction &si
         // Where the sampled lobe's ray is not a plain ray to the next hit, the path keeps finding
         // emission by sampling: FSD on the way, a footprint-aware kernel (EvalFrom re-weighting), a
         // pixel state that only labels an aperture, a detector that integrated the lobes' incidence.
-        if (!paths_.ListedEmission() || !(k.Capabilities() & CapNearDelta) || scene_.HittableEmitters().empty() ||
+        if (!paths_.ListedEmission() || !(k.Capabilities() & CapNearDelta) || scene_.AreaLights().empty() ||
             paths_.Fsd().enabled || si.material->IsFootprintAware() || g_.pixel.LabelOnly() ||
             (depth == 0 && ds_->integratesIncidence && paths_.Lobes(scene_).Covers(si.shape)))
             return;

@@ -182,6 +182,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
         if (l->IsInfinite()) scene->infiniteLights_.push_back(l.get());
         (l->IsDelta() ? scene->deltaLights_ : scene->hittableEmitters_).push_back(l.get());
         if (l->MeasuredInClosedForm()) scene->closedFormLights_.push_back(l.get());
+        if (l->Type() == LightType::Area) scene->areaLights_.push_back(l.get());
         emitters.emplace_back(&l->EmissionSpectrum(), l->PowerScale());
     }
     if (scene->lights_.empty()) diag.Warning(sceneLoc, "the scene has no light; the image will be black");

@@ -64,6 +64,8 @@ class Scene {
     const std::vector<const Light *> &DeltaLights() const { return deltaLights_; }
     const std::vector<const Light *> &HittableEmitters() const { return hittableEmitters_; }
     const std::vector<const Light *> &ClosedFormLights() const { return closedFormLights_; }
+    /// The lights on shapes (LightType::Area): what a ray can hit at a finite distance.
+    const std::vector<const Light *> &AreaLights() const { return areaLights_; }
     /// Next-event estimation's choice among Lights() (an integrator's `light_sampler`).
     const LightSampler &GetLightSampler(LightSelection how) const {
         return how == LightSelection::Power ? *powerLights_ : *uniformLights_;
@@ -128,7 +130,7 @@ class Scene {
     std::unique_ptr<BuildContext> ctx_;  // owns every plug-in object
     std::unique_ptr<Accel> accel_;
     std::vector<std::shared_ptr<Shape>> shapes_;
-    std::vector<const Light *> lights_, infiniteLights_, deltaLights_, hittableEmitters_, closedFormLights_;
+    std::vector<const Light *> lights_, infiniteLights_, deltaLights_, hittableEmitters_, closedFormLights_, areaLights_;
     std::unique_ptr<LightSampler> uniformLights_, powerLights_;
     std::shared_ptr<Detector> detector_;
     std::shared_ptr<Integrator> integrator_;
