@@ -18,9 +18,10 @@
 // EmissionThroughListedLobes (area lights met along the listed lobes; `grt` only, with a sink that
 // does not record, GrPathSampler::SetListedEmission) and Continue (the sampled lobe, Russian
 // roulette). Each step computes each term once, adds it to the estimate and reports it as an event;
-// a Sink that does not record (`grt`'s NullSink) has the reports compiled away. The estimate groups some terms before multiplying by the throughput
-// (T·Σ_lights M, T·Σ_j d_j/n) where each event carries its own product (T·M_l), so the events sum
-// to the estimate up to rounding (gr_path_test checks it sample by sample on every validation scene).
+// a Sink that does not record (`grt`'s NullSink) has the reports compiled away. The estimate groups
+// some terms before multiplying by the throughput (T·Σ_lights M, T·Σ_j d_j/n) where each event
+// carries its own product (T·M_l), so the events sum to the estimate up to rounding (gr_path_test
+// checks it sample by sample on every validation scene).
 #pragma once
 
 #include <algorithm>
