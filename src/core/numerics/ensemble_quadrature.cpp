@@ -222,10 +222,17 @@ bool TruncatedNormalRule(double a, double b, double rate, double tol, std::vecto
     const GaussLegendreRule &g = GaussLegendre(M);
     std::array<double, M> x{}, w{}, prev{}, cur{};
     const double mid = 0.5 * (a + b), half = 0.5 * (b - a);
+    // A symmetric interval (the rules across a window's chords: a = −b): φ is even there, so every
+    // α_k is 0, π_k has the parity of k and π_k² is even — the sums over the (mirrored) nodes are twice
+    // those over the positive half: half the exponentials and half the recurrence.
+    const bool symmetric = a == -b;
+    static_assert(M % 2 == 0, "the symmetric case takes the positive half of the nodes");
+    const int i0 = symmetric ? M / 2 : 0;  // the rule's nodes ascend
+    const double fold = symmetric ? 2 : 1;
     double mass = 0;
-    for (int i = 0; i < M; ++i) {
+    for (int i = i0; i < M; ++i) {
         x[std::size_t(i)] = mid + half * g.x[i];
-        w[std::size_t(i)] = half * g.w[i] * std::exp(-0.5 * x[std::size_t(i)] * x[std::size_t(i)]) / std::sqrt(2 * Pi);
+        w[std::size_t(i)] = fold * half * g.w[i] * std::exp(-0.5 * x[std::size_t(i)] * x[std::size_t(i)]) / std::sqrt(2 * Pi);
         cur[std::size_t(i)] = 1;
         mass += w[std::size_t(i)];
     }
@@ -247,10 +254,11 @@ bool TruncatedNormalRule(double a, double b, double rate, double tol, std::vecto
         }
         if (k == N) break;
         double xs = 0;
-        for (int i = 0; i < M; ++i) xs += w[std::size_t(i)] * x[std::size_t(i)] * Sqr(cur[std::size_t(i)]);
+        if (!symmetric)
+            for (int i = i0; i < M; ++i) xs += w[std::size_t(i)] * x[std::size_t(i)] * Sqr(cur[std::size_t(i)]);
         alpha[std::size_t(k)] = xs / norm;
         double next = 0;
-        for (int i = 0; i < M; ++i) {
+        for (int i = i0; i < M; ++i) {
             const std::size_t j = std::size_t(i);
             const double p = (x[j] - alpha[std::size_t(k)]) * cur[j] - (k > 0 ? beta[std::size_t(k)] * prev[j] : 0.0);
             prev[j] = cur[j];
