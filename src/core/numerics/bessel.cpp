@@ -104,10 +104,12 @@ void BesselJSequence(double x, int nMax, double *out) {
     // Start above both nMax and x with a margin d that makes the contamination by the dominant
     // solution Y negligible at n ≤ max(nMax, x): its relative size there is ~J_N/Y_N, which falls
     // like exp(−(2/3)(2d)^{3/2}/√x) past the transition n ≈ x (DLMF 10.19.8), below 1e-16 for
-    // d ≳ 0.3·x^{1/3}·… — d = 6 + √(24·max(nMax, x)) covers it with room (x = 250 needs d ≈ 46,
-    // this gives 83; for x ≲ nMax the factor (x/2)^{2d}·(nMax!/N!)² is < 1e-20 already at d = 6).
+    // d ≳ 0.3·x^{1/3}·… — d = 6 + √(24·x) covers it with room (x = 250 needs d ≈ 46, this gives
+    // 83; x = 1 gets exp(−68)). Above the transition, at n = nMax > x, the contamination is
+    // (x/2)^{2d}·(nMax!/N!)², N = nMax + d, smaller still: the margin follows x, not nMax (a
+    // grating's ~10 orders at x ≈ 1 start at 22, not 31).
     const double top = std::max(double(nMax), x);
-    int start = int(top + 6 + std::sqrt(24 * top));
+    int start = int(top + 6 + std::sqrt(24 * x));
     start += start & 1;  // even, so the normalisation sum pairs up
     double next = 0, cur = 1e-30, norm = 0;  // J_{n+1}, J_n up to a common factor
     const double twoOverX = 2 / x;            // a multiplication in the loop, not a division
