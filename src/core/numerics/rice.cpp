@@ -63,29 +63,26 @@ double RiceCdfBessel(double t, double c, double *bound) {
     const int N = static_cast<int>(std::ceil(9 * std::sqrt(z) + 16));
     if (N > RiceBesselMaxTerms) return RiceCdfQuadrature(t, c);
     // Miller: r_{k−1} = r_{k+1} + (2k/z)·r_k from r_{N+1} = 0, r_N = 1 gives r_k ∝ I_k(z); every
-    // term positive. Normalised by e^z = I_0(z) + 2Σ_{k≥1} I_k(z) (DLMF 10.35.5 at θ = 0).
-    double r[RiceBesselMaxTerms + 2];
-    r[N + 1] = 0;
-    r[N] = 1;
+    // term positive. Normalised by e^z = I_0(z) + 2Σ_{k≥1} I_k(z) (DLMF 10.35.5 at θ = 0). The sums
+    // are taken on the way down, Σ_{k≥1} ζ^k r_k by Horner (h ← r_k + ζ·h), so no term is stored.
     const double twoOverZ = 2 / z;
     constexpr double Big = 0x1p332, Small = 0x1p-332;
+    double above = 0, rk = 1, twice = 0, horner = 0;  // r_{k+1}, r_k; 2Σ_{i≥k} r_i; Σ_{i≥k} ζ^{i−k} r_i
     for (int k = N; k >= 1; --k) {
-        r[k - 1] = r[k + 1] + (k * twoOverZ) * r[k];
-        if (r[k - 1] > Big)
-            for (int i = k - 1; i <= N + 1; ++i) r[i] *= Small;
+        twice += 2 * rk;
+        horner = rk + zeta * horner;
+        const double below = above + (k * twoOverZ) * rk;  // r_{k−1}
+        above = rk;
+        rk = below;
+        if (rk > Big) rk *= Small, above *= Small, twice *= Small, horner *= Small;
     }
-    double norm = r[0], sum = 0, w = 1;  // sum = Σ_{k≥1} ζ^k r_k
-    for (int k = 1; k <= N; ++k) {
-        norm += 2 * r[k];
-        w *= zeta;
-        sum += w * r[k];
-    }
+    const double r0 = rk, norm = r0 + twice, sum = zeta * horner;  // sum = Σ_{k≥1} ζ^k r_k
     const double front = std::exp(-0.5 * (c - t) * (c - t)) / norm;
     double result;
     if (c < t)
         result = front * sum;  // e^{−(c−t)²/2}·Σ_{k≥1} (c/t)^k·I_k(z)e^{−z}
     else
-        result = 1 - front * (r[0] + sum);  // 1 − Q₁(t, c), Q₁ = e^{−(c−t)²/2}·Σ_{k≥0} (t/c)^k·I_k(z)e^{−z}
+        result = 1 - front * (r0 + sum);  // 1 − Q₁(t, c), Q₁ = e^{−(c−t)²/2}·Σ_{k≥0} (t/c)^k·I_k(z)e^{−z}
     if (bound) {
         // e^{−z}I_k(z) = P(D = k) for D = N_a − N_b, a = b = z/2 independent Poisson counts (the
         // Skellam law), so the tails beyond N are below the Chernoff bound P(D ≥ n) ≤
@@ -94,7 +91,7 @@ double RiceCdfBessel(double t, double c, double *bound) {
         // relative errors of every term of ≤ 2·Ch/I_0e and Ch/I_0e. Returned as an absolute bound.
         const double s = (N + 1) / z;
         const double ch = std::exp(z * (std::sqrt(1 + s * s) - 1) - (N + 1) * std::asinh(s));
-        const double i0e = r[0] / norm, e = std::exp(-0.5 * (c - t) * (c - t));
+        const double i0e = r0 / norm, e = std::exp(-0.5 * (c - t) * (c - t));
         const double sumTail = e * std::pow(zeta, N + 1) * ch;
         *bound = sumTail + 3 * ch / i0e * (c < t ? result : 1 - result);
     }
