@@ -24,12 +24,24 @@
 //       |E| ≤ L^{2n+1}(n!)⁴/((2n+1)((2n)!)³)·R^{2n}·sup|g| (GaussLegendreMaxPhase);
 //     the outer axis of a disc is mapped by x = mid − h·cos t, which removes the square-root
 //     ends of its chords (the integrand in t is analytic; its rate is h·R plus 2 for the chord);
-//   * a Gaussian window clipped by a disc's edge is integrated in axes along (u) and across (v) its
-//     centre: Gauss–Legendre in u over the disc within ±6s of the centre (for a centre outside the
-//     disc, the 6s inside the edge, where its tail lies), the Gaussian counted as a rate of 2.5/s
-//     plus the tail's log-slope (d − r)/s² (a model, checked by the tests against brute force);
-//     across, Gauss–Hermite on every chord that spans ±6s (the Gaussian exactly, g's rate only),
-//     Gauss–Legendre on the clipped chords near the edge's tip.
+//   * a Gaussian window clipped by a disc's edge (axes along (u) and across (v) its centre; the disc
+//     within ±6s of the centre, for a centre outside the disc the 6s inside the edge, where its tail
+//     lies), in this order:
+//       - 4 or 6 nodes from the moments of the window on the disc (computed across each chord in
+//         closed form, along u by Gauss–Legendre), exact for every polynomial of degree 3 (4 nodes)
+//         or of degree 5 but y⁴, x·y⁴, x³y² (6 nodes), taken where g's Taylor remainder — from the
+//         directional rates below and the measure's and the rule's fourth or sixth moments
+//         (Minkowski) — is within tol: proven, and what a slowly varying g (s·R ≲ 0.2) takes;
+//       - for a disc of at least 10s, polar coordinates about its centre (no chord is clipped there):
+//         Gauss rules of the Rice density radially and of the von Mises law along each circle, from
+//         discretisations (Stieltjes, Golub–Welsch); along a circle of radius ρ the m-th derivative
+//         bound is the Touchard polynomial T_m(ρR) (Faà di Bruno), radially g's rates plus the law's
+//         change with ρ (a model, checked against brute force);
+//       - else Gauss–Legendre in u, the Gaussian counted as a rate of 2.5/s plus the tail's log-slope
+//         (d − r)/s² (a model, checked by the tests against brute force; for r ≫ s it under-resolves
+//         the average across a clipped chord near the tip, which the polar rules replace); across,
+//         Gauss–Hermite on every chord that spans ±6s (the Gaussian exactly, g's rate only), the
+//         truncated normal's Gauss rule on the clipped chords near the edge's tip.
 // Over the two axes the error of an average (Σ w g/Σ w) is then at most 3·tol·sup|g| (each axis's
 // bound relative to the ensemble's mass; a disc's outer axis carries the chord's Jacobian, ≤ 2·tol).
 // Every rule has at most MaxEnsembleNodesPerAxis nodes per axis (composite Gauss–Legendre panels
