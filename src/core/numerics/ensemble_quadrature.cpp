@@ -387,7 +387,20 @@ bool MomentStraddleRule(double u0, double u1, double d, double s, double r, doub
     for (const double cut : {-e, e})
         if (e > 0 && cut > u0 && cut < u1) cuts[++pieces] = cut;
     cuts[++pieces] = u1;
-    // Per point: x (not yet centred), the u-weight times M, and the chord's ∫y², ∫y⁴, ∫y⁶ over M.
+    // Across a chord |y| ≤ h: its mass M and E[y²], E[y⁴], E[y⁶] under the normal restricted to it
+    // (the same for every chord that spans ±6s).
+    struct Across {
+        double m0, y2, y4, y6;
+    };
+    const auto AcrossChord = [](double h) {
+        const double h2 = h * h, phi = std::exp(-0.5 * h2) / std::sqrt(2 * Pi), m0 = std::erf(h / std::sqrt(2.0));
+        const double inv = m0 > 0 ? 1 / m0 : 0.0;
+        return Across{m0, (m0 - 2 * h * phi) * inv, (3 * m0 - 2 * h * (h2 + 3) * phi) * inv,
+                      (15 * m0 - 2 * h * (h2 * h2 + 5 * h2 + 15) * phi) * inv};
+    };
+    static const Across full = AcrossChord(GaussianBox);
+    Across clipped{};
+    // Per point: x (not yet centred), the u-weight times M, and the chord's E[y²], E[y⁴], E[y⁶].
     std::array<double, MaxPoints> px{}, pw{}, p2{}, p4{}, p6{};
     int n = 0;
     double mass = 0, first = 0;
@@ -395,15 +408,14 @@ bool MomentStraddleRule(double u0, double u1, double d, double s, double r, doub
         const double mid = 0.5 * (cuts[p] + cuts[p + 1]), h = 0.5 * (cuts[p + 1] - cuts[p]);
         for (int i = 0; i < P; ++i, ++n) {
             const double u = mid + h * map.c[std::size_t(i)], x = (u - d) / s;
-            const double chord = std::min(std::sqrt(std::max(0.0, r * r - u * u)), half) / s, c2 = chord * chord;
-            const double phi = std::exp(-0.5 * c2) / std::sqrt(2 * Pi), m0 = std::erf(chord / std::sqrt(2.0));
             const std::size_t k = std::size_t(n);
+            const double chord = std::sqrt(std::max(0.0, r * r - u * u));
+            const Across &across = chord >= half ? full : (clipped = AcrossChord(chord / s));
             px[k] = x;
-            pw[k] = h * map.w[std::size_t(i)] / s * std::exp(-0.5 * x * x) / std::sqrt(2 * Pi) * m0;
-            const double inv = m0 > 0 ? 1 / m0 : 0.0;
-            p2[k] = (m0 - 2 * chord * phi) * inv;
-            p4[k] = (3 * m0 - 2 * chord * (c2 + 3) * phi) * inv;
-            p6[k] = (15 * m0 - 2 * chord * (c2 * c2 + 5 * c2 + 15) * phi) * inv;
+            pw[k] = h * map.w[std::size_t(i)] / s * std::exp(-0.5 * x * x) / std::sqrt(2 * Pi) * across.m0;
+            p2[k] = across.y2;
+            p4[k] = across.y4;
+            p6[k] = across.y6;
             mass += pw[k];
             first += pw[k] * x;
         }
