@@ -42,7 +42,9 @@
 // (core/spectrum/dispersion.h). All glasses and liquids here are lossless (κ = 0).
 #pragma once
 
+#include <algorithm>
 #include <array>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -107,8 +109,10 @@ inline Complex JohnsonChristyIndex(Metal m, double lambda) {
     const auto &t = JohnsonChristy;
     if (!(e > t.front().e)) return JcColumn(t.front(), m);
     if (e >= t.back().e) return JcColumn(t.back(), m);
-    std::size_t i = 1;
-    while (t[i].e < e) ++i;
+    // The first row at or above e (binary search: the kernels ask at every node and facet).
+    const std::size_t i = std::size_t(
+        std::lower_bound(std::begin(t) + 1, std::end(t), e, [](const auto &row, double v) { return row.e < v; }) -
+        std::begin(t));
     const double f = (e - t[i - 1].e) / (t[i].e - t[i - 1].e);
     return (1 - f) * JcColumn(t[i - 1], m) + f * JcColumn(t[i], m);
 }
@@ -207,8 +211,9 @@ inline Complex Cu2OIndex(double lambda) {
     const std::size_t count = std::size(t);
     if (!(nm > t[0].lambdaNm)) return {t[0].n, t[0].k};
     if (nm >= t[count - 1].lambdaNm) return {t[count - 1].n, t[count - 1].k};
-    std::size_t i = 1;
-    while (t[i].lambdaNm < nm) ++i;
+    const std::size_t i = std::size_t(std::lower_bound(std::begin(t) + 1, std::end(t), nm,
+                                                       [](const NkRow &row, double v) { return row.lambdaNm < v; }) -
+                                      std::begin(t));
     const double f = (nm - t[i - 1].lambdaNm) / (t[i].lambdaNm - t[i - 1].lambdaNm);
     return {(1 - f) * t[i - 1].n + f * t[i].n, (1 - f) * t[i - 1].k + f * t[i].k};
 }
