@@ -2,6 +2,7 @@
 #include "core/numerics/rice.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 
 #include "core/math.h"
@@ -116,6 +117,29 @@ double RiceCdfQuadrature(double t, double c) {
     return std::max(0.0, 1 - IntegrateGaussLegendre(density, c, hi, 8, 24));
 }
 
+double RiceCdfAsymptotic(double t, double c) {
+    constexpr int K = 6, Nodes = 32;
+    static const std::array<double, K> coef = [] {  // c_k = ((2k − 1)!!)²/(k!·8^k)
+        std::array<double, K> a{};
+        a[0] = 1;
+        for (std::size_t k = 0; k + 1 < K; ++k) a[k + 1] = a[k] * Sqr(2.0 * double(k) + 1) / (8.0 * double(k + 1));
+        return a;
+    }();
+    const double a = c - t;
+    const bool outside = a >= 0;  // integrate the mass beyond the rim: 1 − P
+    const double mid = outside ? a + 6 : a - 6;
+    const GaussLegendreRule &g = GaussLegendre(Nodes);
+    double sum = 0;
+    for (int i = 0; i < Nodes; ++i) {
+        const double y = mid + 6 * g.x[i], inv = 1 / (t * (t + y));
+        double e = coef[K - 1];
+        for (int k = K - 2; k >= 0; --k) e = coef[std::size_t(k)] + inv * e;  // E(t(t + y))
+        sum += g.w[i] * std::exp(-0.5 * y * y) * std::sqrt(1 + y / t) * e;
+    }
+    sum *= 6 / std::sqrt(2 * Pi);
+    return outside ? 1 - sum : sum;
+}
+
 double RiceCdf(double t, double c) {
     if (!(c > 0)) return 0;
     constexpr double Reach = 11;  // e^{−11²/2} < 6e-27
@@ -124,6 +148,7 @@ double RiceCdf(double t, double c) {
     // Marcum's series is the cheaper one, except for a small disc about a near mean (c < 2, t ≤ c)
     // where it would subtract from 1 a Q close to 1.
     if (c < 2 && t <= c) return std::min(1.0, RiceCdfSeries(t, c));
+    if (t >= RiceAsymptoticMinT) return std::clamp(RiceCdfAsymptotic(t, c), 0.0, 1.0);
     return std::clamp(RiceCdfBessel(t, c), 0.0, 1.0);
 }
 

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
 #include "core/math.h"
 #include "core/numerics/bessel.h"
@@ -126,6 +127,30 @@ TEST(Rice, IsAProbabilityMonotoneInBothArguments) {
     });
 }
 
+TEST(Rice, AsymptoticFormAgreesWithMarcumsSeriesAndTheQuadrature) {
+    // Against Marcum's series (its proven 2e-12) wherever both apply, relative to P below the rim's
+    // mean (c < t: P small, relative accuracy matters) and absolutely above it (P ≥ 0.39); against
+    // the quadrature (absolute ~1e-12) beyond the series' terms. Dropping the asymptotic expansion's
+    // second term (1/(8x) ≥ 1e-6 here) would miss both by orders of magnitude.
+    double worstBessel = 0, worstQuadrature = 0;
+    for (double t = RiceAsymptoticMinT; t <= 190; t += 3.7)
+        for (double a = -10.9; a < 10.9; a += 0.173) {
+            const double c = t + a, p = RiceCdfAsymptotic(t, c), ref = RiceCdfBessel(t, c);
+            worstBessel = std::max(worstBessel, std::abs(p - ref) / (a < 0 ? ref : 1.0));
+        }
+    for (double t : {200.0, 350.0, 700.0, 1500.0})
+        for (double a = -10.9; a < 10.9; a += 0.31)
+            worstQuadrature = std::max(worstQuadrature, std::abs(RiceCdfAsymptotic(t, t + a) - RiceCdfQuadrature(t, t + a)));
+    std::printf("MEASURED RiceCdfAsymptotic: relative to Marcum's series %.2g, absolute to the quadrature %.2g\n",
+                worstBessel, worstQuadrature);
+    EXPECT_LT(worstBessel, 5e-12);
+    EXPECT_LT(worstQuadrature, 5e-12);
+    // RiceCdf takes it from t = 35 on, continuously.
+    EXPECT_EQ(RiceCdf(35, 38), RiceCdfAsymptotic(35, 38));
+    EXPECT_EQ(RiceCdf(34.9, 38), RiceCdfBessel(34.9, 38));
+    EXPECT_NEAR(RiceCdf(35, 30) / RiceCdfBessel(35, 30), 1, 5e-12);
+}
+
 TEST(Rice, SwitchesOfRiceCdfAreContinuous) {
     // c − t = 11: 1 within e^{−60.5}.
     for (double t : {0.0, 5.0, 40.0, 80.0}) {
@@ -142,6 +167,7 @@ TEST(Rice, SwitchesOfRiceCdfAreContinuous) {
     EXPECT_EQ(RiceCdf(0.5, 1.5), RiceCdfSeries(0.5, 1.5));
     EXPECT_EQ(RiceCdf(1.5, 0.5), RiceCdfBessel(1.5, 0.5));
     EXPECT_EQ(RiceCdf(30, 35), RiceCdfBessel(30, 35));
+    EXPECT_EQ(RiceCdf(40, 45), RiceCdfAsymptotic(40, 45));
     EXPECT_EQ(RiceCdfBessel(200, 201), RiceCdfQuadrature(200, 201));
     EXPECT_NEAR(RiceCdfBessel(197, 198), RiceCdfQuadrature(197, 198), 1e-12);
     // Beyond it a disc more than 11σ short of the mean holds nothing (< e^{−60.5}).
