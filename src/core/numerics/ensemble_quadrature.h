@@ -28,11 +28,13 @@
 //     within ±6s of the centre, for a centre outside the disc the 6s inside the edge, where its tail
 //     lies), in this order:
 //       - 4 or 6 nodes from the moments of the window on the disc (computed across each chord in
-//         closed form, along u by Gauss–Legendre), exact for every polynomial of degree 3 (4 nodes)
-//         or of degree 5 but y⁴, x·y⁴, x³y² (6 nodes), taken where g's Taylor remainder — from the
-//         directional rates below and the measure's and the rule's fourth or sixth moments
-//         (Minkowski) — is within tol: proven, and what a slowly varying g (s·R ≲ 0.2) takes;
-//       - for a disc of at least 10s, polar coordinates about its centre (no chord is clipped there):
+//         closed form or, for chords shorter than s, by a series; along u by Gauss–Legendre), exact
+//         for every polynomial in (u, v) of degree 3 (4 nodes) or of degree 5 but v⁴, u·v⁴, u³v²
+//         (6 nodes), taken where g's Taylor remainder — from the directional rates below and the
+//         measure's and the rule's fourth or sixth moments (Minkowski) — is within tol: proven for
+//         the moments as computed (≤ 4e-6 relative), and what a slowly varying g (s·R ≲ 0.2) takes;
+//       - for a disc of at least 10s, polar coordinates about its centre (no chord is clipped there;
+//         at most MaxMeasureNodes = 20 nodes per axis, beyond which the chord rules below are used):
 //         Gauss rules of the Rice density radially and of the von Mises law along each circle, from
 //         discretisations (Stieltjes, Golub–Welsch); along a circle of radius ρ the m-th derivative
 //         bound is the Touchard polynomial T_m(ρR) (Faà di Bruno), radially g's rates plus the law's
