@@ -542,11 +542,13 @@ bool MomentStraddleRule(double u0, double u1, double d, double s, double r, doub
 // the disc within 6s of the centre, or the 6s inside the edge where the window's tail lies), along
 // each circle the Gauss rule of its von Mises law over |ψ| ≤ ψ_max (the weight below e^{−18} beyond,
 // ψ_max ≤ π), both from 64-point Gauss–Legendre discretisations (GaussRuleOfMeasure). g is integrated
-// only against these weights, so the node counts follow g's rate alone. Rates: along a circle
-// ρ·R_t per unit ψ, R_t g's rate along the tangent (the direction across c, turned by at most ψ_max);
-// radially s·(R_ρ + R_t) per unit of (ρ − d)/s — along the radius, plus the von Mises law's
-// widening with ρ (relative dκ/κ = dρ/ρ), which moves the average of g on the circle as g's
-// variation across does (a model, checked against brute force by the tests). Nodes into `out`
+// only against these weights, so the node counts follow g's rate alone. Derivative bounds
+// (DerivativeBound): along a circle of radius ρ the Touchard polynomial T_m(ρ·R_c), R_c g's largest
+// rate over the directions the circle takes within ±ψ_max (Faà di Bruno: proven for that model);
+// radially (s·(R_ρ + R_t))^m per unit of (ρ − d)/s — g along the radius and the von Mises law's
+// widening with ρ, which moves the average on the circle as g's variation across does — plus the
+// law's change itself, g's variation around the circle (≤ 2ρR_cψ_max, at most 2) times
+// ((d/s)(1 − cos ψ_max))^m (a model, checked against brute force by the tests). Nodes into `out`
 // (masses: Σ w = the window's mass on the disc), false if a rule needs more than MaxMeasureNodes.
 bool PolarStraddle(Vec2 c, double s, double r, Vec2 rate, double tol, std::vector<EnsembleNode> &out, int *nr,
                    int *npsi) {
