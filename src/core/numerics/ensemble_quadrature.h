@@ -34,7 +34,8 @@
 //         measure's and the rule's fourth or sixth moments (Minkowski) — is within tol: proven for
 //         the moments as computed (≤ 4e-6 relative), and what a slowly varying g (s·R ≲ 0.2) takes;
 //       - for a disc of at least 10s, polar coordinates about its centre (no chord is clipped there;
-//         at most MaxMeasureNodes = 20 nodes per axis, beyond which the chord rules below are used):
+//         at most MaxMeasureNodes = 20 nodes per axis, beyond which the chord rules below are used and
+//         the rule reports itself capped — their model does not hold there):
 //         Gauss rules of the Rice density radially and of the von Mises law along each circle, from
 //         discretisations (Stieltjes, Golub–Welsch); along a circle of radius ρ the m-th derivative
 //         bound is the Touchard polynomial T_m(ρR) (Faà di Bruno), radially g's rates plus the law's
@@ -116,7 +117,8 @@ struct EnsembleNode {
 struct EnsembleRuleInfo {
     int nx = 1, ny = 1;      // nodes per axis (outer x, inner y)
     bool overlap = true;     // false: the window lies outside the disc (the ensemble is empty; one node)
-    bool capped = false;     // an axis needed more than MaxEnsembleNodesPerAxis nodes: the bound does not hold
+    bool capped = false;     // the bound does not hold: an axis needed more than MaxEnsembleNodesPerAxis nodes,
+                             // or a window at the edge of a disc ≥ 10s needed more than 20 polar nodes per axis
 };
 
 /// Builds the rule for `shape` into `out` (cleared first). `rates(box)` returns upper bounds

@@ -125,7 +125,7 @@ struct LobeAverageCounters {
     long long averages = 0;     // AverageLobeWeight / AverageLobeResponse calls
     long long rules = 0;        // quadrature rules built (one per distinct wavelength ensemble)
     long long evaluations = 0;  // kernels prepared at nodes (for a lobe's weight or its EvalLobe)
-    long long capped = 0;       // rules that hit MaxEnsembleNodesPerAxis (their bound does not hold)
+    long long capped = 0;       // rules whose bound does not hold (EnsembleRuleInfo::capped)
 };
 LobeAverageCounters &LobeAverageCost();
 

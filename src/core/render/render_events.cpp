@@ -17,7 +17,8 @@ const RenderEventInfo &Describe(RenderEvent e) {
         {"lobe_average_capped",
          "lobe averages needed more than 256 quadrature nodes per axis to prove their bound of 3e-4 of the "
          "lobe's peak (films of tens of µm under sources of several degrees, or a film met within a degree "
-         "of grazing, where its efficiency turns fastest; theory §4.11); their error is unproven there "
+         "of grazing, where its efficiency turns fastest; theory §4.11), or more than 20 per axis at the "
+         "edge of a source disc wider than 10 times the ray's angular spread; their error is unproven there "
          "(measured: ≤ 2.3e-4 relative for films up to 100 µm under 10° discs, docs/accuracy.md §3); a "
          "thinner layer or a smaller source stays within the bound"},
     };

@@ -239,6 +239,16 @@ TEST(EnsembleRule, DiscMatchesTheAiryPatternAndFailsWithTooSmallARate) {
     EXPECT_GE(missed, 2);
 }
 
+// A disc of radius r under a window N(·; c, s²I).
+EnsembleShape DiscUnderWindow(double r, Vec2 c, double s) {
+    EnsembleShape shape;
+    shape.profile = EnsembleShape::Profile::Disc;
+    shape.radius = r;
+    shape.windowCentre = c;
+    shape.windowVariance = s * s;
+    return shape;
+}
+
 // Brute force: polar coordinates about the disc's centre, composite 8-point Gauss–Legendre in ρ
 // (`panels` panels) and the trapezoidal rule in ψ (`npsi` points; spectral for a periodic integrand).
 C PolarDisc(double r, Vec2 c, double wvar, Vec2 k, double chirp, int panels, int npsi) {
@@ -264,11 +274,7 @@ TEST(EnsembleRule, DiscTimesWindowInsideStraddlingAndOutside) {
     const Vec2 k(400, 60);
     const double chirp = 300;
     for (double offset : {0.0, 0.02, 0.045, 0.05, 0.06, 0.1}) {
-        EnsembleShape shape;
-        shape.profile = EnsembleShape::Profile::Disc;
-        shape.radius = r;
-        shape.windowCentre = Vec2(offset * 0.8, offset * 0.6);
-        shape.windowVariance = s * s;
+        const EnsembleShape shape = DiscUnderWindow(r, Vec2(offset * 0.8, offset * 0.6), s);
         std::vector<EnsembleNode> nodes;
         const EnsembleRuleInfo info =
             BuildEnsembleRule(shape, [&](const EnsembleBox &b) { return ChirpRates(b, k, chirp); }, tol, nodes);
@@ -300,11 +306,7 @@ TEST(EnsembleRule, NarrowWindowAtADiscsEdgeMeetsTheBound) {
     const double chirp = 30;
     for (const double r : {0.05, 0.2})
         for (const double offset : {r - 4 * s, r - s, r, r + 2 * s, r + 5 * s}) {
-            EnsembleShape shape;
-            shape.profile = EnsembleShape::Profile::Disc;
-            shape.radius = r;
-            shape.windowCentre = Vec2(offset * 0.6, -offset * 0.8);
-            shape.windowVariance = s * s;
+            const EnsembleShape shape = DiscUnderWindow(r, Vec2(offset * 0.6, -offset * 0.8), s);
             std::vector<EnsembleNode> nodes;
             const EnsembleRuleInfo info =
                 BuildEnsembleRule(shape, [&](const EnsembleBox &b) { return ChirpRates(b, k, chirp); }, tol, nodes);
@@ -325,25 +327,37 @@ TEST(EnsembleRule, NarrowWindowAtADiscsEdgeMeetsTheBound) {
 // Brute force over the part of a disc a window N(·; c, s²I) reaches: polar coordinates about the
 // disc's centre, ρ ∈ [max(0, min(|c|, r) − 8s), r] by composite 8-point Gauss–Legendre (`panels`),
 // ψ within ±1.2·asin(8s/ρ) of c's direction (or the whole circle) by the midpoint rule (`npsi`;
-// spectral: the integrand and its derivatives vanish at both ends to e^{−32}).
-C PolarWindowOnDisc(double r, Vec2 c, double s, Vec2 k, double chirp, int panels, int npsi) {
+// spectral: the integrand and its derivatives vanish at both ends to e^{−32}). Calls
+// visit(ψ from c's direction, point, weight with the window's density) and returns Σ weights.
+template <typename Visit>
+double ForPolarWindowOnDisc(double r, Vec2 c, double s, int panels, int npsi, Visit &&visit) {
     const double d = Length(c), theta = std::atan2(c.y, c.x);
     const double lo = std::max(0.0, std::min(d, r) - 8 * s);
     const GaussLegendreRule &g = GaussLegendre(8);
-    C sum = 0;
     double norm = 0;
     for (int p = 0; p < panels; ++p)
         for (int i = 0; i < 8; ++i) {
             const double rho = lo + (p + 0.5 + 0.5 * g.x[i]) * (r - lo) / panels, wr = 0.5 * g.w[i] * (r - lo) / panels;
             const double reach = 8 * s < rho ? std::min(Pi, 1.2 * std::asin(8 * s / rho)) : Pi;
             for (int j = 0; j < npsi; ++j) {
-                const double psi = theta - reach + (j + 0.5) * 2 * reach / npsi;
-                const Vec2 q(rho * std::cos(psi), rho * std::sin(psi));
+                const double psi = -reach + (j + 0.5) * 2 * reach / npsi;
+                const Vec2 q(rho * std::cos(theta + psi), rho * std::sin(theta + psi));
                 const double w = wr * rho * (2 * reach / npsi) * std::exp(-0.5 * LengthSquared(q - c) / (s * s));
-                sum += w * std::exp(C(0, Dot(k, q) + chirp * LengthSquared(q)));
+                visit(psi, rho, w);
                 norm += w;
             }
         }
+    return norm;
+}
+
+// The window's average of e^{i(k·p + chirp·|p|²)} over the disc, by ForPolarWindowOnDisc.
+C PolarWindowOnDisc(double r, Vec2 c, double s, Vec2 k, double chirp, int panels, int npsi) {
+    const double theta = std::atan2(c.y, c.x);
+    C sum = 0;
+    const double norm = ForPolarWindowOnDisc(r, c, s, panels, npsi, [&](double psi, double rho, double w) {
+        const Vec2 q(rho * std::cos(theta + psi), rho * std::sin(theta + psi));
+        sum += w * std::exp(C(0, Dot(k, q) + chirp * LengthSquared(q)));
+    });
     return sum / norm;
 }
 
@@ -356,7 +370,7 @@ TEST(EnsembleRule, WindowAtADiscsEdgeMeetsTheBoundOverSizesOffsetsAndRates) {
     // cubic rule is taken (the tensor rules took 20–130 nodes). A rule built for a tenth of the true
     // rate misses the bound.
     const double s = 0.002;
-    int cases = 0, missed = 0, four = 0, slow = 0;
+    int cases = 0, missed = 0, four = 0, slow = 0, capped = 0;
     for (const double ratio : {0.5, 2.0, 5.0, 25.0, 100.0})
         for (const double off : {-5.0, -1.0, 0.0, 2.0, 5.0}) {
             const double r = ratio * s, d = r + off * s;
@@ -368,16 +382,12 @@ TEST(EnsembleRule, WindowAtADiscsEdgeMeetsTheBoundOverSizesOffsetsAndRates) {
                     const double chirp = 0.25 * ks / (s * (r + 6 * s));
                     const C ref = PolarWindowOnDisc(r, dir * d, s, k, chirp, 48, 768);
                     for (const double tol : {1e-4, 1e-6}) {
-                        EnsembleShape shape;
-                        shape.profile = EnsembleShape::Profile::Disc;
-                        shape.radius = r;
-                        shape.windowCentre = dir * d;
-                        shape.windowVariance = s * s;
+                        const EnsembleShape shape = DiscUnderWindow(r, dir * d, s);
                         std::vector<EnsembleNode> nodes;
                         const EnsembleRuleInfo info = BuildEnsembleRule(
                             shape, [&](const EnsembleBox &b) { return ChirpRates(b, k, chirp); }, tol, nodes);
                         const double err = std::abs(RuleAverage(nodes, k, chirp) - ref);
-                        EXPECT_FALSE(info.capped);
+                        capped += info.capped;
                         EXPECT_LE(err, 3 * tol) << "r/s = " << ratio << ", offset " << off << "s, |k|s = " << ks
                                                 << (across ? " across" : " along") << ", tol " << tol << ", "
                                                 << info.nx << " x " << info.ny << " nodes";
@@ -394,10 +404,39 @@ TEST(EnsembleRule, WindowAtADiscsEdgeMeetsTheBoundOverSizesOffsetsAndRates) {
                 }
         }
     std::printf("MEASURED window at a disc's edge, %d cases: four nodes in %d of the %d slowly varying ones; a "
-                "tenth of the rate misses the bound in %d\n",
-                cases, four, slow, missed);
+                "tenth of the rate misses the bound in %d; %d report an unproven bound (and meet it)\n",
+                cases, four, slow, missed, capped);
     EXPECT_GE(four, slow * 3 / 4);
     EXPECT_GE(missed, cases / 4);
+    EXPECT_LE(capped, cases / 50);
+}
+
+TEST(EnsembleRule, BeyondThePolarRulesTheBoundHoldsOrTheRuleSaysSo) {
+    // Fast efficiencies (|k|·s = 3–6, in both axes) at the edge of discs of 25s and 100s, where the
+    // polar rules would need more than 20 nodes per axis and the chord rules take over: each rule
+    // either meets 3·tol against brute force or reports itself capped (a review measured the chord
+    // rules 700× over their bound at r = 25s, a centre 5.5s outside, |k|s = 4, tol 1e-6).
+    const double s = 0.002, tol = 1e-6;
+    int flagged = 0, silent = 0, flaggedMisses = 0;
+    for (const double ratio : {25.0, 100.0})
+        for (const double off : {-2.0, 0.0, 2.0, 5.5})
+            for (const double ks : {3.0, 4.0, 6.0}) {
+                const double r = ratio * s;
+                const Vec2 dir(0.6, -0.8), k = Vec2(0.8, 0.6) * (ks / s) + dir * (0.5 * ks / s);
+                const EnsembleShape shape = DiscUnderWindow(r, dir * (r + off * s), s);
+                std::vector<EnsembleNode> nodes;
+                const EnsembleRuleInfo info =
+                    BuildEnsembleRule(shape, [&](const EnsembleBox &b) { return ChirpRates(b, k, 0); }, tol, nodes);
+                const double err = std::abs(RuleAverage(nodes, k, 0) - PolarWindowOnDisc(r, shape.windowCentre, s, k, 0, 96, 2048));
+                if (info.capped) ++flagged, flaggedMisses += err > 3 * tol;
+                else if (err > 3 * tol) ++silent;
+                EXPECT_TRUE(info.capped || err <= 3 * tol) << "r/s " << ratio << ", offset " << off << "s, |k|s " << ks
+                                                           << ": error " << err << ", " << nodes.size() << " nodes";
+            }
+    std::printf("MEASURED fast efficiencies at wide discs: %d rules report an unproven bound (%d of them miss it), %d "
+                "miss it silently\n",
+                flagged, flaggedMisses, silent);
+    EXPECT_GT(flaggedMisses, 0);  // the flag is needed: without it these would be silent
 }
 
 TEST(EnsembleRule, TinyDiscsUnderAWideWindowAndUnboundedRatesKeepTheBound) {
@@ -409,11 +448,7 @@ TEST(EnsembleRule, TinyDiscsUnderAWideWindowAndUnboundedRatesKeepTheBound) {
     for (const double r : {5e-4, 1e-3, 5e-3})
         for (const double kr : {0.5, 3.5}) {
             const Vec2 c(0.02, 0), k = Vec2(0.8, 0.6) * (kr / r);
-            EnsembleShape shape;
-            shape.profile = EnsembleShape::Profile::Disc;
-            shape.radius = r;
-            shape.windowCentre = c;
-            shape.windowVariance = s * s;
+            const EnsembleShape shape = DiscUnderWindow(r, c, s);
             std::vector<EnsembleNode> nodes;
             BuildEnsembleRule(shape, [&](const EnsembleBox &b) { return ChirpRates(b, k, 0); }, tol, nodes);
             const C ref = PolarWindowOnDisc(r, c, s, k, 0, 48, 768);
@@ -421,41 +456,25 @@ TEST(EnsembleRule, TinyDiscsUnderAWideWindowAndUnboundedRatesKeepTheBound) {
         }
     // Unbounded rates (a kernel that cannot bound its efficiency's variation) never take the moment
     // rules (their bound is NaN there: 0·∞): the rule says its bound does not hold.
-    EnsembleShape shape;
-    shape.profile = EnsembleShape::Profile::Disc;
-    shape.radius = 0.05;
-    shape.windowCentre = Vec2(0.05, 0);
-    shape.windowVariance = 1e-4;
     std::vector<EnsembleNode> nodes;
+    const EnsembleShape shape = DiscUnderWindow(0.05, Vec2(0.05, 0), 0.01);
     const EnsembleRuleInfo info = BuildEnsembleRule(shape, [](const EnsembleBox &) { return Vec2(Infinity, 0); }, 1e-4, nodes);
     EXPECT_TRUE(info.capped);
 }
 
 // Brute-force E[u^i v^j] (i, j ≤ 10) of the window N(·; c, s²I) on a disc of radius r, in axes along
-// (u) and across (v) c, in units of s about c, by the polar quadrature of PolarWindowOnDisc.
+// (u) and across (v) c, in units of s about c (ForPolarWindowOnDisc).
 std::array<std::array<double, 11>, 11> WindowMoments(double r, Vec2 c, double s) {
     const double d = Length(c);
-    const double lo = std::max(0.0, std::min(d, r) - 8 * s);
-    const GaussLegendreRule &g = GaussLegendre(8);
-    constexpr int Panels = 64, Psi = 1024;
     std::array<std::array<double, 11>, 11> sum{};
-    double norm = 0;
-    for (int p = 0; p < Panels; ++p)
-        for (int a = 0; a < 8; ++a) {
-            const double rho = lo + (p + 0.5 + 0.5 * g.x[a]) * (r - lo) / Panels, wr = 0.5 * g.w[a] * (r - lo) / Panels;
-            const double reach = 8 * s < rho ? std::min(Pi, 1.2 * std::asin(8 * s / rho)) : Pi;
-            for (int b = 0; b < Psi; ++b) {
-                const double psi = -reach + (b + 0.5) * 2 * reach / Psi;  // from c's direction
-                const double u = rho * std::cos(psi), v = rho * std::sin(psi);
-                const double w = wr * rho * (2 * reach / Psi) * std::exp(-0.5 * (Sqr(u - d) + v * v) / (s * s));
-                norm += w;
-                double ui = w;
-                for (std::size_t i = 0; i <= 10; ++i, ui *= (u - d) / s) {
-                    double term = ui;
-                    for (std::size_t j = 0; i + j <= 10; ++j, term *= v / s) sum[i][j] += term;
-                }
-            }
+    const double norm = ForPolarWindowOnDisc(r, c, s, 64, 1024, [&](double psi, double rho, double w) {
+        const double u = rho * std::cos(psi), v = rho * std::sin(psi);
+        double ui = w;
+        for (std::size_t i = 0; i <= 10; ++i, ui *= (u - d) / s) {
+            double term = ui;
+            for (std::size_t j = 0; i + j <= 10; ++j, term *= v / s) sum[i][j] += term;
         }
+    });
     for (auto &row : sum)
         for (double &m : row) m /= norm;
     return sum;
@@ -475,11 +494,7 @@ TEST(EnsembleRule, MomentRulesAreExactForTheirPolynomials) {
             const Vec2 dir(0.6, -0.8), c = dir * d, et(0.8, 0.6);
             const auto moments = WindowMoments(r, c, s);
             for (const double rate : {0.5, 8.0}) {  // per unit of the plane: s·R = 0.005 (4 nodes), 0.08 (6)
-                EnsembleShape shape;
-                shape.profile = EnsembleShape::Profile::Disc;
-                shape.radius = r;
-                shape.windowCentre = c;
-                shape.windowVariance = s * s;
+                const EnsembleShape shape = DiscUnderWindow(r, c, s);
                 std::vector<EnsembleNode> nodes;
                 BuildEnsembleRule(shape, [&](const EnsembleBox &) { return Vec2(rate, rate); }, 1e-4, nodes);
                 ASSERT_TRUE(nodes.size() == 4 || nodes.size() == 6) << "r/s " << ratio << ", offset " << off << ", "
