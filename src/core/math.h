@@ -27,6 +27,16 @@ inline double Lerp(double t, double a, double b) { return (1 - t) * a + t * b; }
 inline double SafeSqrt(double v) { return std::sqrt(std::max(0.0, v)); }
 inline double Radians(double deg) { return deg * (Pi / 180.0); }
 inline double Degrees(double rad) { return rad * (180.0 / Pi); }
+/// The principal square root of z (Re ≥ 0; the imaginary part takes Im z's sign, signed zeros
+/// included: √(−4 − 0i) = −2i) as std::sqrt gives it, without libm's csqrt handling of infinities
+/// and NaN (C99 Annex G) where |z|² is a normal number: √z = (t, y/2t) for x ≥ 0, t = √((|x| + |z|)/2),
+/// and (|y|/2t, ±t) for x < 0 — no cancellation on either side. Elsewhere std::sqrt.
+inline Complex SqrtFinite(Complex z) {
+    const double x = z.real(), y = z.imag(), m2 = x * x + y * y;
+    if (!(m2 > 1e-300 && m2 < 1e300)) return std::sqrt(z);  // 0, tiny, huge, inf, NaN
+    const double t = std::sqrt(0.5 * (std::abs(x) + std::sqrt(m2)));
+    return x >= 0 ? Complex(t, y / (2 * t)) : Complex(std::abs(y) / (2 * t), std::copysign(t, y));
+}
 
 struct Vec2 {
     double x = 0, y = 0;

@@ -39,9 +39,11 @@ inline Complex RefractedCos(Complex n1, Complex cosThetaI, Complex n2) {
     // 1 − (n₁/n₂)²·sin²θ_i written as (1 − (n₁/n₂)²) + (n₁/n₂)²·cos²θ_i: no cancellation near
     // grazing incidence, and an index-matched interface gives cosθ_t = cosθ_i exactly (r = 0).
     const Complex ratio2 = (n1 / n2) * (n1 / n2);
-    Complex cosT = std::sqrt((1.0 - ratio2) + ratio2 * cosThetaI * cosThetaI);
+    Complex cosT = SqrtFinite((1.0 - ratio2) + ratio2 * cosThetaI * cosThetaI);
     const Complex q = n2 * cosT;  // normal wave-vector component / k₀
-    const bool real = std::abs(q.imag()) <= 100 * std::numeric_limits<double>::epsilon() * std::abs(q);
+    // |Im q| ≤ 100ε·|q|, squared (no hypot)
+    const double tol = 100 * std::numeric_limits<double>::epsilon();
+    const bool real = q.imag() * q.imag() <= tol * tol * std::norm(q);
     if (real ? q.real() < 0 : q.imag() < 0) cosT = -cosT;
     return cosT;
 }
@@ -53,12 +55,15 @@ inline Complex RefractedCos(Complex n1, Complex cosThetaI, Complex n2) {
 /// The same with cosθ_t given (it must be RefractedCos's for this interface): a layer stack
 /// computes every medium's cosθ from the incident medium by Snell's invariant, so round-off in
 /// complex layers does not accumulate down the stack.
-inline FresnelCoefficients FresnelAmplitudes(Complex n1, Complex cosThetaI, Complex n2, Complex cosThetaT) {
+/// S = double: lossless media and propagating waves, the same formulas in real arithmetic (complex
+/// division is several times slower).
+template <typename S>
+inline FresnelCoefficients FresnelAmplitudes(S n1, S cosThetaI, S n2, S cosThetaT) {
     FresnelCoefficients c;
-    const Complex cosI = cosThetaI, cosT = cosThetaT;
+    const S cosI = cosThetaI, cosT = cosThetaT;
     c.cosThetaT = cosT;
-    const Complex a = n1 * cosI, b = n2 * cosT;    // s-polarisation terms
-    const Complex ap = n2 * cosI, bp = n1 * cosT;  // p-polarisation terms
+    const S a = n1 * cosI, b = n2 * cosT;    // s-polarisation terms
+    const S ap = n2 * cosI, bp = n1 * cosT;  // p-polarisation terms
     c.rs = (a - b) / (a + b);
     c.rp = (ap - bp) / (ap + bp);
     c.ts = 2.0 * a / (a + b);
@@ -67,21 +72,10 @@ inline FresnelCoefficients FresnelAmplitudes(Complex n1, Complex cosThetaI, Comp
 }
 inline FresnelCoefficients FresnelAmplitudes(Complex n1, Complex cosThetaI, Complex n2) {
     if (n1.imag() == 0 && n2.imag() == 0 && cosThetaI.imag() == 0 && n2.real() > 0) {
-        // Lossless media and a propagating transmitted wave: the same formulas in real arithmetic
-        // (a dielectric's hot path; complex division is several times slower).
+        // Lossless media and a propagating transmitted wave: real arithmetic (a dielectric's hot path).
         const double r = n1.real() / n2.real(), c = cosThetaI.real();
         const double cos2T = (1 - r * r) + r * r * c * c;
-        if (cos2T >= 0) {
-            const double cosT = std::sqrt(cos2T);
-            const double a = n1.real() * c, b = n2.real() * cosT, ap = n2.real() * c, bp = n1.real() * cosT;
-            FresnelCoefficients f;
-            f.cosThetaT = cosT;
-            f.rs = (a - b) / (a + b);
-            f.rp = (ap - bp) / (ap + bp);
-            f.ts = 2 * a / (a + b);
-            f.tp = 2 * a / (ap + bp);
-            return f;
-        }
+        if (cos2T >= 0) return FresnelAmplitudes(n1.real(), c, n2.real(), std::sqrt(cos2T));
     }
     return FresnelAmplitudes(n1, cosThetaI, n2, RefractedCos(n1, cosThetaI, n2));
 }

@@ -288,5 +288,25 @@ TEST(Fresnel, IndexMatchedInterfaceIsInvisibleEvenAtGrazingIncidence) {
     }
 }
 
+TEST(Fresnel, SqrtFiniteIsTheLibrarysPrincipalRoot) {
+    // RefractedCos takes √ with SqrtFinite (no csqrt special-case handling). It must be std::sqrt's
+    // principal branch in every quadrant, on both sides of the cut (signed zeros), and within a few
+    // ulps elsewhere; outside |z|² ∈ (1e-300, 1e300) it is std::sqrt itself.
+    const double big = 1e200, tiny = 1e-200;
+    for (double x : {-7.5, -1.0, -1e-9, -0.0, 0.0, 1e-9, 0.3, 2.0, 1e120, -tiny, big})
+        for (double y : {-3.0, -1e-12, -0.0, 0.0, 1e-12, 0.7, 1e130, tiny, -big}) {
+            const Complex z(x, y), got = SqrtFinite(z), want = std::sqrt(z);
+            SCOPED_TRACE(::testing::Message() << z);
+            EXPECT_EQ(std::signbit(got.real()), std::signbit(want.real()));
+            EXPECT_EQ(std::signbit(got.imag()), std::signbit(want.imag()));
+            EXPECT_LE(std::abs(got - want), 4 * std::numeric_limits<double>::epsilon() * std::abs(want));
+        }
+    // The branch the code relies on: √(−4 ± 0i) = ±2i, √(4 ± 0i) = 2 ± 0i.
+    EXPECT_EQ(SqrtFinite(Complex(-4, 0)), Complex(0, 2));
+    EXPECT_EQ(SqrtFinite(Complex(-4, -0.0)), Complex(0, -2));
+    EXPECT_TRUE(std::signbit(SqrtFinite(Complex(4, -0.0)).imag()));
+    EXPECT_TRUE(std::isnan(SqrtFinite(Complex(std::nan(""), 1)).real()));
+}
+
 }  // namespace
 }  // namespace phasor

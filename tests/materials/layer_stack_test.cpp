@@ -133,6 +133,30 @@ TEST(LayerStack, LosslessStacksConserveEnergy) {
     EXPECT_EQ(tir.Ts, 0);
 }
 
+TEST(LayerStack, LosslessArithmeticAgreesWithTheComplexOne) {
+    // Lossless media in which every wave propagates take real arithmetic (RealMedia); an index with a
+    // 1e-200 imaginary part — physically the same stack — takes the complex recursion. Both agree
+    // to round-off over angles (up to grazing), wavelengths, and films thin and thick.
+    const double tiny = 1e-200;
+    for (double th : {0.0, 0.4, 1.0, 1.5, 1.5707})
+        for (double lambda : {380e-9, 550e-9, 780e-9})
+            for (double d : {0.0, 30e-9, 400e-9, 20e-6}) {
+                std::vector<Layer> stack = SomeStack();
+                stack.push_back({1.33, d});  // a soap film's water last
+                const StackResponse real = LayerStackResponse(lambda, 1.0, CosIn(th), stack, Complex(1.0, 0));
+                const StackResponse cplx = LayerStackResponse(lambda, 1.0, CosIn(th), stack, Complex(1.0, tiny));
+                SCOPED_TRACE(::testing::Message() << th << " " << lambda << " " << d);
+                // 1e-12: O(1) amplitudes; the phases' products are rounded in a different order.
+                EXPECT_LT(std::abs(real.rs - cplx.rs), 1e-12);
+                EXPECT_LT(std::abs(real.rp - cplx.rp), 1e-12);
+                EXPECT_LT(std::abs(real.ts - cplx.ts), 1e-12);
+                EXPECT_LT(std::abs(real.tp - cplx.tp), 1e-12);
+                EXPECT_NEAR(real.Ts, cplx.Ts, 1e-12);
+                EXPECT_NEAR(real.Tp, cplx.Tp, 1e-12);
+                EXPECT_EQ(real.cosSubstrate, Complex(real.cosSubstrate.real(), 0));
+            }
+}
+
 TEST(LayerStack, AbsorbingLayerLosesEnergy) {
     std::vector<Layer> stack = SomeStack();
     stack[2].n = Complex(1.46, 0.05);
