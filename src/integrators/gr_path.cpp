@@ -96,7 +96,7 @@ void GrPathSampler::NoteFsd(const Scene &scene, Diagnostics &diag) const {
 std::string GrPathSampler::ParamString() const {
     std::string s = "max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) +
                     ", light_samples = " + std::to_string(lightSamples_) + ", fsd = " + (fsd_.enabled ? "true" : "false");
-    if (lights_ == LightSelection::Power) s += ", light_sampler = power";
+    if (lights_ != LightSelection::Exhaustive) s += std::string(", light_sampler = ") + LightSelectionName(lights_);
     if (fsd_.enabled)
         s += fsd_.radius > 0 ? ", fsd_radius = " + std::to_string(fsd_.radius) + " m"
                              : ", fsd_window = " + std::to_string(fsd_.window);

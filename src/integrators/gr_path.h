@@ -132,7 +132,7 @@ std::vector<ParamSpec> PathAndFsdParams();
 class GrPathSampler {
   public:
     GrPathSampler(int maxDepth, int rrDepth, int lightSamples, const fsd::Settings &fsd = {},
-                  LightSelection lights = LightSelection::Uniform)
+                  LightSelection lights = LightSelection::Exhaustive)
         : maxDepth_(maxDepth), rrDepth_(rrDepth), lightSamples_(lightSamples), fsd_(fsd), lights_(lights) {}
     /// From the parameters of PathAndFsdParams().
     explicit GrPathSampler(const ParamDict &d);

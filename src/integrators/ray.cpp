@@ -11,7 +11,7 @@ namespace phasor {
 
 class RayIntegrator final : public PixelIntegrator {
   public:
-    RayIntegrator(int maxDepth, int rrDepth, LightSelection lights = LightSelection::Uniform)
+    RayIntegrator(int maxDepth, int rrDepth, LightSelection lights = LightSelection::Exhaustive)
         : maxDepth_(maxDepth), rrDepth_(rrDepth), lights_(lights) {}
 
     static const Schema &GetSchema() {
@@ -106,7 +106,7 @@ class RayIntegrator final : public PixelIntegrator {
     bool WaveOptical() const override { return false; }  // classical ray optics
     std::string ToString() const override {
         return "ray { max_depth = " + std::to_string(maxDepth_) + ", rr_depth = " + std::to_string(rrDepth_) +
-               (lights_ == LightSelection::Power ? ", light_sampler = power" : "") + " }";
+               (lights_ != LightSelection::Exhaustive ? std::string(", light_sampler = ") + LightSelectionName(lights_) : "") + " }";
     }
 
   private:

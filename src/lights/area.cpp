@@ -17,7 +17,9 @@ class AreaLight final : public Light {
         : shape_(std::move(shape)),
           scale_(emission.scale),
           spectrum_(std::move(emission.spectrum)),
-          twoSided_(twoSided) {}
+          twoSided_(twoSided),
+          bounds_(shape_->Bounds()),
+          normals_(shape_->Normals()) {}
 
     static const Schema &GetSchema() {
         static const Schema s{
@@ -89,6 +91,24 @@ class AreaLight final : public Light {
         if (!(r2 > 0)) return LightCoherence{Vec3(0, 0, 1), 0.25};
         return LightCoherence{c / std::sqrt(r2), std::min(0.25, shape_->Area() / r2 * Inv4Pi)};
     }
+    /// L·A·cosθ'_light·cosθ'_receiver/d² (pbrt-v4's LightBounds::Importance): the angles from the
+    /// shape's normal cone and the receiver's normal to the direction between the bounds' centre
+    /// and ctx.p, each reduced by the half-angle of the bounds' sphere seen from ctx.p (θ_b), and d
+    /// at least that sphere's radius. 0 where every normal of the cone faces away from ctx.p.
+    double Reach(const LightSampleContext &ctx) const override {
+        const Vec3 toP = ctx.p - bounds_.Center();
+        const double d2 = LengthSquared(toP), r2 = 0.25 * LengthSquared(bounds_.Diagonal());
+        const double strength = scale_ * shape_->Area();
+        if (!(d2 > r2)) return strength / std::max(r2, 1e-300);  // inside the bounds' sphere: θ_b = π
+        const Vec3 wi = toP / std::sqrt(d2);
+        const double thetaB = std::asin(std::sqrt(r2 / d2));
+        double cosW = Dot(normals_.w, wi);
+        if (twoSided_) cosW = std::abs(cosW);
+        const double thetaO = std::acos(Clamp(normals_.cosTheta, -1, 1));
+        const double thetaL = std::max(0.0, std::acos(Clamp(cosW, -1, 1)) - thetaO - thetaB);
+        if (thetaL >= Pi / 2) return 0;  // a Lambertian side emits into its hemisphere only
+        return strength * std::cos(thetaL) * ReceiverCosine(ctx.n, wi, thetaB) / d2;
+    }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
     double PowerScale() const override { return scale_ * Pi * shape_->Area() * (twoSided_ ? 2 : 1); }
     std::string ToString() const override { return "area { shape = " + shape_->ToString() + " }"; }
@@ -98,6 +118,8 @@ class AreaLight final : public Light {
     double scale_;  // L(λ) = scale_ · spectrum(λ) [W/m²/sr per m]
     std::shared_ptr<const Spectrum> spectrum_;
     bool twoSided_;
+    Bounds3 bounds_;              // the shape's, for Reach
+    Shape::NormalCone normals_;  // the shape's
 };
 
 PHASOR_EXPORT_PLUGIN(Light, AreaLight)

@@ -166,6 +166,11 @@ class DistantLight final : public Light {
     void Preprocess(const Bounds3 &b) override { sceneArea_ = SceneCrossSection(b); }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
     double PowerScale() const override { return scale_ * sceneArea_; }
+    /// The irradiance scale times the receiver's cosine towards the disc, reduced by its angular
+    /// radius (a Gaussian profile reaches every direction in front: no cosine).
+    double Reach(const LightSampleContext &ctx) const override {
+        return scale_ * (disc_ ? ReceiverCosine(ctx.n, dir_, alpha_) : 1.0);
+    }
     std::string ToString() const override {
         return "distant { direction = " + phasor::ToString(dir_) +
                ", profile = " + (disc_ ? "disc" : "gaussian") +

@@ -67,6 +67,14 @@ class PointLikeLight : public Light {
         return inc;
     }
     LightCoherence Coherence(const Vec3 &p) const override { return LightCoherence{Normalize(p_ - p), 0}; }
+    /// The irradiance itself: I·Falloff·|cosθ|/d² (no estimate at the light's own position).
+    double Reach(const LightSampleContext &ctx) const override {
+        const Vec3 d = p_ - ctx.p;
+        const double r2 = LengthSquared(d);
+        if (!(r2 > 0)) return std::numeric_limits<double>::quiet_NaN();
+        const Vec3 wi = d / std::sqrt(r2);
+        return scale_ * Falloff(-wi) * ReceiverCosine(ctx.n, wi, 0) / r2;
+    }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
 
   protected:

@@ -526,6 +526,43 @@ std::string CheckMeasureGR(const Subject &s, const Light &light) {
     return bad.str();
 }
 
+/// Light::Reach (the exhaustive light sampler's weight): finite and ≥ 0, or NaN (no estimate);
+/// and 0 only where nothing arrives — wherever it is 0, no SampleLi sample (64 stratified u, three
+/// wavelength draws) carries light that a receiver with that normal takes (L·|cosθ| > 0). Receivers:
+/// Receivers() with normals 0, ±z, ±x and one tilted. `zeros` counts the receivers with Reach 0.
+std::string CheckReach(const Subject &s, const Light &light, int *zeros = nullptr) {
+    std::ostringstream bad;
+    int zero = 0;
+    const std::vector<Vec3> normals{Vec3(), Vec3(0, 0, 1), Vec3(0, 0, -1), Vec3(1, 0, 0), Vec3(-1, 0, 0),
+                                    Normalize(Vec3(0.3, -0.8, 0.5))};
+    for (const Vec3 &p : Receivers())
+        for (const Vec3 &n : normals) {
+            const LightSampleContext ctx{p, n};
+            const double r = light.Reach(ctx);
+            if (std::isnan(r)) continue;  // no estimate: the sampler weighs by power there
+            if (!std::isfinite(r) || r < 0) {
+                bad << "Reach " << r << "; ";
+                continue;
+            }
+            if (r > 0) continue;
+            ++zero;
+            for (const SampledWavelengths &wl : Wavelengths(*s.scene))
+                for (int i = 0; i < 64; ++i) {
+                    const auto ls = light.SampleLi(ctx, Vec2((i % 8 + 0.5) / 8, (i / 8 + 0.5) / 8), wl);
+                    if (!ls || ls->L.IsZero()) continue;
+                    const double cosR = n == Vec3() ? 1.0 : std::abs(Dot(n, ls->wi));
+                    if (cosR > 1e-12) {
+                        bad << "Reach 0 at (" << p.x << ", " << p.y << ", " << p.z << ") normal (" << n.x << ", " << n.y
+                            << ", " << n.z << ") but a sample arrives from (" << ls->wi.x << ", " << ls->wi.y << ", "
+                            << ls->wi.z << "); ";
+                        i = 64;
+                    }
+                }
+        }
+    if (zeros) *zeros = zero;
+    return bad.str();
+}
+
 // ---- the suite ----------------------------------------------------------------------------------
 
 class LightContract : public ::testing::TestWithParam<LightCase> {
@@ -547,6 +584,8 @@ TEST_P(LightContract, SamplingMatchesPdf) {
 TEST_P(LightContract, PowerMatchesRadiance) { EXPECT_EQ(CheckPowerMatchesRadiance(subject_, *subject_.light), ""); }
 
 TEST_P(LightContract, MeasureGRMatchesQuadrature) { EXPECT_EQ(CheckMeasureGR(subject_, *subject_.light), ""); }
+
+TEST_P(LightContract, ReachIsZeroOnlyWhereNothingArrives) { EXPECT_EQ(CheckReach(subject_, *subject_.light), ""); }
 
 INSTANTIATE_TEST_SUITE_P(AllLights, LightContract, ::testing::ValuesIn(AllCases()),
                          [](const ::testing::TestParamInfo<LightCase> &i) { return i.param.Name(); });
@@ -589,6 +628,40 @@ TEST(LightContractPower, CatchesAPdfOffByTwo) {
     const std::string why = CheckSamplingMatchesPdf(s, wrong, Alpha());
     EXPECT_NE(why.find("sample pdf"), std::string::npos) << why;
     EXPECT_NE(why.find("χ²"), std::string::npos) << why;
+}
+
+// An area light whose Reach says 0 everywhere (it hides light from the exhaustive sampler).
+class HidingReachLight final : public Light {
+  public:
+    explicit HidingReachLight(const Light &of) : of_(of) {}
+    std::optional<LightSample> SampleLi(const LightSampleContext &c, const Vec2 &u,
+                                        const SampledWavelengths &wl) const override {
+        return of_.SampleLi(c, u, wl);
+    }
+    double PdfLi(const LightSampleContext &c, const Vec3 &wi, const Vec3 &p, const Vec3 &n) const override {
+        return of_.PdfLi(c, wi, p, n);
+    }
+    LightType Type() const override { return of_.Type(); }
+    const Spectrum &EmissionSpectrum() const override { return of_.EmissionSpectrum(); }
+    double PowerScale() const override { return of_.PowerScale(); }
+    double Reach(const LightSampleContext &) const override { return 0; }
+    std::string ToString() const override { return "hiding reach"; }
+
+  private:
+    const Light &of_;
+};
+
+TEST(LightContractReach, ZerosAreExercisedAndALyingReachIsCaught) {
+    // The one-sided panel of `area`'s first preset faces away from some receivers: Reach is 0
+    // there, and the check looks at those samples.
+    const Subject s = Build({"area", 0});
+    ASSERT_TRUE(s.light);
+    int zeros = 0;
+    EXPECT_EQ(CheckReach(s, *s.light, &zeros), "");
+    EXPECT_GT(zeros, 10);
+    const HidingReachLight hiding(*s.light);
+    const std::string why = CheckReach(s, hiding);
+    EXPECT_NE(why.find("but a sample arrives"), std::string::npos) << why;
 }
 
 }  // namespace

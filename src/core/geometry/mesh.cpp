@@ -241,6 +241,35 @@ ShapeSample MeshShape::Sample(const Vec2 &u) const {
     return ss;
 }
 
+Shape::NormalCone MeshShape::Normals() const {
+    const TriangleMesh &mesh = geom_->mesh;
+    const std::size_t n = mesh.TriangleCount();
+    // Each triangle's normal(s) as PointAt reports them at its corners.
+    std::vector<Vec3> normals;
+    normals.reserve(n);
+    Vec3 sum;
+    for (std::size_t i = 0; i < n; ++i) {
+        const unsigned prim = unsigned(i);
+        const uint32_t *idx = &mesh.indices[3 * i];
+        const double area = 0.5 * Length(Cross(mesh.positions[idx[1]] - mesh.positions[idx[0]],
+                                               mesh.positions[idx[2]] - mesh.positions[idx[0]]));
+        if (!(area > 0)) continue;  // never sampled
+        const Vec3 a = PointAt(prim, 0, 0).ng, b = PointAt(prim, 1, 0).ng, c = PointAt(prim, 0, 1).ng;
+        normals.push_back(a);
+        if (Dot(a, b) < 0 || Dot(a, c) < 0) normals.push_back(-a);  // its corners disagree: both sides
+        sum = sum + a * area;
+    }
+    NormalCone cone;
+    const double len = Length(sum);
+    if (!(len > 1e-6 * geom_->area)) return cone;  // closed or folded: all directions
+    cone.w = sum / len;
+    cone.cosTheta = 1;
+    for (const Vec3 &v : normals) cone.cosTheta = std::min(cone.cosTheta, Dot(v, cone.w));
+    // Round-off in the normals: widen by 1e-9 so that no reported normal falls outside.
+    cone.cosTheta = std::max(-1.0, cone.cosTheta - 1e-9);
+    return cone;
+}
+
 std::string MeshShape::ToString() const {
     const TriangleMesh &mesh = geom_->mesh;
     const double area = geom_->area;

@@ -100,6 +100,14 @@ class Shape {
     /// Mesh shapes: what determines Mesh() exactly (core/geometry/geometry_cache.h), or "" if
     /// unknown; an accelerator over a shape without one is never shared between scenes.
     virtual std::string MeshKey() const { return ""; }
+    /// A cone (unit axis w, cosine of its half-angle) containing the normal that Sample and
+    /// SampleSolidAngle report at every point of the shape (an area light's "outside"). Default: all
+    /// directions (cosθ = −1); meshes compute it from their triangles.
+    struct NormalCone {
+        Vec3 w{0, 0, 1};
+        double cosTheta = -1;
+    };
+    virtual NormalCone Normals() const { return {}; }
 
     const Material *material = nullptr;  // set by the builder from `material = @…`
     phasor::Transform objectToWorld;     // the shape's `to_world` (identity if it has none)
@@ -136,6 +144,10 @@ class MeshShape : public Shape {
     Bounds3 Bounds() const override { return geom_->bounds; }
     double Area() const override { return geom_->area; }
     ShapeSample Sample(const Vec2 &u) const override;  // area-weighted triangle choice
+    /// The cone of the triangles' outward normals (PointAt's ng, flipped towards the vertex normals
+    /// where they disagree with the winding: a triangle whose corners disagree counts both ways);
+    /// all directions when the area-weighted mean normal is shorter than 1e-6 of the area.
+    NormalCone Normals() const override;
     std::string ToString() const override;
 
   protected:

@@ -81,6 +81,16 @@ double SceneCrossSection(const Bounds3 &sceneBounds);
 /// Results beyond the float image's range (3.4e38) are still caught, and counted, by the film.
 inline constexpr double MaxLightStrength = 1e30;
 
+/// The receiver's factor of Light::Reach: |cosθ| between the receiver's normal n and a unit
+/// direction w towards (or from) the light, θ first reduced by `spread` [rad], the half-angle in
+/// which the light's directions lie about w (pbrt-v4's LightBounds importance): cos(max(0, θ − spread)).
+/// 1 for a point in free space (n = 0).
+inline double ReceiverCosine(const Vec3 &n, const Vec3 &w, double spread) {
+    if (n == Vec3()) return 1;
+    const double theta = std::acos(std::min(1.0, std::abs(Dot(n, w)) / Length(n)));
+    return std::cos(std::max(0.0, theta - spread));
+}
+
 class Light {
   public:
     virtual ~Light() = default;
@@ -111,6 +121,16 @@ class Light {
     /// the sampler can weight lights against each other.
     virtual const Spectrum &EmissionSpectrum() const = 0;
     virtual double PowerScale() const = 0;
+    /// How much of this light reaches a receiver at ctx (ctx.n: its geometric normal, either side
+    /// facing; zero for a point in free space): an estimate of the irradiance there per unit of the
+    /// emission spectrum [the light's strength unit × sr, e.g. W/m² per unit spectrum], with
+    /// visibility ignored, that is 0 only where the light sends nothing towards ctx.p — the
+    /// `exhaustive` light sampler's weight (light_sampler.h). NaN (the default): no estimate; the
+    /// sampler then weighs every light by power at that point.
+    virtual double Reach(const LightSampleContext &ctx) const {
+        (void)ctx;
+        return std::numeric_limits<double>::quiet_NaN();
+    }
 
     // ---- Generalized rays (theory §2.4, §0 D4a, D5, D14) ------------------------------------
     /// True for sources that GRs measure in closed form instead of hitting them: every type but

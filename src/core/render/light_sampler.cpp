@@ -11,17 +11,22 @@ namespace phasor {
 
 ParamSpec LightSamplerParam() {
     return P::String("light_sampler",
-                     "how next-event estimation picks a light: \"uniform\" (1/N each) or \"power\" (in "
-                     "proportion to each light's power: fewer noisy samples on weak lights)")
-        .Default(Value::String("uniform"))
-        .Choices({"uniform", "power"});
+                     "how next-event estimation picks a light: \"exhaustive\" (in proportion to each light's "
+                     "estimated irradiance at the receiver: lamps behind it or far away get few samples; "
+                     "O(lights) per choice), \"power\" (in proportion to each light's power) or \"uniform\" "
+                     "(1/N each)")
+        .Default(Value::String("exhaustive"))
+        .Choices({"exhaustive", "power", "uniform"});
 }
 
 LightSelection LightSelectionFromName(const std::string &name) {
-    return name == "power" ? LightSelection::Power : LightSelection::Uniform;
+    if (name == "power") return LightSelection::Power;
+    return name == "uniform" ? LightSelection::Uniform : LightSelection::Exhaustive;
 }
 
-const char *LightSelectionName(LightSelection s) { return s == LightSelection::Power ? "power" : "uniform"; }
+const char *LightSelectionName(LightSelection s) {
+    return s == LightSelection::Power ? "power" : (s == LightSelection::Uniform ? "uniform" : "exhaustive");
+}
 
 double LightPower(const Light &light) {
     const Spectrum &s = light.EmissionSpectrum();
@@ -44,14 +49,26 @@ double LightPower(const Light &light) {
 LightSampler::LightSampler(const std::vector<const Light *> &lights, LightSelection how) : how_(how), lights_(lights) {
     const std::size_t n = lights_.size();
     if (n == 0) return;
+    const bool uniform = how_ == LightSelection::Uniform;
     std::vector<double> w(n, 1.0);
-    if (how_ == LightSelection::Power) {
+    if (!uniform) {
         double mean = 0;
         for (std::size_t i = 0; i < n; ++i) mean += (w[i] = LightPower(*lights_[i])) / double(n);
         if (mean > 0)
             for (double &x : w) x = std::max(x, 1e-3 * mean);
         else
             std::fill(w.begin(), w.end(), 1.0);
+    }
+    if (how_ == LightSelection::Exhaustive) {
+        // ∫ S dλ per light (Φ / PowerScale), floored like the powers.
+        unit_.resize(n);
+        double mean = 0;
+        for (std::size_t i = 0; i < n; ++i) {
+            const double scale = lights_[i]->PowerScale();
+            unit_[i] = scale > 0 && std::isfinite(scale) ? LightPower(*lights_[i]) / scale : 0.0;
+            mean += unit_[i] / double(n);
+        }
+        for (double &x : unit_) x = mean > 0 ? std::max(x, 1e-3 * mean) : 1.0;
     }
     double total = 0;
     for (double x : w) total += x;
@@ -60,7 +77,7 @@ LightSampler::LightSampler(const std::vector<const Light *> &lights, LightSelect
     double run = 0;
     for (std::size_t i = 0; i < n; ++i) {
         // Uniform: exactly 1/N (as light selection always was).
-        pmf_[i] = how_ == LightSelection::Uniform ? 1.0 / double(n) : w[i] / total;
+        pmf_[i] = uniform ? 1.0 / double(n) : w[i] / total;
         run += pmf_[i];
         cdf_[i] = run;
         pmfOf_[lights_[i]] += pmf_[i];
@@ -68,12 +85,18 @@ LightSampler::LightSampler(const std::vector<const Light *> &lights, LightSelect
     cdf_.back() = 1;
 }
 
-const Light *LightSampler::Sample(double u, double *pmf) const {
-    const std::size_t n = lights_.size();
-    if (n == 0) {
-        *pmf = 0;
-        return nullptr;
+bool LightSampler::ReachWeights(const LightSampleContext &ctx, std::vector<double> &w) const {
+    w.resize(lights_.size());
+    for (std::size_t i = 0; i < lights_.size(); ++i) {
+        const double r = lights_[i]->Reach(ctx);
+        if (!(r >= 0) || !std::isfinite(r)) return false;  // no estimate (NaN), or unusable
+        w[i] = r * unit_[i];
     }
+    return true;
+}
+
+const Light *LightSampler::FromTable(double u, double *pmf) const {
+    const std::size_t n = lights_.size();
     std::size_t i;
     if (how_ == LightSelection::Uniform) {
         i = std::min(n - 1, std::size_t(u * double(n)));
@@ -85,8 +108,43 @@ const Light *LightSampler::Sample(double u, double *pmf) const {
     return lights_[i];
 }
 
-double LightSampler::Pmf(const Light *light) const {
-    if (how_ == LightSelection::Uniform) return lights_.empty() ? 0 : 1.0 / double(lights_.size());
+const Light *LightSampler::Sample(double u, const LightSampleContext &ctx, double *pmf) const {
+    *pmf = 0;
+    if (lights_.empty()) return nullptr;
+    if (how_ != LightSelection::Exhaustive) return FromTable(u, pmf);
+    thread_local std::vector<double> w;
+    if (!ReachWeights(ctx, w)) return FromTable(u, pmf);
+    double total = 0;
+    for (double x : w) total += x;
+    if (!(total > 0) || !std::isfinite(total)) return nullptr;  // no light reaches ctx
+    // The first light whose running sum exceeds u·total (never one of weight 0).
+    const double target = u * total;
+    double run = 0;
+    std::size_t pick = lights_.size();
+    for (std::size_t i = 0; i < w.size(); ++i) {
+        if (!(w[i] > 0)) continue;
+        pick = i;
+        run += w[i];
+        if (target < run) break;
+    }
+    *pmf = w[pick] / total;
+    return lights_[pick];
+}
+
+double LightSampler::Pmf(const Light *light, const LightSampleContext &ctx) const {
+    if (lights_.empty()) return 0;
+    if (how_ == LightSelection::Uniform) return 1.0 / double(lights_.size());
+    if (how_ == LightSelection::Exhaustive) {
+        thread_local std::vector<double> w;
+        if (ReachWeights(ctx, w)) {
+            double total = 0, mine = 0;
+            for (std::size_t i = 0; i < w.size(); ++i) {
+                total += w[i];
+                if (lights_[i] == light) mine += w[i];
+            }
+            return total > 0 && std::isfinite(total) ? mine / total : 0.0;
+        }
+    }
     const auto it = pmfOf_.find(light);
     return it == pmfOf_.end() ? 0 : it->second;
 }

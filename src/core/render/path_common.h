@@ -1,6 +1,6 @@
 // SPDX-License-Identifier: Apache-2.0
 // phasor — pieces shared by the path-tracing integrators (`ray`, `grt`): multiple importance
-// sampling, next-event estimation to one uniformly chosen light, emission met by a path (area and
+// sampling, next-event estimation to one light (LightSampler), emission met by a path (area and
 // infinite lights, MIS-weighted against NEE) and Russian roulette. Radiance units throughout
 // (camera-normalised; theory §2.4 item 4).
 #pragma once
@@ -33,8 +33,8 @@ struct DirectLightInfo {
     double dist = Infinity;   // distance to it (Infinity for lights at infinity)
 };
 
-/// Next-event estimation at a surface vertex (pbrt-style): one light chosen by `lights` (uniformly
-/// or by power, the integrator's `light_sampler`) with uLight, sampled with uPos; the kernel k
+/// Next-event estimation at a surface vertex (pbrt-style): one light chosen by `lights` (the
+/// integrator's `light_sampler`: by reach at si, by power or uniformly) with uLight, sampled with uPos; the kernel k
 /// prepared at si answers for its continuous lobes (near-delta lobes have no density). Delta lights get f·|cosθ|·E; area and infinite lights are
 /// MIS-weighted (power heuristic) against kernel sampling. The shadow ray crosses straight-through
 /// surfaces with their transmittance (Scene::Transmittance; their kernels prepared in `scratch` in
@@ -45,9 +45,9 @@ inline SampledSpectrum SampleDirectLight(const Scene &scene, const SurfaceIntera
                                          const SampledWavelengths &wl, PathStats &stats, ScratchBuffer &scratch,
                                          bool rayOptics, DirectLightInfo *info = nullptr) {
     double selectPdf = 0;
-    const Light *light = lights.Sample(uLight, &selectPdf);
-    if (!light || !(selectPdf > 0)) return SampledSpectrum(0.0);
     const LightSampleContext ctx{si.p, si.n};
+    const Light *light = lights.Sample(uLight, ctx, &selectPdf);
+    if (!light || !(selectPdf > 0)) return SampledSpectrum(0.0);
     auto ls = light->SampleLi(ctx, uPos, wl);
     if (!ls || !(ls->pdf > 0) || (ls->L.IsZero() && !ls->beam)) return SampledSpectrum(0.0);
     if (info) *info = DirectLightInfo{light, ls->wi, ls->dist};
@@ -80,7 +80,7 @@ inline SampledSpectrum HitEmission(const LightSampler &lights, const SurfaceInte
     if (!si.areaLight) return SampledSpectrum(0.0);
     const SampledSpectrum le = si.areaLight->L(si.p, si.n, -rayDir, wl);
     if (le.IsZero() || mis.deltaBounce) return le;
-    const double lightPdf = si.areaLight->PdfLi(mis.prevCtx, rayDir, si.p, si.n) * lights.Pmf(si.areaLight);
+    const double lightPdf = si.areaLight->PdfLi(mis.prevCtx, rayDir, si.p, si.n) * lights.Pmf(si.areaLight, mis.prevCtx);
     return le * PowerHeuristic(mis.prevPdf, lightPdf);
 }
 
@@ -97,7 +97,7 @@ inline SampledSpectrum EscapedEmission(const Scene &scene, const LightSampler &l
         if (mis.deltaBounce)
             sum += le;
         else {
-            const double lightPdf = l->PdfLi(mis.prevCtx, d, Vec3(), Vec3()) * lights.Pmf(l);
+            const double lightPdf = l->PdfLi(mis.prevCtx, d, Vec3(), Vec3()) * lights.Pmf(l, mis.prevCtx);
             sum += le * PowerHeuristic(mis.prevPdf, lightPdf);
         }
     }

@@ -188,6 +188,7 @@ std::unique_ptr<Scene> Scene::Build(const SceneDesc &descIn, Diagnostics &diag,
     if (scene->lights_.empty()) diag.Warning(sceneLoc, "the scene has no light; the image will be black");
     scene->uniformLights_ = std::make_unique<LightSampler>(scene->lights_, LightSelection::Uniform);
     scene->powerLights_ = std::make_unique<LightSampler>(scene->lights_, LightSelection::Power);
+    scene->exhaustiveLights_ = std::make_unique<LightSampler>(scene->lights_, LightSelection::Exhaustive);
     scene->CheckSensorPlane(diag);
     scene->wavelengths_ = std::make_unique<WavelengthSampler>(emitters, scene->detector_->Response());
     if (diag.HasErrors()) return nullptr;

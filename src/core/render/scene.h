@@ -68,6 +68,7 @@ class Scene {
     const std::vector<const Light *> &AreaLights() const { return areaLights_; }
     /// Next-event estimation's choice among Lights() (an integrator's `light_sampler`).
     const LightSampler &GetLightSampler(LightSelection how) const {
+        if (how == LightSelection::Exhaustive) return *exhaustiveLights_;
         return how == LightSelection::Power ? *powerLights_ : *uniformLights_;
     }
     const Detector &GetDetector() const { return *detector_; }
@@ -131,7 +132,7 @@ class Scene {
     std::unique_ptr<Accel> accel_;
     std::vector<std::shared_ptr<Shape>> shapes_;
     std::vector<const Light *> lights_, infiniteLights_, deltaLights_, hittableEmitters_, closedFormLights_, areaLights_;
-    std::unique_ptr<LightSampler> uniformLights_, powerLights_;
+    std::unique_ptr<LightSampler> uniformLights_, powerLights_, exhaustiveLights_;
     std::shared_ptr<Detector> detector_;
     std::shared_ptr<Integrator> integrator_;
     std::unique_ptr<WavelengthSampler> wavelengths_;
