@@ -24,29 +24,37 @@
 namespace phasor::test {
 namespace {
 
+// A paper floor 10 m wide, the lamps in `lamps` (shapes and lights), a camera at `eye` looking at
+// the floor's centre, and the integrator with `light_sampler`.
+std::unique_ptr<Scene> FloorUnderLamps(const std::string &lamps, const std::string &eye, const std::string &fov,
+                                       const std::string &integrator, const std::string &lightSampler,
+                                       const std::string &file) {
+    const std::string text =
+        "wscene 2\n"
+        "Material \"diffuse\" \"paper\" { reflectance = 0.5 }\n"
+        "Shape \"rectangle\" \"floor\" { material = @paper  to_world = scale(5) }\n" + lamps +
+        "Detector \"perspective\" \"cam\" { to_world = lookat(eye = " + eye + ", target = [0 0 0] m, up = [0 0 1])"
+        "  fov = " + fov + "  resolution = [8 8]  response = \"radiometric\" }\n"
+        "Integrator \"" + integrator + "\" \"it\" { max_depth = 2  light_sampler = \"" + lightSampler + "\" }\n"
+        "Render { integrator = @it }\n";
+    return SceneFromText(text, file);
+}
+
 // `misleading`: the dim panel large and close above the floor (it gives most of the light, much of
 // it through kernel sampling, which MIS shares with light sampling), the bright one far away
 // (36× the power, under half of the light): power selection is a poor guess here, but the mean
 // must not move, and a wrong selection probability in MIS would move it.
 std::unique_ptr<Scene> TwoPanels(const std::string &integrator, const std::string &lightSampler, bool misleading = false) {
-    const std::string text =
-        "wscene 2\n"
-        "Material \"diffuse\" \"paper\" { reflectance = 0.5 }\n"
-        "Shape \"rectangle\" \"floor\" { material = @paper  to_world = scale(5) }\n"
-        + std::string(misleading
+    const std::string lamps =
+        std::string(misleading
               ? "Shape \"rectangle\" \"dim\" { to_world = [scale(1), rotate(180 deg, [1 0 0]), translate([0 0 0.5] m)] }\n"
                 "Shape \"rectangle\" \"bright\" { to_world = [scale(0.05), rotate(180 deg, [1 0 0]), translate([0 0 10] m)] }\n"
               : "Shape \"rectangle\" \"dim\" { to_world = [scale(0.3), rotate(180 deg, [1 0 0]), translate([-0.6 0 1] m)] }\n"
                 "Shape \"rectangle\" \"bright\" { to_world = [scale(0.05), rotate(180 deg, [1 0 0]), translate([0.6 0 0.8] m)] }\n") +
         "Light \"area\" \"dim_lamp\" { shape = @dim  radiance = 1 W/m^2/sr  spectrum = line(550 nm) }\n"
-        "Light \"area\" \"bright_lamp\" { shape = @bright  radiance = " + (misleading ? "14400" : "14400") +
-        " W/m^2/sr  spectrum = line(550 nm) }\n"
-        "Detector \"perspective\" \"cam\" { to_world = lookat(eye = [0 -3 " + (misleading ? "0.3" : "2") +
-        "] m, target = [0 0 0] m, up = [0 0 1])"
-        "  fov = 20 deg  resolution = [8 8]  response = \"radiometric\" }\n"
-        "Integrator \"" + integrator + "\" \"it\" { max_depth = 2  light_sampler = \"" + lightSampler + "\" }\n"
-        "Render { integrator = @it }\n";
-    return SceneFromText(text, "panels.wscene");
+        "Light \"area\" \"bright_lamp\" { shape = @bright  radiance = 14400 W/m^2/sr  spectrum = line(550 nm) }\n";
+    return FloorUnderLamps(lamps, misleading ? "[0 -3 0.3] m" : "[0 -3 2] m", "20 deg", integrator, lightSampler,
+                           "panels.wscene");
 }
 
 TEST(LightSampler, PowerIsProportionalAndSampled) {
@@ -125,10 +133,7 @@ TEST(LightSampler, PowerSelectionIsUnbiasedWhereItGuessesBadly) {
 // small, high, off to the side) and `away` (the brightest, 1 m above the floor but emitting upwards: it lights nothing
 // the camera sees); optionally a Gaussian beam, a light that gives no Reach.
 std::unique_ptr<Scene> ThreePanels(const std::string &integrator, const std::string &lightSampler, bool beam = false) {
-    const std::string text =
-        "wscene 2\n"
-        "Material \"diffuse\" \"paper\" { reflectance = 0.5 }\n"
-        "Shape \"rectangle\" \"floor\" { material = @paper  to_world = scale(5) }\n"
+    const std::string lamps =
         "Shape \"rectangle\" \"near\" { to_world = [scale(0.4), rotate(180 deg, [1 0 0]), translate([-0.8 0.3 0.8] m)] }\n"
         "Shape \"rectangle\" \"far\" { to_world = [scale(0.1), rotate(150 deg, [1 0 0]), translate([1.5 1 2] m)] }\n"
         "Shape \"rectangle\" \"away\" { to_world = [scale(0.3), translate([0.6 -0.4 1] m)] }\n"
@@ -137,12 +142,8 @@ std::unique_ptr<Scene> ThreePanels(const std::string &integrator, const std::str
         "Light \"area\" \"away_lamp\" { shape = @away  radiance = 100 W/m^2/sr  spectrum = line(550 nm) }\n" +
         std::string(beam ? "Light \"gaussian_beam\" \"laser\" { position = [0 0 3] m  direction = [0 0 -1]  "
                            "waist_radius = 1 mm  power = 1 mW  spectrum = line(550 nm) }\n"
-                         : "") +
-        "Detector \"perspective\" \"cam\" { to_world = lookat(eye = [0 -3 2.5] m, target = [0 0 0] m, up = [0 0 1])"
-        "  fov = 10 deg  resolution = [8 8]  response = \"radiometric\" }\n"
-        "Integrator \"" + integrator + "\" \"it\" { max_depth = 2  light_sampler = \"" + lightSampler + "\" }\n"
-        "Render { integrator = @it }\n";
-    return SceneFromText(text, "three_panels.wscene");
+                         : "");
+    return FloorUnderLamps(lamps, "[0 -3 2.5] m", "10 deg", integrator, lightSampler, "three_panels.wscene");
 }
 
 TEST(LightSampler, ExhaustiveFollowsReachAndIsSampled) {
