@@ -101,13 +101,16 @@ class AreaLight final : public Light {
         const double strength = scale_ * shape_->Area();
         if (!(d2 > r2)) return strength / std::max(r2, 1e-300);  // inside the bounds' sphere: θ_b = π
         const Vec3 wi = toP / std::sqrt(d2);
-        const double thetaB = std::asin(std::sqrt(r2 / d2));
-        double cosW = Dot(normals_.w, wi);
+        const double sinB = std::sqrt(r2 / d2), cosB = std::sqrt(1 - r2 / d2);
+        double cosW = Clamp(Dot(normals_.w, wi), -1, 1);
         if (twoSided_) cosW = std::abs(cosW);
-        const double thetaO = std::acos(Clamp(normals_.cosTheta, -1, 1));
-        const double thetaL = std::max(0.0, std::acos(Clamp(cosW, -1, 1)) - thetaO - thetaB);
-        if (thetaL >= Pi / 2) return 0;  // a Lambertian side emits into its hemisphere only
-        return strength * std::cos(thetaL) * ReceiverCosine(ctx.n, wi, thetaB) / d2;
+        const double sinW = std::sqrt(1 - cosW * cosW);
+        const double cosO = Clamp(normals_.cosTheta, -1, 1), sinO = std::sqrt(1 - cosO * cosO);
+        // θ' = max(0, θ_w − θ_o − θ_b): the cone's nearest normal, widened by the bounds.
+        const double cosX = CosOfReduced(cosW, sinW, cosO, sinO), sinX = SinOfReduced(cosW, sinW, cosO, sinO);
+        const double cosL = CosOfReduced(cosX, sinX, cosB, sinB);
+        if (cosL <= 0) return 0;  // θ' ≥ π/2: a Lambertian side emits into its hemisphere only
+        return strength * cosL * ReceiverCosine(ctx.n, wi, cosB, sinB) / d2;
     }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
     double PowerScale() const override { return scale_ * Pi * shape_->Area() * (twoSided_ ? 2 : 1); }

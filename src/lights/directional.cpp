@@ -54,7 +54,7 @@ class DirectionalLight final : public Light {
         return DistantIncidence(g, dir_, EvalEmission(*spectrum_, wl) * scale_, 0);
     }
     LightCoherence Coherence(const Vec3 &) const override { return LightCoherence{-dir_, 0}; }
-    double Reach(const LightSampleContext &ctx) const override { return scale_ * ReceiverCosine(ctx.n, dir_, 0); }
+    double Reach(const LightSampleContext &ctx) const override { return scale_ * ReceiverCosine(ctx.n, dir_); }
     void Preprocess(const Bounds3 &b) override { sceneArea_ = SceneCrossSection(b); }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
     double PowerScale() const override { return scale_ * sceneArea_; }

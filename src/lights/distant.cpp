@@ -169,7 +169,7 @@ class DistantLight final : public Light {
     /// The irradiance scale times the receiver's cosine towards the disc, reduced by its angular
     /// radius (a Gaussian profile reaches every direction in front: no cosine).
     double Reach(const LightSampleContext &ctx) const override {
-        return scale_ * (disc_ ? ReceiverCosine(ctx.n, dir_, alpha_) : 1.0);
+        return scale_ * (disc_ ? ReceiverCosine(ctx.n, dir_, cosAlpha_, std::sqrt(sin2Alpha_)) : 1.0);
     }
     std::string ToString() const override {
         return "distant { direction = " + phasor::ToString(dir_) +

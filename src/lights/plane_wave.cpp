@@ -88,7 +88,7 @@ class PlaneWaveLight final : public Light, public CoherentSource {
         return DistantIncidence(g, dir_, Emission(wl), 0);
     }
     LightCoherence Coherence(const Vec3 &) const override { return LightCoherence{-dir_, 0}; }
-    double Reach(const LightSampleContext &ctx) const override { return scale_ * ReceiverCosine(ctx.n, dir_, 0); }
+    double Reach(const LightSampleContext &ctx) const override { return scale_ * ReceiverCosine(ctx.n, dir_); }
 
     // ---- The field (core/render/coherent_source.h) -------------------------------------------
     const CoherentSource *Coherent() const override { return this; }

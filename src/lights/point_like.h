@@ -73,7 +73,7 @@ class PointLikeLight : public Light {
         const double r2 = LengthSquared(d);
         if (!(r2 > 0)) return std::numeric_limits<double>::quiet_NaN();
         const Vec3 wi = d / std::sqrt(r2);
-        return scale_ * Falloff(-wi) * ReceiverCosine(ctx.n, wi, 0) / r2;
+        return scale_ * Falloff(-wi) * ReceiverCosine(ctx.n, wi) / r2;
     }
     const Spectrum &EmissionSpectrum() const override { return *spectrum_; }
 

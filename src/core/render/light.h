@@ -81,14 +81,23 @@ double SceneCrossSection(const Bounds3 &sceneBounds);
 /// Results beyond the float image's range (3.4e38) are still caught, and counted, by the film.
 inline constexpr double MaxLightStrength = 1e30;
 
+/// cos(max(0, a − b)) and sin(max(0, a − b)) for angles a, b ∈ [0, π] given by their
+/// cosines and sines (no inverse trigonometry): Light::Reach's reduced angles.
+inline double CosOfReduced(double cosA, double sinA, double cosB, double sinB) {
+    return cosA >= cosB ? 1.0 : cosA * cosB + sinA * sinB;
+}
+inline double SinOfReduced(double cosA, double sinA, double cosB, double sinB) {
+    return cosA >= cosB ? 0.0 : sinA * cosB - cosA * sinB;
+}
+
 /// The receiver's factor of Light::Reach: |cosθ| between the receiver's normal n and a unit
-/// direction w towards (or from) the light, θ first reduced by `spread` [rad], the half-angle in
-/// which the light's directions lie about w (pbrt-v4's LightBounds importance): cos(max(0, θ − spread)).
-/// 1 for a point in free space (n = 0).
-inline double ReceiverCosine(const Vec3 &n, const Vec3 &w, double spread) {
+/// direction w towards (or from) the light, θ first reduced by the half-angle (given by its cosine
+/// and sine) in which the light's directions lie about w (pbrt-v4's LightBounds importance):
+/// cos(max(0, θ − spread)). 1 for a point in free space (n = 0).
+inline double ReceiverCosine(const Vec3 &n, const Vec3 &w, double cosSpread = 1, double sinSpread = 0) {
     if (n == Vec3()) return 1;
-    const double theta = std::acos(std::min(1.0, std::abs(Dot(n, w)) / Length(n)));
-    return std::cos(std::max(0.0, theta - spread));
+    const double cosI = std::min(1.0, std::abs(Dot(n, w)) / Length(n));
+    return CosOfReduced(cosI, std::sqrt(1 - cosI * cosI), cosSpread, sinSpread);
 }
 
 class Light {
