@@ -48,6 +48,8 @@ class Scratch {
         if (n > Small) big_.resize(n);
         data_ = n > Small ? big_.data() : reinterpret_cast<T *>(small_);
     }
+    Scratch(const Scratch &) = delete;  // data_ may point into the object itself
+    Scratch &operator=(const Scratch &) = delete;
     T &operator[](std::size_t i) { return data_[i]; }
     const T &operator[](std::size_t i) const { return data_[i]; }
 

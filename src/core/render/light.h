@@ -93,11 +93,13 @@ inline double SinOfReduced(double cosA, double sinA, double cosB, double sinB) {
 /// The receiver's factor of Light::Reach: |cosθ| between the receiver's normal n and a unit
 /// direction w towards (or from) the light, θ first reduced by the half-angle (given by its cosine
 /// and sine) in which the light's directions lie about w (pbrt-v4's LightBounds importance):
-/// cos(max(0, θ − spread)). 1 for a point in free space (n = 0).
+/// cos(max(0, θ − spread)), but at least 1e-3 — n is the geometric normal, and a kernel weighs by
+/// its shading normal's cosine, which need not vanish where the geometric one does (a delta light
+/// in the plane of a smooth-shaded facet still lights it). 1 for a point in free space (n = 0).
 inline double ReceiverCosine(const Vec3 &n, const Vec3 &w, double cosSpread = 1, double sinSpread = 0) {
     if (n == Vec3()) return 1;
     const double cosI = std::min(1.0, std::abs(Dot(n, w)) / Length(n));
-    return CosOfReduced(cosI, std::sqrt(1 - cosI * cosI), cosSpread, sinSpread);
+    return std::max(1e-3, CosOfReduced(cosI, std::sqrt(1 - cosI * cosI), cosSpread, sinSpread));
 }
 
 class Light {
@@ -133,7 +135,8 @@ class Light {
     /// How much of this light reaches a receiver at ctx (ctx.n: its geometric normal, either side
     /// facing; zero for a point in free space): an estimate of the irradiance there per unit of the
     /// emission spectrum [the light's strength unit × sr, e.g. W/m² per unit spectrum], with
-    /// visibility ignored, that is 0 only where the light sends nothing towards ctx.p — the
+    /// visibility ignored, that is 0 only where the light sends nothing towards ctx.p, whatever the
+    /// receiver's orientation (ReceiverCosine never vanishes) — the
     /// `exhaustive` light sampler's weight (light_sampler.h). NaN (the default): no estimate; the
     /// sampler then weighs every light by power at that point.
     virtual double Reach(const LightSampleContext &ctx) const {

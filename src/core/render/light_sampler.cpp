@@ -85,14 +85,16 @@ LightSampler::LightSampler(const std::vector<const Light *> &lights, LightSelect
     cdf_.back() = 1;
 }
 
-bool LightSampler::ReachWeights(const LightSampleContext &ctx, std::vector<double> &w) const {
+bool LightSampler::ReachWeights(const LightSampleContext &ctx, std::vector<double> &w, double *total) const {
     w.resize(lights_.size());
+    *total = 0;
     for (std::size_t i = 0; i < lights_.size(); ++i) {
         const double r = lights_[i]->Reach(ctx);
         if (!(r >= 0) || !std::isfinite(r)) return false;  // no estimate (NaN), or unusable
         w[i] = r * unit_[i];
+        *total += w[i];
     }
-    return true;
+    return std::isfinite(*total);  // (an overflowing sum: power instead)
 }
 
 const Light *LightSampler::FromTable(double u, double *pmf) const {
@@ -113,10 +115,9 @@ const Light *LightSampler::Sample(double u, const LightSampleContext &ctx, doubl
     if (lights_.empty()) return nullptr;
     if (how_ != LightSelection::Exhaustive) return FromTable(u, pmf);
     thread_local std::vector<double> w;
-    if (!ReachWeights(ctx, w)) return FromTable(u, pmf);
     double total = 0;
-    for (double x : w) total += x;
-    if (!(total > 0) || !std::isfinite(total)) return nullptr;  // no light reaches ctx
+    if (!ReachWeights(ctx, w, &total)) return FromTable(u, pmf);
+    if (!(total > 0)) return nullptr;  // no light reaches ctx
     // The first light whose running sum exceeds u·total (never one of weight 0).
     const double target = u * total;
     double run = 0;
@@ -136,13 +137,12 @@ double LightSampler::Pmf(const Light *light, const LightSampleContext &ctx) cons
     if (how_ == LightSelection::Uniform) return 1.0 / double(lights_.size());
     if (how_ == LightSelection::Exhaustive) {
         thread_local std::vector<double> w;
-        if (ReachWeights(ctx, w)) {
-            double total = 0, mine = 0;
-            for (std::size_t i = 0; i < w.size(); ++i) {
-                total += w[i];
+        double total = 0;
+        if (ReachWeights(ctx, w, &total)) {
+            double mine = 0;
+            for (std::size_t i = 0; i < w.size(); ++i)
                 if (lights_[i] == light) mine += w[i];
-            }
-            return total > 0 && std::isfinite(total) ? mine / total : 0.0;
+            return total > 0 ? mine / total : 0.0;
         }
     }
     const auto it = pmfOf_.find(light);

@@ -42,8 +42,9 @@ class LightSampler {
     LightSelection Selection() const { return how_; }
 
   private:
-    /// Exhaustive: every light's weight at ctx into w (false where some light gives no estimate).
-    bool ReachWeights(const LightSampleContext &ctx, std::vector<double> &w) const;
+    /// Exhaustive: every light's weight at ctx into w and their sum into *total (false where some
+    /// light gives no estimate or the sum overflows: then power).
+    bool ReachWeights(const LightSampleContext &ctx, std::vector<double> &w, double *total) const;
     const Light *FromTable(double u, double *pmf) const;  // uniform or power
 
     LightSelection how_;
