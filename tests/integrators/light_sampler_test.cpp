@@ -11,6 +11,7 @@
 // the mean and cuts the noise of a floor under three panels.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -57,6 +58,27 @@ std::unique_ptr<Scene> TwoPanels(const std::string &integrator, const std::strin
                            "panels.wscene");
 }
 
+// χ² of 10⁵ draws (a fixed LCG from `seed`) of `sampler` at ctx against Pmf, over the lights
+// `lights` (every draw must be one of them, and Sample's pmf must be Pmf's); its p-value.
+double SamplingPValue(const LightSampler &sampler, const LightSampleContext &ctx,
+                      const std::vector<const Light *> &lights, uint64_t seed) {
+    std::vector<double> observed(lights.size(), 0.0), expected;
+    for (const Light *l : lights) expected.push_back(sampler.Pmf(l, ctx) * 1e5);
+    uint64_t state = seed;
+    for (int i = 0; i < 100000; ++i) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        double pmf = 0;
+        const Light *l = sampler.Sample(double(state >> 11) * 0x1.0p-53, ctx, &pmf);
+        const auto it = std::find(lights.begin(), lights.end(), l);
+        EXPECT_TRUE(it != lights.end()) << "a light outside the expected ones";
+        if (it == lights.end()) return 0;
+        observed[std::size_t(it - lights.begin())] += 1;
+        EXPECT_EQ(pmf, sampler.Pmf(l, ctx));
+        if (pmf != sampler.Pmf(l, ctx)) return 0;
+    }
+    return Chi2Test(observed, expected).pValue;
+}
+
 TEST(LightSampler, PowerIsProportionalAndSampled) {
     auto scene = TwoPanels("ray", "power");
     ASSERT_TRUE(scene);
@@ -68,17 +90,8 @@ TEST(LightSampler, PowerIsProportionalAndSampled) {
     EXPECT_NEAR(p0 + p1, 1, 1e-12);
     EXPECT_NEAR(p1 / p0, 400, 400 * 1e-9);
     EXPECT_NEAR(LightPower(*lights[1]) / LightPower(*lights[0]), 400, 400 * 1e-9);
-    // Sampling frequencies (χ² with 1 dof on 10⁵ stratified-free draws of a fixed LCG).
-    std::vector<double> observed(2, 0.0), expected{p0 * 1e5, p1 * 1e5};
-    uint64_t state = 12345;
-    for (int i = 0; i < 100000; ++i) {
-        state = state * 6364136223846793005ull + 1442695040888963407ull;
-        double pmf = 0;
-        const Light *l = power.Sample(double(state >> 11) * 0x1.0p-53, {}, &pmf);
-        observed[l == lights[1] ? 1 : 0] += 1;
-        ASSERT_EQ(pmf, power.Pmf(l, {}));
-    }
-    EXPECT_GT(Chi2Test(observed, expected).pValue, 1e-3);
+    // Sampling frequencies (χ² with 1 dof on 10⁵ draws of a fixed LCG).
+    EXPECT_GT(SamplingPValue(power, {}, {lights[0], lights[1]}, 12345), 1e-3);
     // Uniform: the rule of light sampling before the parameter, exactly.
     const LightSampler &uniform = scene->GetLightSampler(LightSelection::Uniform);
     for (double u : {0.0, 0.25, 0.4999999, 0.5, 0.75, 0.9999999}) {
@@ -170,18 +183,8 @@ TEST(LightSampler, ExhaustiveFollowsReachAndIsSampled) {
         EXPECT_EQ(pmf[2], 0) << "the panel that faces away";
         // A line spectrum: ∫S = 1 for every lamp, so the probabilities are the reaches' shares.
         EXPECT_NEAR(pmf[0] / pmf[1], reach[0] / reach[1], 1e-9 * reach[0] / reach[1]);
-        // Sampling frequencies (χ², 1 dof, 10⁵ draws of a fixed LCG); Sample's pmf is Pmf's.
-        std::vector<double> observed(2, 0.0), expected{pmf[0] * 1e5, pmf[1] * 1e5};
-        uint64_t state = 777 + uint64_t(k);
-        for (int i = 0; i < 100000; ++i) {
-            state = state * 6364136223846793005ull + 1442695040888963407ull;
-            double p = 0;
-            const Light *l = ex.Sample(double(state >> 11) * 0x1.0p-53, ctx, &p);
-            ASSERT_TRUE(l == lights[0] || l == lights[1]);
-            observed[l == lights[1] ? 1 : 0] += 1;
-            ASSERT_EQ(p, ex.Pmf(l, ctx));
-        }
-        EXPECT_GT(Chi2Test(observed, expected).pValue, 1e-3);
+        // Sampling frequencies (χ², 1 dof, 10⁵ draws): never `away`; Sample's pmf is Pmf's.
+        EXPECT_GT(SamplingPValue(ex, ctx, {lights[0], lights[1]}, 777 + uint64_t(k)), 1e-3);
     }
     // High above the lamps, facing down: `near` and `far` face down, away from it; only `away` reaches it.
     const LightSampleContext above{Vec3(0.6, -0.4, 6), Vec3(0, 0, -1)};

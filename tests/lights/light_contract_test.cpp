@@ -603,57 +603,41 @@ TEST(LightRegistry, EveryLightHasPresets) {
     }
 }
 
-// A light that samples like `distant` but whose PdfLi is twice its sampling density.
-class WrongPdfLight final : public Light {
+// A light that samples like `of` but tampers with what it says of itself: PdfLi times `pdfFactor`
+// (a density that does not match the samples), and with `hideReach` a Reach of 0 everywhere (it
+// hides its light from the exhaustive sampler).
+class TamperedLight final : public Light {
   public:
-    explicit WrongPdfLight(const Light &of) : of_(of) {}
+    TamperedLight(const Light &of, double pdfFactor, bool hideReach) : of_(of), pdfFactor_(pdfFactor), hide_(hideReach) {}
     std::optional<LightSample> SampleLi(const LightSampleContext &c, const Vec2 &u,
                                         const SampledWavelengths &wl) const override {
         return of_.SampleLi(c, u, wl);
     }
     double PdfLi(const LightSampleContext &c, const Vec3 &wi, const Vec3 &p, const Vec3 &n) const override {
-        return 2 * of_.PdfLi(c, wi, p, n);
+        return pdfFactor_ * of_.PdfLi(c, wi, p, n);
     }
     SampledSpectrum Le(const Vec3 &d, const SampledWavelengths &wl) const override { return of_.Le(d, wl); }
     LightType Type() const override { return of_.Type(); }
     const Spectrum &EmissionSpectrum() const override { return of_.EmissionSpectrum(); }
     double PowerScale() const override { return of_.PowerScale(); }
-    std::string ToString() const override { return "wrong pdf"; }
+    double Reach(const LightSampleContext &c) const override { return hide_ ? 0.0 : of_.Reach(c); }
+    std::string ToString() const override { return "tampered"; }
 
   private:
     const Light &of_;
+    double pdfFactor_;
+    bool hide_;
 };
 
 TEST(LightContractPower, CatchesAPdfOffByTwo) {
     const Subject s = Build({"distant", 1});
     ASSERT_TRUE(s.light);
     EXPECT_EQ(CheckSamplingMatchesPdf(s, *s.light, Alpha()), "");
-    const WrongPdfLight wrong(*s.light);
+    const TamperedLight wrong(*s.light, 2, false);
     const std::string why = CheckSamplingMatchesPdf(s, wrong, Alpha());
     EXPECT_NE(why.find("sample pdf"), std::string::npos) << why;
     EXPECT_NE(why.find("χ²"), std::string::npos) << why;
 }
-
-// An area light whose Reach says 0 everywhere (it hides light from the exhaustive sampler).
-class HidingReachLight final : public Light {
-  public:
-    explicit HidingReachLight(const Light &of) : of_(of) {}
-    std::optional<LightSample> SampleLi(const LightSampleContext &c, const Vec2 &u,
-                                        const SampledWavelengths &wl) const override {
-        return of_.SampleLi(c, u, wl);
-    }
-    double PdfLi(const LightSampleContext &c, const Vec3 &wi, const Vec3 &p, const Vec3 &n) const override {
-        return of_.PdfLi(c, wi, p, n);
-    }
-    LightType Type() const override { return of_.Type(); }
-    const Spectrum &EmissionSpectrum() const override { return of_.EmissionSpectrum(); }
-    double PowerScale() const override { return of_.PowerScale(); }
-    double Reach(const LightSampleContext &) const override { return 0; }
-    std::string ToString() const override { return "hiding reach"; }
-
-  private:
-    const Light &of_;
-};
 
 TEST(LightContractReach, ZerosAreExercisedAndALyingReachIsCaught) {
     // The one-sided panel of `area`'s first preset faces away from some receivers: Reach is 0
@@ -663,7 +647,7 @@ TEST(LightContractReach, ZerosAreExercisedAndALyingReachIsCaught) {
     int zeros = 0;
     EXPECT_EQ(CheckReach(s, *s.light, &zeros), "");
     EXPECT_GT(zeros, 10);
-    const HidingReachLight hiding(*s.light);
+    const TamperedLight hiding(*s.light, 1, true);
     const std::string why = CheckReach(s, hiding);
     EXPECT_NE(why.find("but a sample arrives"), std::string::npos) << why;
 }

@@ -46,29 +46,32 @@ double LightPower(const Light &light) {
     return std::isfinite(phi) && phi > 0 ? phi : 0;
 }
 
+namespace {
+// Every weight at least 1e-3 of their mean, so that none is unreachable; all 1 if the mean is 0.
+void FloorAtMean(std::vector<double> &w) {
+    double mean = 0;
+    for (double x : w) mean += x / double(w.size());
+    for (double &x : w) x = mean > 0 ? std::max(x, 1e-3 * mean) : 1.0;
+}
+}  // namespace
+
 LightSampler::LightSampler(const std::vector<const Light *> &lights, LightSelection how) : how_(how), lights_(lights) {
     const std::size_t n = lights_.size();
     if (n == 0) return;
     const bool uniform = how_ == LightSelection::Uniform;
     std::vector<double> w(n, 1.0);
     if (!uniform) {
-        double mean = 0;
-        for (std::size_t i = 0; i < n; ++i) mean += (w[i] = LightPower(*lights_[i])) / double(n);
-        if (mean > 0)
-            for (double &x : w) x = std::max(x, 1e-3 * mean);
-        else
-            std::fill(w.begin(), w.end(), 1.0);
-    }
-    if (how_ == LightSelection::Exhaustive) {
-        // ∫ S dλ per light (Φ / PowerScale), floored like the powers.
-        unit_.resize(n);
-        double mean = 0;
-        for (std::size_t i = 0; i < n; ++i) {
-            const double scale = lights_[i]->PowerScale();
-            unit_[i] = scale > 0 && std::isfinite(scale) ? LightPower(*lights_[i]) / scale : 0.0;
-            mean += unit_[i] / double(n);
+        for (std::size_t i = 0; i < n; ++i) w[i] = LightPower(*lights_[i]);
+        if (how_ == LightSelection::Exhaustive) {
+            // ∫ S dλ per light (Φ / PowerScale), floored like the powers.
+            unit_.resize(n);
+            for (std::size_t i = 0; i < n; ++i) {
+                const double scale = lights_[i]->PowerScale();
+                unit_[i] = scale > 0 && std::isfinite(scale) ? w[i] / scale : 0.0;
+            }
+            FloorAtMean(unit_);
         }
-        for (double &x : unit_) x = mean > 0 ? std::max(x, 1e-3 * mean) : 1.0;
+        FloorAtMean(w);
     }
     double total = 0;
     for (double x : w) total += x;
