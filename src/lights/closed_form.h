@@ -33,19 +33,19 @@ SampledSpectrum MeasurePerWavelength(const SpectralGenRay &g, const SampledSpect
 }
 
 /// The closed forms of a light at infinity with direction of travel `s`, per-wavelength
-/// irradiance `e` (normal to s) and either a disc of half-angle alpha or a Gaussian of angular
-/// covariance omega·I (alpha = omega = 0: a coherent plane wave).
+/// irradiance `e` (normal to s) and either a disc of half-angle α (given as sinα) or a Gaussian of
+/// angular covariance omega·I (sinα = omega = 0: a coherent plane wave).
 inline std::optional<GrMeasurement> MeasureDistantGR(const SpectralGenRay &g, const Vec3 &s,
-                                                     const SampledSpectrum &e, bool disc, double alpha,
+                                                     const SampledSpectrum &e, bool disc, double sinAlpha,
                                                      double omega) {
     if (Dot(s, g.d) <= 0) return std::nullopt;
     GrMeasurement m;
     m.value = MeasurePerWavelength(g, e, [&](const GenRay &gi) {
-        return disc ? MeasureDistantDisc(gi, s, 1.0, alpha) : MeasureDistantGaussian(gi, s, 1.0, omega);
+        return disc ? MeasureDistantDisc(gi, s, 1.0, sinAlpha) : MeasureDistantGaussian(gi, s, 1.0, omega);
     });
     m.wi = -s;
     m.dist = Infinity;
-    if (disc && alpha > 0) m.profile = AngularProfile::Disc(std::sin(alpha));
+    if (disc && sinAlpha > 0) m.profile = AngularProfile::Disc(sinAlpha);
     else if (!disc && omega > 0) m.profile = AngularProfile::Gaussian(omega);
     return m;
 }

@@ -35,7 +35,8 @@ class DistantLight final : public Light {
           alpha_(alpha),
           omega_(omega) {
         cosAlpha_ = std::cos(alpha_);
-        sin2Alpha_ = Sqr(std::sin(alpha_));
+        sinAlpha_ = std::sin(alpha_);
+        sin2Alpha_ = Sqr(sinAlpha_);
     }
 
     static const Schema &GetSchema() {
@@ -148,14 +149,14 @@ class DistantLight final : public Light {
                                            const SampledWavelengths &wl) const override {
         // The geometry first: most GRs see none of a small source (and half face away from it), so
         // the emission spectrum is evaluated only for a measurement that is not zero.
-        std::optional<GrMeasurement> m = MeasureDistantGR(g, dir_, SampledSpectrum(1.0), disc_, alpha_, omega_);
+        std::optional<GrMeasurement> m = MeasureDistantGR(g, dir_, SampledSpectrum(1.0), disc_, sinAlpha_, omega_);
         if (m && !m->value.IsZero()) m->value *= Emission(wl);
         return m;
     }
     std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
                                              const SampledWavelengths &wl) const override {
         const AngularProfile profile = IsDelta() ? AngularProfile{}
-                                       : disc_  ? AngularProfile::Disc(std::sin(alpha_))
+                                       : disc_  ? AngularProfile::Disc(sinAlpha_)
                                                 : AngularProfile::Gaussian(omega_);
         return DistantIncidence(g, dir_, Emission(wl), disc_ ? alpha_ * alpha_ / 4 : omega_, profile);
     }
@@ -169,7 +170,7 @@ class DistantLight final : public Light {
     /// The irradiance scale times the receiver's cosine towards the disc, reduced by its angular
     /// radius (a Gaussian profile reaches every direction in front: no cosine).
     double Reach(const LightSampleContext &ctx) const override {
-        return scale_ * (disc_ ? ReceiverCosine(ctx.n, dir_, cosAlpha_, std::sqrt(sin2Alpha_)) : 1.0);
+        return scale_ * (disc_ ? ReceiverCosine(ctx.n, dir_, cosAlpha_, sinAlpha_) : 1.0);
     }
     std::string ToString() const override {
         return "distant { direction = " + phasor::ToString(dir_) +
@@ -184,7 +185,7 @@ class DistantLight final : public Light {
     double irradiance_, scale_ = 0;
     std::shared_ptr<const Spectrum> spectrum_;
     bool disc_;
-    double alpha_, omega_, cosAlpha_ = 1, sin2Alpha_ = 0;
+    double alpha_, omega_, cosAlpha_ = 1, sinAlpha_ = 0, sin2Alpha_ = 0;
     double sceneArea_ = 1;
 };
 

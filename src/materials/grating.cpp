@@ -266,7 +266,7 @@ GratingOrders GratingMaterial::Orders(const ScatterQuery &q, int i) const {
 }
 
 void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
-                                 GratingOrders *out) const {
+                                 GratingOrders *out, int only) const {
     GratingOrders &o = *out;  // may hold an earlier call's orders: every field read below is set
     o.reflected.present = o.transmitted.present = false;
     o.reflected.maxOrder = o.transmitted.maxOrder = 0;
@@ -306,20 +306,27 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
         s.maxOrder = used;
         double jAbs[GratingSide::MaxOrder + 1];
         BesselJSequence(std::abs(a), used, jAbs);
-        // Without directions, which orders propagate is an interval found at once.
-        const OrderRange range = directions ? OrderRange{} : PropagatingOrders(q.wi, s.nIn, s.nOut, unitShift, lambda, used);
-        double total = 0;
-        for (int j = -used; j <= used; ++j) {
-            const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
-            s.amplitude[k] = SignedBessel(jAbs, j, a);
-            const double e = s.amplitude[k] * s.amplitude[k];
-            total += e;
-            s.propagating[k] = directions ? NearDeltaDirection(q.wi, s.nIn, s.nOut, unitShift * double(j), lambda,
-                                                               transmitted, &s.wo[k])
-                                          : range.Contains(j);
-            (s.propagating[k] ? s.propagatingSum : s.evanescent) += e;
+        if (!directions) {
+            // Which orders propagate is an interval found at once; the sum over it, and order `only`.
+            const OrderRange range = PropagatingOrders(q.wi, s.nIn, s.nOut, unitShift, lambda, used);
+            for (int j = range.lo; j <= range.hi; ++j) s.propagatingSum += Sqr(SignedBessel(jAbs, j, a));
+            if (std::abs(only) <= used) {
+                const std::size_t k = std::size_t(only + GratingSide::MaxOrder);
+                s.amplitude[k] = SignedBessel(jAbs, only, a);
+                s.propagating[k] = range.Contains(only);
+            }
+        } else {
+            double total = 0;
+            for (int j = -used; j <= used; ++j) {
+                const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
+                s.amplitude[k] = SignedBessel(jAbs, j, a);
+                const double e = s.amplitude[k] * s.amplitude[k];
+                total += e;
+                s.propagating[k] = NearDeltaDirection(q.wi, s.nIn, s.nOut, unitShift * double(j), lambda, transmitted, &s.wo[k]);
+                (s.propagating[k] ? s.propagatingSum : s.evanescent) += e;
+            }
+            s.truncated = std::max(0.0, 1 - total);
         }
-        s.truncated = std::max(0.0, 1 - total);
         s.scale = !renormalize_ ? 1.0 : (s.propagatingSum > 0 ? 1 / s.propagatingSum : 0.0);
     };
     // Reflection: the phase 2·k·z·cosθ_i of the double pass, a = −k₀·n_i·h·cosθ_i (D6).
@@ -336,7 +343,7 @@ double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, const Sit
                                          bool transmitted, int j, GratingOrders *orders) const {
     ScatterQuery from = q;
     from.wi = source;  // the light arrives from `source`: its order j is the lobe's weight towards q.wi
-    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders);
+    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders, j);
     return (transmitted ? orders->transmitted : orders->reflected).Energy(j);
 }
 

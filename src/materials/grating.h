@@ -142,12 +142,14 @@ class GratingMaterial final : public Material, public ReferenceDirection {
     /// The site of the query's hit; `thickness` must hold LayerCount() values (filled here).
     Site SiteOf(const ScatterQuery &q, double *thickness) const;
     /// Orders() into *o for the sides asked for, at the site; with `directions`, every order's
-    /// direction too (GratingSide::wo; an efficiency needs only which orders propagate).
+    /// direction too (GratingSide::wo). Without, for one order `only` (an efficiency needs its
+    /// amplitude and which orders propagate): amplitude[] and propagating[] hold order `only` alone,
+    /// propagatingSum and scale are complete, evanescent and truncated are not set.
     void FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
-                    GratingOrders *o) const;
+                    GratingOrders *o, int only = 0) const;
     /// The energy efficiency of order j (reflected or transmitted) at wavelength slot i for light
     /// arriving from `source` (a lobe's direction): what that lobe of the query at q.wi carries.
-    /// The source's orders are left in *orders (without their directions).
+    /// The source's orders are left in *orders for order j (FillOrders without directions).
     double SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source, bool transmitted,
                             int j, GratingOrders *orders) const;
 

@@ -40,10 +40,16 @@ double GradientNoise(const Vec3 &x, uint32_t seed) {
     const int64_t ix = int64_t(fx), iy = int64_t(fy), iz = int64_t(fz);
     const Vec3 f(x.x - fx, x.y - fy, x.z - fz);
     const Vec3 w(Fade(f.x), Fade(f.y), Fade(f.z));
+    // Hash(x, y, z, seed) of the corners, their common leading steps shared (HashNext).
+    uint64_t hxy[2][2];
+    for (int cx = 0; cx < 2; ++cx) {
+        const uint64_t hx = HashFirst(uint64_t(ix + cx));
+        for (int cy = 0; cy < 2; ++cy) hxy[cx][cy] = HashNext(hx, uint64_t(iy + cy));
+    }
     double sum = 0;
     for (int c = 0; c < 8; ++c) {
         const int cx = c & 1, cy = (c >> 1) & 1, cz = (c >> 2) & 1;
-        const Vec3 &g = grad[Hash(uint64_t(ix + cx), uint64_t(iy + cy), uint64_t(iz + cz), seed) % 12];
+        const Vec3 &g = grad[HashNext(HashNext(hxy[cx][cy], uint64_t(iz + cz)), seed) % 12];
         const double weight = (cx ? w.x : 1 - w.x) * (cy ? w.y : 1 - w.y) * (cz ? w.z : 1 - w.z);
         sum += weight * Dot(g, Vec3(f.x - cx, f.y - cy, f.z - cz));
     }

@@ -102,12 +102,11 @@ double MeasureDistantGaussian(const GenRay &g, const Vec3 &s, double irradiance,
     return irradiance * Normal2(LengthSquared(ks), g.SigmaK2() + g.k * g.k * omega);
 }
 
-double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double alpha) {
-    if (alpha <= 0) return MeasurePlaneWave(g, s, irradiance);
+double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double sinA) {
+    if (sinA <= 0) return MeasurePlaneWave(g, s, irradiance);
     const Vec2 ks = TransverseWavevector(g, s);
     if (!std::isfinite(ks.x)) return 0;
     // Work in angle units (divide wavevectors by k) for a well-scaled Rice integral.
-    const double sinA = std::sin(alpha);
     const double p = DiscGaussianProbability(Length(ks) / g.k, sinA, std::sqrt(g.AngularVariance()));
     return irradiance * p / (Pi * g.k * g.k * sinA * sinA);
 }

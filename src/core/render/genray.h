@@ -215,8 +215,9 @@ double MeasurePlaneWave(const GenRay &g, const Vec3 &s, double irradiance);
 double MeasureDistantGaussian(const GenRay &g, const Vec3 &s, double irradiance, double omega);
 /// A distant source of uniform radiance over a cone of half-angle alpha (a disc, e.g. the sun):
 /// 𝒲_s = E/(πk²sin²α) on the disc |k⊥ − k_s⊥| < k sinα, so M = E/(πk²sin²α)·P(disc) with P the
-/// mass of N₂(0, σ_k²I) in that disc (Rice distribution). alpha = 0 gives the plane wave.
-double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double alpha);
+/// mass of N₂(0, σ_k²I) in that disc (Rice distribution). Takes sinα (callers measuring one light
+/// at many GRs compute it once); sinα = 0 gives the plane wave.
+double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double sinAlpha);
 /// Item 5: an isotropic point source of intensity I [W/sr] at p (coherent spherical wave):
 /// M = (I/R²)·exp(−β²|κ|²/(1+a²β²))/(π(β⁻²+a²)), κ = k(r0−p)⊥/R, a = βk/R − ρ/β.
 double MeasurePointSource(const GenRay &g, const Vec3 &p, double intensity);

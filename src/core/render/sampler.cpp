@@ -28,13 +28,6 @@ double Pcg32::Uniform() {
     return double(((hi << 32) | lo) >> 11) * 0x1p-53;
 }
 
-uint64_t Hash(uint64_t a, uint64_t b, uint64_t c, uint64_t d) {
-    uint64_t h = MixBits(a + 0x9e3779b97f4a7c15ULL);
-    h = MixBits(h ^ (b + 0x9e3779b97f4a7c15ULL));
-    h = MixBits(h ^ (c + 0x9e3779b97f4a7c15ULL));
-    return MixBits(h ^ (d + 0x9e3779b97f4a7c15ULL));
-}
-
 std::unique_ptr<Sampler> MakeSampler(const std::string &name, uint64_t seed) {
     const PluginEntry<Sampler> *entry = Registry<Sampler>::Find(name);
     if (!entry) return nullptr;

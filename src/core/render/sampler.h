@@ -28,7 +28,13 @@ class Pcg32 {
     uint64_t state_ = 0, inc_ = 1;
 };
 
-uint64_t Hash(uint64_t a, uint64_t b, uint64_t c = 0, uint64_t d = 0);
+/// Hash(a, b, c, d) = HashNext(HashNext(HashNext(HashFirst(a), b), c), d): keys that share
+/// leading values (the corners of a lattice cell) can share the first steps.
+inline uint64_t HashFirst(uint64_t a) { return MixBits(a + 0x9e3779b97f4a7c15ULL); }
+inline uint64_t HashNext(uint64_t h, uint64_t v) { return MixBits(h ^ (v + 0x9e3779b97f4a7c15ULL)); }
+inline uint64_t Hash(uint64_t a, uint64_t b, uint64_t c = 0, uint64_t d = 0) {
+    return HashNext(HashNext(HashNext(HashFirst(a), b), c), d);
+}
 /// A pixel's coordinates as one 64-bit key (for hashing).
 inline uint64_t PixelKey(int x, int y) { return (uint64_t(uint32_t(x)) << 32) | uint32_t(y); }
 

@@ -262,12 +262,12 @@ TEST(GenRayMeasure, DistantSourcesLimits) {
     // A disc much smaller than the GR's angular spread looks like the Gaussian of Ω = α²/4 (D5).
     const double sigTheta = std::sqrt(g.AngularVariance());
     const double alphaSmall = 1e-3 * sigTheta;
-    EXPECT_NEAR(MeasureDistantDisc(g, s, E, alphaSmall) /
+    EXPECT_NEAR(MeasureDistantDisc(g, s, E, std::sin(alphaSmall)) /
                     MeasureDistantGaussian(g, s, E, alphaSmall * alphaSmall / 4),
                 1, 1e-9);
     // A disc much larger than the spread: interior = E/(π k² sin²α) exactly (to the tail).
     const double alpha = 4.65e-3;
-    EXPECT_NEAR(MeasureDistantDisc(g, s, E, alpha) * K * K / (E / (Pi * Sqr(std::sin(alpha)))), 1, 1e-12);
+    EXPECT_NEAR(MeasureDistantDisc(g, s, E, std::sin(alpha)) * K * K / (E / (Pi * Sqr(std::sin(alpha)))), 1, 1e-12);
 }
 
 // Gaussian beam (item 1): a GR against a beam of its own state gives the Moyal self-overlap
