@@ -40,9 +40,11 @@ inline std::optional<GrMeasurement> MeasureDistantGR(const SpectralGenRay &g, co
                                                      double omega) {
     if (Dot(s, g.d) <= 0) return std::nullopt;
     GrMeasurement m;
-    m.value = MeasurePerWavelength(g, e, [&](const GenRay &gi) {
-        return disc ? MeasureDistantDisc(gi, s, 1.0, sinAlpha) : MeasureDistantGaussian(gi, s, 1.0, omega);
-    });
+    if (disc && sinAlpha > 0 && DistantDiscOutOfReach(g, s, sinAlpha)) m.value = SampledSpectrum(0.0);
+    else
+        m.value = MeasurePerWavelength(g, e, [&](const GenRay &gi) {
+            return disc ? MeasureDistantDisc(gi, s, 1.0, sinAlpha) : MeasureDistantGaussian(gi, s, 1.0, omega);
+        });
     m.wi = -s;
     m.dist = Infinity;
     if (disc && sinAlpha > 0) m.profile = AngularProfile::Disc(sinAlpha);

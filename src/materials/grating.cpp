@@ -267,7 +267,9 @@ GratingOrders GratingMaterial::Orders(const ScatterQuery &q, int i) const {
 
 void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
                                  GratingOrders *out, int only) const {
-    GratingOrders &o = *out;  // may hold an earlier call's orders: every field read below is set
+    // *out may hold an earlier call's orders: every field read below is set (without directions,
+    // the other orders' amplitude[] and propagating[] keep their earlier values: see grating.h).
+    GratingOrders &o = *out;
     o.reflected.present = o.transmitted.present = false;
     o.reflected.maxOrder = o.transmitted.maxOrder = 0;
     const double lambda = q.wl->lambda[i];
@@ -322,7 +324,8 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
                 s.amplitude[k] = SignedBessel(jAbs, j, a);
                 const double e = s.amplitude[k] * s.amplitude[k];
                 total += e;
-                s.propagating[k] = NearDeltaDirection(q.wi, s.nIn, s.nOut, unitShift * double(j), lambda, transmitted, &s.wo[k]);
+                s.propagating[k] =
+                    NearDeltaDirection(q.wi, s.nIn, s.nOut, unitShift * double(j), lambda, transmitted, &s.wo[k]);
                 (s.propagating[k] ? s.propagatingSum : s.evanescent) += e;
             }
             s.truncated = std::max(0.0, 1 - total);

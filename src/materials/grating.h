@@ -144,7 +144,7 @@ class GratingMaterial final : public Material, public ReferenceDirection {
     /// Orders() into *o for the sides asked for, at the site; with `directions`, every order's
     /// direction too (GratingSide::wo). Without, for one order `only` (an efficiency needs its
     /// amplitude and which orders propagate): amplitude[] and propagating[] hold order `only` alone,
-    /// propagatingSum and scale are complete, evanescent and truncated are not set.
+    /// propagatingSum and scale are complete, evanescent is 0 and truncated is left as it was.
     void FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
                     GratingOrders *o, int only = 0) const;
     /// The energy efficiency of order j (reflected or transmitted) at wavelength slot i for light

@@ -142,9 +142,8 @@ double RiceCdfAsymptotic(double t, double c) {
 
 double RiceCdf(double t, double c) {
     if (!(c > 0)) return 0;
-    constexpr double Reach = 11;  // e^{−11²/2} < 6e-27
-    if (c - t >= Reach) return 1;
-    if (t - c >= Reach) return 0;
+    if (c - t >= RiceReach) return 1;  // e^{−11²/2} < 6e-27
+    if (t - c >= RiceReach) return 0;
     // Marcum's series is the cheaper one, except for a small disc about a near mean (c < 2, t ≤ c)
     // where it would subtract from 1 a Q close to 1.
     if (c < 2 && t <= c) return std::min(1.0, RiceCdfSeries(t, c));

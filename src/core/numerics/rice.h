@@ -10,10 +10,13 @@ namespace phasor {
 /// Largest max(t², c²)/2 of RiceCdfSeries' stated rounding bound (its cost grows as t², c²).
 constexpr double RiceSeriesMaxHalfSquare = 2000;
 
+/// How far (in σ) a disc's edge lies beyond the mean, or inside it, where RiceCdf is exactly 0 or 1.
+inline constexpr double RiceReach = 11;
+
 /// P(|X| ≤ c), X ~ N₂(μ, I), |μ| = t ≥ 0, c ≥ 0 (dimensionless: offset and radius in units of σ).
-///   * c − t ≥ 11: 1 (the mass outside is below e^{−(c−t)²/2} < 6e-27, the 2-D normal's mass
+///   * c − t ≥ RiceReach (11): 1 (the mass outside is below e^{−(c−t)²/2} < 6e-27, the 2-D normal's mass
 ///     outside the radius c − t about its mean);
-///   * t − c ≥ 11: 0 (the mass inside is below (c²/2)·e^{−(t−c)²/2}: the disc's area times the
+///   * t − c ≥ RiceReach: 0 (the mass inside is below (c²/2)·e^{−(t−c)²/2}: the disc's area times the
 ///     density at its nearest point, i.e. < 6e-27 of what the same disc holds about the mean
 ///     (c²/2 for a small disc), so a measurement divided by the disc's area stays accurate);
 ///   * c < 2 and t ≤ c (a small disc about a near mean, P small): RiceCdfSeries, relative error

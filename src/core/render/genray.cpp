@@ -102,13 +102,23 @@ double MeasureDistantGaussian(const GenRay &g, const Vec3 &s, double irradiance,
     return irradiance * Normal2(LengthSquared(ks), g.SigmaK2() + g.k * g.k * omega);
 }
 
-double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double sinA) {
-    if (sinA <= 0) return MeasurePlaneWave(g, s, irradiance);
+double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double sinAlpha) {
+    if (sinAlpha <= 0) return MeasurePlaneWave(g, s, irradiance);
     const Vec2 ks = TransverseWavevector(g, s);
     if (!std::isfinite(ks.x)) return 0;
     // Work in angle units (divide wavevectors by k) for a well-scaled Rice integral.
-    const double p = DiscGaussianProbability(Length(ks) / g.k, sinA, std::sqrt(g.AngularVariance()));
-    return irradiance * p / (Pi * g.k * g.k * sinA * sinA);
+    const double p = DiscGaussianProbability(Length(ks) / g.k, sinAlpha, std::sqrt(g.AngularVariance()));
+    return irradiance * p / (Pi * g.k * g.k * sinAlpha * sinAlpha);
+}
+
+bool DistantDiscOutOfReach(const SpectralGenRay &g, const Vec3 &s, double sinAlpha) {
+    // |k_s⊥|/k = |s × d| (TransverseWavevector's length over k); 1e-9 rad covers the rounding of
+    // the two computations (RiceCdf's t − c to ~1e-16·t).
+    const double gap = Length(Cross(s, g.d)) - sinAlpha - 1e-9;
+    if (!(gap > 0) || !(Dot(s, g.d) > 0)) return false;
+    for (int i = 0; i < g.count; ++i)
+        if (!(gap >= RiceReach * std::sqrt(g.At(i).AngularVariance()))) return false;
+    return true;
 }
 
 double MeasurePointSource(const GenRay &g, const Vec3 &p, double intensity) {

@@ -218,6 +218,10 @@ double MeasureDistantGaussian(const GenRay &g, const Vec3 &s, double irradiance,
 /// mass of N₂(0, σ_k²I) in that disc (Rice distribution). Takes sinα (callers measuring one light
 /// at many GRs compute it once); sinα = 0 gives the plane wave.
 double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double sinAlpha);
+/// True if MeasureDistantDisc(g.At(i), s, ·, sinAlpha) is 0 at every carried wavelength: the disc's
+/// edge lies more than RiceReach angular standard deviations of each window beyond g.d (one test
+/// instead of a transverse frame and an overlap per wavelength; most GRs see none of a small disc).
+bool DistantDiscOutOfReach(const SpectralGenRay &g, const Vec3 &s, double sinAlpha);
 /// Item 5: an isotropic point source of intensity I [W/sr] at p (coherent spherical wave):
 /// M = (I/R²)·exp(−β²|κ|²/(1+a²β²))/(π(β⁻²+a²)), κ = k(r0−p)⊥/R, a = βk/R − ρ/β.
 double MeasurePointSource(const GenRay &g, const Vec3 &p, double intensity);

@@ -115,20 +115,21 @@ struct RateBound {
         for (int i = 0; i < N; ++i)
             for (int j = 0; j < N; ++j) {
                 Vec2 u(b.lo.x + (b.hi.x - b.lo.x) * i / (N - 1), b.lo.y + (b.hi.y - b.lo.y) * j / (N - 1));
-                // (unit-scale components throughout: plain square roots, no hypot)
+                // (unit-scale components throughout: plain square roots, no hypot — the rates may
+                // differ from hypot's in the last bit)
                 double l2 = LengthSquared(u);
                 if (l2 > 0.999 * 0.999) {
                     u = u * (0.999 / std::sqrt(l2));
                     l2 = LengthSquared(u);
                 }
-                const double z = std::sqrt(1 - l2), invZ = 1 / z;
+                const double z = std::sqrt(1 - l2);
                 const Vec3 w = f.e1 * u.x + f.e2 * u.y + f.a * z;  // f.Direction(u)
-                const Vec3 dx = f.e1 - f.a * (u.x * invZ), dy = f.e2 - f.a * (u.y * invZ);
-                const double s = std::sqrt(w.x * w.x + w.y * w.y), invS = 1 / s;
+                const Vec3 dx = f.e1 - f.a * (u.x / z), dy = f.e2 - f.a * (u.y / z);
+                const double s = std::sqrt(w.x * w.x + w.y * w.y);
                 smax = std::max(smax, s);
                 for (int c = 0; c < 2; ++c) {
                     const Vec3 &d = c == 0 ? dx : dy;
-                    const double ds = s > 1e-12 ? (w.x * d.x + w.y * d.y) * invS : std::sqrt(d.x * d.x + d.y * d.y);
+                    const double ds = s > 1e-12 ? (w.x * d.x + w.y * d.y) / s : std::sqrt(d.x * d.x + d.y * d.y);
                     grad[i][j][c] = ds;
                     g1[c] = std::max(g1[c], std::abs(ds));
                 }

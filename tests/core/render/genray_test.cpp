@@ -5,6 +5,7 @@
 // direct quadrature of their defining integrals.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <functional>
 
 #include "core/render/genray.h"
@@ -250,6 +251,45 @@ TEST(GenRayMeasure, PointSourceIntegralAndCurvatureMatch) {
     EXPECT_GT(MeasurePointSource(matched, p, I), MeasurePointSource(flat, p, I));
     // Matched: a = 0 ⇒ M = (I/R²)·β²/π.
     EXPECT_NEAR(MeasurePointSource(matched, p, I) / (I / (R * R) * beta * beta / Pi), 1, 1e-12);
+}
+
+// The one-test early exit of a distant disc (DistantDiscOutOfReach) claims "0" only where every
+// wavelength's overlap is exactly 0, and does claim it once the disc is beyond the reach of every
+// window (so it saves the work it is there for).
+TEST(GenRayMeasure, DistantDiscOutOfReachOnlyWhereEveryWavelengthReadsZero) {
+    const double lambdas[4] = {400e-9, 480e-9, 590e-9, 700e-9};
+    int claimed = 0;
+    for (const double beta : {0.05e-3, 0.3e-3, 2e-3})
+        for (const double rho : {0.0, 0.7, -3.0})
+            for (const double alpha : {1e-4, 4.65e-3, 0.1}) {
+                SpectralGenRay g;
+                g.d = Vec3(0, 0, 1);
+                g.count = 4;
+                double sigmaMax = 0;
+                for (int i = 0; i < 4; ++i) {
+                    g.k[std::size_t(i)] = 2 * Pi / lambdas[i];
+                    g.beta2[std::size_t(i)] = beta * beta;
+                    g.rho[std::size_t(i)] = rho;
+                    sigmaMax = std::max(sigmaMax, std::sqrt(g.At(i).AngularVariance()));
+                }
+                const double sinAlpha = std::sin(alpha);
+                // Offsets across the threshold sin(alpha) + 11·σ_max, finely near it.
+                for (double x = -3; x <= 3; x += 0.01) {
+                    const double sinTheta = sinAlpha + (11 + x) * sigmaMax;
+                    if (!(sinTheta < 1)) continue;
+                    const Vec3 s(sinTheta, 0, std::sqrt(1 - sinTheta * sinTheta));
+                    const bool out = DistantDiscOutOfReach(g, s, sinAlpha);
+                    if (out) {
+                        ++claimed;
+                        for (int i = 0; i < 4; ++i)
+                            ASSERT_EQ(MeasureDistantDisc(g.At(i), s, 1.0, sinAlpha), 0.0)
+                                << "beta " << beta << ", rho " << rho << ", alpha " << alpha << ", x " << x;
+                    } else {
+                        EXPECT_LT(x, 0.01) << "beyond every window's reach but not claimed: beta " << beta << ", x " << x;
+                    }
+                }
+            }
+    EXPECT_GT(claimed, 1000);
 }
 
 // Distant sources reduce to the plane wave; the disc's interior reads L/k² with L = E/(π sin²α).
