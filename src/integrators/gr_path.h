@@ -655,7 +655,8 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
         SampledSpectrum v(0.0);
         for (int i = 0; i < (uniform ? 1 : wl_.Count()) && !lobe.weight.IsZero(); ++i) {
             if (!uniform && !(lobe.weight[i] > 0)) continue;
-            const SpectralGenRay out = GrPathSampler::AlongLobe(g_, si, lobe, i);
+            SpectralGenRay out = GrPathSampler::AlongLobe(g_, si, lobe, i);
+            if (!uniform) out.measured = 1u << i;  // along λ_i's direction only λ_i is used (w[i] below)
             // a_j·M per light, a_j averaged over the plane waves that light's measurement integrates
             // (ThroughLobeWeight; per wavelength along a dispersive lobe's own direction).
             auto weighted = [&](const GrMeasurement &mi) {

@@ -20,12 +20,13 @@ inline Vec3 DirectionParam(const ParamDict &d, const char *name) {
     return dir;
 }
 
-/// value[i] = k_i²·f(g_i)·emission[i] for each carried wavelength (radiance units, theory §0 D4).
+/// value[i] = k_i²·f(g_i)·emission[i] for each carried wavelength g measures (radiance units,
+/// theory §0 D4; 0 in the slots g.Measures not).
 template <typename F>
 SampledSpectrum MeasurePerWavelength(const SpectralGenRay &g, const SampledSpectrum &emission, F &&f) {
     SampledSpectrum v(0.0);
     for (int i = 0; i < g.count; ++i)
-        if (emission[i] != 0) {
+        if (emission[i] != 0 && g.Measures(i)) {
             const GenRay gi = g.At(i);
             v[i] = gi.k * gi.k * f(gi) * emission[i];
         }

@@ -17,7 +17,9 @@
 //                 GR's footprint: |∫ U ψ*|²/4π² for a light with a field (Light::Coherent), the
 //                 phase-space overlap of the local plane wave from SampleLi for other delta lights,
 //                 the angular-spectrum overlap ∫ Le·G d²k⊥ for distant sources; area lights are
-//                 measured where GRs hit them (MeasureGR nullopt).
+//                 measured where GRs hit them (MeasureGR nullopt);
+//   MeasuresOnlyItsSlots  a GR that measures one wavelength slot (SpectralGenRay::measured) gets
+//                 that slot's value of the full measurement exactly and 0 in the others;
 // Statistics: χ² with a fixed seed, Šidák-corrected over the suite at family-wise level 1 %.
 // `WrongPdfLight` (a distant light whose PdfLi is twice its sampling density) fails
 // SamplingMatchesPdf (test `LightContractPower.CatchesAPdfOffByTwo`).
@@ -526,6 +528,46 @@ std::string CheckMeasureGR(const Subject &s, const Light &light) {
     return bad.str();
 }
 
+/// A GR that measures one wavelength slot (SpectralGenRay::measured, a dispersive lobe's GR) gets
+/// exactly that slot's value of the full measurement and 0 in the others.
+std::string CheckMeasuresOnlyItsSlots(const Subject &s, const Light &light) {
+    std::ostringstream bad;
+    if (light.Type() == LightType::Area) return "";
+    int compared = 0;
+    for (const SampledWavelengths &wl : Wavelengths(*s.scene)) {
+        const std::optional<Vec3> c = Reached(light, wl);
+        if (!c) continue;
+        const auto ls = light.SampleLi(LightSampleContext{*c, Vec3()}, Vec2(0.5, 0.5), wl);
+        if (!ls) continue;
+        // Every carried wavelength, along the light's travel turned slightly, footprint ~30 λ.
+        SpectralGenRay g;
+        g.o = *c + ls->wi * 0.1;
+        const Frame tf = Frame::FromNormal(-ls->wi);
+        g.d = Normalize(-ls->wi + tf.s * 1e-3);
+        g.count = wl.Count();
+        for (int i = 0; i < g.count; ++i) {
+            const std::size_t k = std::size_t(i);
+            g.k[k] = 2 * Pi / wl.lambda[k];
+            g.beta2[k] = Sqr(30 * wl.lambda[k]);
+            g.rho[k] = 0.2;
+        }
+        const auto all = light.MeasureGR(g, wl);
+        for (int i = 0; i < g.count; ++i) {
+            SpectralGenRay one = g;
+            one.measured = 1u << i;
+            const auto m = light.MeasureGR(one, wl);
+            const double want = all ? all->value[i] : 0.0;
+            if ((m ? m->value[i] : 0.0) != want)
+                bad << "slot " << i << ": " << (m ? m->value[i] : 0.0) << " alone, " << want << " among all; ";
+            for (int j = 0; j < g.count; ++j)
+                if (j != i && m && m->value[j] != 0) bad << "slot " << j << " measured though only " << i << " was asked; ";
+            compared += want > 0;
+        }
+    }
+    if (compared == 0) bad << "no slot measured anything (the check saw no light); ";
+    return bad.str();
+}
+
 /// Light::Reach (the exhaustive light sampler's weight): finite and ≥ 0, or NaN (no estimate);
 /// and 0 only where nothing arrives, whatever the receiver's normal (a kernel weighs by its shading
 /// normal, which the geometric ctx.n does not give) — wherever it is 0, no SampleLi sample (64
@@ -588,6 +630,11 @@ TEST_P(LightContract, SamplingMatchesPdf) {
 TEST_P(LightContract, PowerMatchesRadiance) { EXPECT_EQ(CheckPowerMatchesRadiance(subject_, *subject_.light), ""); }
 
 TEST_P(LightContract, MeasureGRMatchesQuadrature) { EXPECT_EQ(CheckMeasureGR(subject_, *subject_.light), ""); }
+
+TEST_P(LightContract, MeasuresOnlyItsSlots) {
+    if (subject_.light->Type() == LightType::Area) GTEST_SKIP() << "area lights are not measured in closed form";
+    EXPECT_EQ(CheckMeasuresOnlyItsSlots(subject_, *subject_.light), "");
+}
 
 TEST_P(LightContract, ReachIsZeroOnlyWhereNothingArrives) { EXPECT_EQ(CheckReach(subject_, *subject_.light), ""); }
 

@@ -117,7 +117,7 @@ bool DistantDiscOutOfReach(const SpectralGenRay &g, const Vec3 &s, double sinAlp
     const double gap = Length(Cross(s, g.d)) - sinAlpha - 1e-9;
     if (!(gap > 0) || !(Dot(s, g.d) > 0)) return false;
     for (int i = 0; i < g.count; ++i)
-        if (!(gap >= RiceReach * std::sqrt(g.At(i).AngularVariance()))) return false;
+        if (g.Measures(i) && !(gap >= RiceReach * std::sqrt(g.At(i).AngularVariance()))) return false;
     return true;
 }
 

@@ -135,6 +135,11 @@ struct SpectralGenRay {
     int count = 1;  // wavelengths in use (SampledWavelengths::Count())
     std::array<double, NumWavelengths> k{}, beta2{}, rho{};
     PixelState pixel;  // set by a sensor plane; cleared by Redirect (see PixelState)
+    /// The wavelength slots (bit i: slot i) whose closed-form measurement a caller uses: a GR along
+    /// one wavelength's direction of a dispersive lobe needs only that one. Measurements leave the
+    /// others 0 (MeasurePerWavelength, DistantDiscOutOfReach).
+    unsigned measured = ~0u;
+    bool Measures(int i) const { return (measured >> i) & 1u; }
 
     GenRay At(int i) const { return GenRay{o, d, k[i], beta2[i], rho[i]}; }
     Ray MeanRay() const { return Ray{o, d}; }
@@ -218,7 +223,7 @@ double MeasureDistantGaussian(const GenRay &g, const Vec3 &s, double irradiance,
 /// mass of N₂(0, σ_k²I) in that disc (Rice distribution). Takes sinα (callers measuring one light
 /// at many GRs compute it once); sinα = 0 gives the plane wave.
 double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double sinAlpha);
-/// True if MeasureDistantDisc(g.At(i), s, ·, sinAlpha) is 0 at every carried wavelength: the disc's
+/// True if MeasureDistantDisc(g.At(i), s, ·, sinAlpha) is 0 at every wavelength g measures: the disc's
 /// edge lies more than RiceReach angular standard deviations of each window beyond g.d (one test
 /// instead of a transverse frame and an overlap per wavelength; most GRs see none of a small disc).
 bool DistantDiscOutOfReach(const SpectralGenRay &g, const Vec3 &s, double sinAlpha);

@@ -150,7 +150,8 @@ class Light {
     /// never again on escape); continuous lobes still reach them through SampleLi / Le.
     bool MeasuredInClosedForm() const { return Type() != LightType::Area; }
     /// Eq. 24 in radiance units (k²·M) for the *physical* GR g (g.d = direction of light flow,
-    /// ρ > 0 diverging along it), per carried wavelength; nullopt if nothing reaches g.
+    /// ρ > 0 diverging along it), per carried wavelength g.Measures (0 in the other slots:
+    /// MeasurePerWavelength, lights/closed_form.h); nullopt if nothing reaches g.
     virtual std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
                                                    const SampledWavelengths &wl) const;
     /// D4a: the source integrated over all directions of a GR at its waist (g.o, footprint; g.d is
