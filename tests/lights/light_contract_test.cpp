@@ -21,8 +21,10 @@
 //   MeasuresOnlyItsSlots  a GR that measures one wavelength slot (SpectralGenRay::measured) gets
 //                 that slot's value of the full measurement exactly and 0 in the others;
 // Statistics: χ² with a fixed seed, Šidák-corrected over the suite at family-wise level 1 %.
-// `WrongPdfLight` (a distant light whose PdfLi is twice its sampling density) fails
-// SamplingMatchesPdf (test `LightContractPower.CatchesAPdfOffByTwo`).
+// `TamperedLight` shows the checks fail: with a PdfLi twice its sampling density, SamplingMatchesPdf
+// (`LightContractPower.CatchesAPdfOffByTwo`); with a Reach of 0, ReachIsZeroOnlyWhereNothingArrives
+// (`LightContractReach.ZerosAreExercisedAndALyingReachIsCaught`); measuring every slot,
+// MeasuresOnlyItsSlots (`LightContractSlots.ALightThatIgnoresTheMaskIsCaught`).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -529,11 +531,11 @@ std::string CheckMeasureGR(const Subject &s, const Light &light) {
 }
 
 /// A GR that measures one wavelength slot (SpectralGenRay::measured, a dispersive lobe's GR) gets
-/// exactly that slot's value of the full measurement and 0 in the others.
+/// exactly that slot's value of the full measurement and 0 in the others. `informative` counts the
+/// comparisons where the full measurement is not 0 in another slot (where ignoring the mask shows).
 std::string CheckMeasuresOnlyItsSlots(const Subject &s, const Light &light) {
     std::ostringstream bad;
-    if (light.Type() == LightType::Area) return "";
-    int compared = 0;
+    int informative = 0;
     for (const SampledWavelengths &wl : Wavelengths(*s.scene)) {
         const std::optional<Vec3> c = Reached(light, wl);
         if (!c) continue;
@@ -545,10 +547,10 @@ std::string CheckMeasuresOnlyItsSlots(const Subject &s, const Light &light) {
         const Frame tf = Frame::FromNormal(-ls->wi);
         g.d = Normalize(-ls->wi + tf.s * 1e-3);
         g.count = wl.Count();
-        for (int i = 0; i < g.count; ++i) {
+        for (int i = 0; i < g.count; ++i) {  // footprints of 20–41 λ, a different one per slot
             const std::size_t k = std::size_t(i);
             g.k[k] = 2 * Pi / wl.lambda[k];
-            g.beta2[k] = Sqr(30 * wl.lambda[k]);
+            g.beta2[k] = Sqr((20 + 7 * ((3 * i + 1) % 4)) * wl.lambda[k]);
             g.rho[k] = 0.2;
         }
         const auto all = light.MeasureGR(g, wl);
@@ -559,12 +561,18 @@ std::string CheckMeasuresOnlyItsSlots(const Subject &s, const Light &light) {
             const double want = all ? all->value[i] : 0.0;
             if ((m ? m->value[i] : 0.0) != want)
                 bad << "slot " << i << ": " << (m ? m->value[i] : 0.0) << " alone, " << want << " among all; ";
-            for (int j = 0; j < g.count; ++j)
-                if (j != i && m && m->value[j] != 0) bad << "slot " << j << " measured though only " << i << " was asked; ";
-            compared += want > 0;
+            bool others = false;
+            for (int j = 0; j < g.count; ++j) {
+                if (j == i) continue;
+                others = others || (all && all->value[j] != 0);
+                if (m && m->value[j] != 0) bad << "slot " << j << " measured though only " << i << " was asked; ";
+            }
+            informative += others;
         }
     }
-    if (compared == 0) bad << "no slot measured anything (the check saw no light); ";
+    // (a line carries one wavelength: there is no other slot to show)
+    if (informative == 0 && !light.EmissionSpectrum().LineWavelength())
+        bad << "no comparison where another slot carries light (the check saw nothing); ";
     return bad.str();
 }
 
@@ -632,7 +640,7 @@ TEST_P(LightContract, PowerMatchesRadiance) { EXPECT_EQ(CheckPowerMatchesRadianc
 TEST_P(LightContract, MeasureGRMatchesQuadrature) { EXPECT_EQ(CheckMeasureGR(subject_, *subject_.light), ""); }
 
 TEST_P(LightContract, MeasuresOnlyItsSlots) {
-    if (subject_.light->Type() == LightType::Area) GTEST_SKIP() << "area lights are not measured in closed form";
+    if (!subject_.light->MeasuredInClosedForm()) GTEST_SKIP() << "area lights are not measured in closed form";
     EXPECT_EQ(CheckMeasuresOnlyItsSlots(subject_, *subject_.light), "");
 }
 
@@ -651,11 +659,13 @@ TEST(LightRegistry, EveryLightHasPresets) {
 }
 
 // A light that samples like `of` but tampers with what it says of itself: PdfLi times `pdfFactor`
-// (a density that does not match the samples), and with `hideReach` a Reach of 0 everywhere (it
-// hides its light from the exhaustive sampler).
+// (a density that does not match the samples), with `hideReach` a Reach of 0 everywhere (it
+// hides its light from the exhaustive sampler), with `ignoreMask` a MeasureGR of every wavelength
+// whatever the GR measures.
 class TamperedLight final : public Light {
   public:
-    TamperedLight(const Light &of, double pdfFactor, bool hideReach) : of_(of), pdfFactor_(pdfFactor), hide_(hideReach) {}
+    TamperedLight(const Light &of, double pdfFactor, bool hideReach, bool ignoreMask = false)
+        : of_(of), pdfFactor_(pdfFactor), hide_(hideReach), ignoreMask_(ignoreMask) {}
     std::optional<LightSample> SampleLi(const LightSampleContext &c, const Vec2 &u,
                                         const SampledWavelengths &wl) const override {
         return of_.SampleLi(c, u, wl);
@@ -668,12 +678,17 @@ class TamperedLight final : public Light {
     const Spectrum &EmissionSpectrum() const override { return of_.EmissionSpectrum(); }
     double PowerScale() const override { return of_.PowerScale(); }
     double Reach(const LightSampleContext &c) const override { return hide_ ? 0.0 : of_.Reach(c); }
+    std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g, const SampledWavelengths &wl) const override {
+        SpectralGenRay every = g;
+        if (ignoreMask_) every.measured = ~0u;
+        return of_.MeasureGR(every, wl);
+    }
     std::string ToString() const override { return "tampered"; }
 
   private:
     const Light &of_;
     double pdfFactor_;
-    bool hide_;
+    bool hide_, ignoreMask_;
 };
 
 TEST(LightContractPower, CatchesAPdfOffByTwo) {
@@ -697,6 +712,15 @@ TEST(LightContractReach, ZerosAreExercisedAndALyingReachIsCaught) {
     const TamperedLight hiding(*s.light, 1, true);
     const std::string why = CheckReach(s, hiding);
     EXPECT_NE(why.find("but a sample arrives"), std::string::npos) << why;
+}
+
+TEST(LightContractSlots, ALightThatIgnoresTheMaskIsCaught) {
+    const Subject s = Build({"distant", 0});
+    ASSERT_TRUE(s.light);
+    EXPECT_EQ(CheckMeasuresOnlyItsSlots(s, *s.light), "");
+    const TamperedLight every(*s.light, 1, false, true);
+    const std::string why = CheckMeasuresOnlyItsSlots(s, every);
+    EXPECT_NE(why.find("measured though only"), std::string::npos) << why;
 }
 
 }  // namespace

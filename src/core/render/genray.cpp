@@ -114,6 +114,7 @@ double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, dou
 bool DistantDiscOutOfReach(const SpectralGenRay &g, const Vec3 &s, double sinAlpha) {
     // |k_s⊥|/k = |s × d| (TransverseWavevector's length over k); 1e-9 rad covers the rounding of
     // the two computations (RiceCdf's t − c to ~1e-16·t).
+    if (!(sinAlpha > 0)) return false;  // a plane wave (MeasurePlaneWave) is never exactly 0
     const double gap = Length(Cross(s, g.d)) - sinAlpha - 1e-9;
     if (!(gap > 0) || !(Dot(s, g.d) > 0)) return false;
     for (int i = 0; i < g.count; ++i)

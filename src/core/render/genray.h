@@ -136,8 +136,10 @@ struct SpectralGenRay {
     std::array<double, NumWavelengths> k{}, beta2{}, rho{};
     PixelState pixel;  // set by a sensor plane; cleared by Redirect (see PixelState)
     /// The wavelength slots (bit i: slot i) whose closed-form measurement a caller uses: a GR along
-    /// one wavelength's direction of a dispersive lobe needs only that one. Measurements leave the
-    /// others 0 (MeasurePerWavelength, DistantDiscOutOfReach).
+    /// one wavelength's direction of a dispersive lobe needs only that one (set in grt's
+    /// ThroughListedLobes on a GR made for that measurement). Measurements leave the others 0
+    /// (MeasurePerWavelength; DistantDiscOutOfReach ignores them). Copies, Redirect, Propagate and
+    /// TimeReversed keep it.
     unsigned measured = ~0u;
     bool Measures(int i) const { return (measured >> i) & 1u; }
 
@@ -223,9 +225,10 @@ double MeasureDistantGaussian(const GenRay &g, const Vec3 &s, double irradiance,
 /// mass of N₂(0, σ_k²I) in that disc (Rice distribution). Takes sinα (callers measuring one light
 /// at many GRs compute it once); sinα = 0 gives the plane wave.
 double MeasureDistantDisc(const GenRay &g, const Vec3 &s, double irradiance, double sinAlpha);
-/// True if MeasureDistantDisc(g.At(i), s, ·, sinAlpha) is 0 at every wavelength g measures: the disc's
-/// edge lies more than RiceReach angular standard deviations of each window beyond g.d (one test
-/// instead of a transverse frame and an overlap per wavelength; most GRs see none of a small disc).
+/// True only if MeasureDistantDisc(g.At(i), s, ·, sinAlpha) is exactly 0 at every wavelength g
+/// measures (conservative: false may still mean 0): a disc (sinAlpha > 0) whose edge lies more than
+/// RiceReach angular standard deviations of each window beyond g.d. One test instead of a
+/// transverse frame and an overlap per wavelength (most GRs see none of a small disc).
 bool DistantDiscOutOfReach(const SpectralGenRay &g, const Vec3 &s, double sinAlpha);
 /// Item 5: an isotropic point source of intensity I [W/sr] at p (coherent spherical wave):
 /// M = (I/R²)·exp(−β²|κ|²/(1+a²β²))/(π(β⁻²+a²)), κ = k(r0−p)⊥/R, a = βk/R − ρ/β.

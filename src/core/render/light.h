@@ -150,7 +150,7 @@ class Light {
     /// never again on escape); continuous lobes still reach them through SampleLi / Le.
     bool MeasuredInClosedForm() const { return Type() != LightType::Area; }
     /// Eq. 24 in radiance units (k²·M) for the *physical* GR g (g.d = direction of light flow,
-    /// ρ > 0 diverging along it), per carried wavelength g.Measures (0 in the other slots:
+    /// ρ > 0 diverging along it), per carried wavelength that g measures (g.Measures; 0 in the others:
     /// MeasurePerWavelength, lights/closed_form.h); nullopt if nothing reaches g.
     virtual std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
                                                    const SampledWavelengths &wl) const;

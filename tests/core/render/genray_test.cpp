@@ -254,42 +254,57 @@ TEST(GenRayMeasure, PointSourceIntegralAndCurvatureMatch) {
 }
 
 // The one-test early exit of a distant disc (DistantDiscOutOfReach) claims "0" only where every
-// wavelength's overlap is exactly 0, and does claim it once the disc is beyond the reach of every
-// window (so it saves the work it is there for).
+// wavelength the GR measures reads exactly 0, and does claim it once the disc is beyond the reach
+// of every measured window (so it saves the work it is there for): a tilted GR, windows of
+// different widths per slot (the widest not the last), every slot or some (SpectralGenRay::measured).
 TEST(GenRayMeasure, DistantDiscOutOfReachOnlyWhereEveryWavelengthReadsZero) {
-    const double lambdas[4] = {400e-9, 480e-9, 590e-9, 700e-9};
+    const double lambdas[4] = {400e-9, 480e-9, 590e-9, 700e-9}, footprint[4] = {1.0, 0.35, 2.0, 0.7};
+    const Vec3 d = Normalize(Vec3(0.3, -0.5, 0.8));
+    const Frame f = Frame::FromNormal(d);
     int claimed = 0;
     for (const double beta : {0.05e-3, 0.3e-3, 2e-3})
         for (const double rho : {0.0, 0.7, -3.0})
-            for (const double alpha : {1e-4, 4.65e-3, 0.1}) {
-                SpectralGenRay g;
-                g.d = Vec3(0, 0, 1);
-                g.count = 4;
-                double sigmaMax = 0;
-                for (int i = 0; i < 4; ++i) {
-                    g.k[std::size_t(i)] = 2 * Pi / lambdas[i];
-                    g.beta2[std::size_t(i)] = beta * beta;
-                    g.rho[std::size_t(i)] = rho;
-                    sigmaMax = std::max(sigmaMax, std::sqrt(g.At(i).AngularVariance()));
-                }
-                const double sinAlpha = std::sin(alpha);
-                // Offsets across the threshold sin(alpha) + 11·σ_max, finely near it.
-                for (double x = -3; x <= 3; x += 0.01) {
-                    const double sinTheta = sinAlpha + (11 + x) * sigmaMax;
-                    if (!(sinTheta < 1)) continue;
-                    const Vec3 s(sinTheta, 0, std::sqrt(1 - sinTheta * sinTheta));
-                    const bool out = DistantDiscOutOfReach(g, s, sinAlpha);
-                    if (out) {
-                        ++claimed;
-                        for (int i = 0; i < 4; ++i)
-                            ASSERT_EQ(MeasureDistantDisc(g.At(i), s, 1.0, sinAlpha), 0.0)
-                                << "beta " << beta << ", rho " << rho << ", alpha " << alpha << ", x " << x;
-                    } else {
-                        EXPECT_LT(x, 0.01) << "beyond every window's reach but not claimed: beta " << beta << ", x " << x;
+            for (const double alpha : {1e-4, 4.65e-3, 0.1})
+                for (const unsigned mask : {~0u, 1u, 0b0100u, 0b1010u}) {
+                    SpectralGenRay g;
+                    g.d = d;
+                    g.count = 4;
+                    g.measured = mask;
+                    double sigmaMax = 0;  // over the measured slots
+                    for (int i = 0; i < 4; ++i) {
+                        const std::size_t k = std::size_t(i);
+                        g.k[k] = 2 * Pi / lambdas[i];
+                        g.beta2[k] = Sqr(beta * footprint[i]);
+                        g.rho[k] = rho;
+                        if (g.Measures(i)) sigmaMax = std::max(sigmaMax, std::sqrt(g.At(i).AngularVariance()));
+                    }
+                    const double sinAlpha = std::sin(alpha);
+                    // Offsets across the threshold sin(alpha) + 11·σ_max, finely near it.
+                    for (double x = -3; x <= 3; x += 0.01) {
+                        const double sinTheta = sinAlpha + (11 + x) * sigmaMax;
+                        if (!(sinTheta < 1)) continue;
+                        const Vec3 s = d * std::sqrt(1 - sinTheta * sinTheta) + f.s * sinTheta;
+                        if (DistantDiscOutOfReach(g, s, sinAlpha)) {
+                            ++claimed;
+                            for (int i = 0; i < 4; ++i) {
+                                if (!g.Measures(i)) continue;
+                                ASSERT_EQ(MeasureDistantDisc(g.At(i), s, 1.0, sinAlpha), 0.0)
+                                    << "beta " << beta << ", rho " << rho << ", alpha " << alpha << ", mask " << mask
+                                    << ", x " << x << ", slot " << i;
+                            }
+                        } else {
+                            EXPECT_LT(x, 0.01) << "beyond every measured window's reach but not claimed: beta " << beta
+                                               << ", mask " << mask << ", x " << x;
+                        }
                     }
                 }
-            }
-    EXPECT_GT(claimed, 1000);
+    EXPECT_GT(claimed, 5000);
+    // A plane wave (sinα = 0) is never exactly 0, however far: never claimed.
+    SpectralGenRay g;
+    g.d = d;
+    g.k[0] = K;
+    g.beta2[0] = Sqr(0.3e-3);
+    EXPECT_FALSE(DistantDiscOutOfReach(g, d * std::cos(0.5) + f.s * std::sin(0.5), 0.0));
 }
 
 // Distant sources reduce to the plane wave; the disc's interior reads L/k² with L = E/(π sin²α).
