@@ -41,7 +41,7 @@ inline std::optional<GrMeasurement> MeasureDistantGR(const SpectralGenRay &g, co
                                                      double omega) {
     if (Dot(s, g.d) <= 0) return std::nullopt;
     GrMeasurement m;
-    if (disc && sinAlpha > 0 && DistantDiscOutOfReach(g, s, sinAlpha)) m.value = SampledSpectrum(0.0);
+    if (disc && DistantDiscOutOfReach(g, s, sinAlpha)) m.value = SampledSpectrum(0.0);
     else
         m.value = MeasurePerWavelength(g, e, [&](const GenRay &gi) {
             return disc ? MeasureDistantDisc(gi, s, 1.0, sinAlpha) : MeasureDistantGaussian(gi, s, 1.0, omega);

@@ -36,7 +36,6 @@ class DistantLight final : public Light {
           omega_(omega) {
         cosAlpha_ = std::cos(alpha_);
         sinAlpha_ = std::sin(alpha_);
-        sin2Alpha_ = Sqr(sinAlpha_);
     }
 
     static const Schema &GetSchema() {
@@ -106,7 +105,7 @@ class DistantLight final : public Light {
     double Profile(const Vec3 &w) const {
         const Vec3 l = frame_.ToLocal(w);
         if (l.z <= 0) return 0;
-        if (disc_) return l.z >= cosAlpha_ ? 1 / (Pi * sin2Alpha_) : 0;
+        if (disc_) return l.z >= cosAlpha_ ? 1 / (Pi * Sqr(sinAlpha_)) : 0;
         return Normal2(l.x * l.x + l.y * l.y, omega_);
     }
     std::optional<LightSample> SampleLi(const LightSampleContext &, const Vec2 &u,
@@ -185,7 +184,7 @@ class DistantLight final : public Light {
     double irradiance_, scale_ = 0;
     std::shared_ptr<const Spectrum> spectrum_;
     bool disc_;
-    double alpha_, omega_, cosAlpha_ = 1, sinAlpha_ = 0, sin2Alpha_ = 0;
+    double alpha_, omega_, cosAlpha_ = 1, sinAlpha_ = 0;
     double sceneArea_ = 1;
 };
 
