@@ -112,6 +112,16 @@ SpectralGenRay GrPathSampler::AlongLobe(const SpectralGenRay &g, const SurfaceIn
     return out;
 }
 
+void GrPathSampler::ReversedAlongLobe(SpectralGenRay &rev, const SpectralGenRay &g, const SurfaceInteraction &si,
+                                      const NearDeltaLobe &lobe, int i) {
+    // AlongLobe's Redirect and origin, then TimeReversed's direction (ρ was negated already).
+    const Vec3 wo = si.shading.ToWorld(lobe.wo[i]);
+    const double eta = lobe.Eta(i);
+    rev.d = -wo;
+    for (int s = 0; s < g.count; ++s) rev.k[std::size_t(s)] = g.k[std::size_t(s)] * eta;
+    rev.o = si.SpawnOrigin(wo);
+}
+
 bool GrPathSampler::UniformLobe(const NearDeltaLobe &lobe, const SampledWavelengths &wl) {
     bool uniform = true;
     for (int i = 1; i < wl.Count(); ++i)

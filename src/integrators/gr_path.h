@@ -26,8 +26,9 @@
 
 #include <algorithm>
 #include <array>
-#include <deque>
+#include <cstdint>
 #include <functional>
+#include <list>
 #include <memory>
 #include <mutex>
 #include <vector>
@@ -193,6 +194,12 @@ class GrPathSampler {
     /// The GR leaving `si` through listed lobe `lobe` at carried wavelength i.
     static SpectralGenRay AlongLobe(const SpectralGenRay &g, const SurfaceInteraction &si, const NearDeltaLobe &lobe,
                                     int i);
+    /// Its time reverse (what a light's MeasureGR takes) written into `rev`, which must hold
+    /// g.TimeReversed() with pixel.valid = false or an earlier result of this call for the same g:
+    /// only the direction, the wavenumbers and the origin change. rev.TimeReversed() then equals
+    /// AlongLobe(g, si, lobe, i) in every field.
+    static void ReversedAlongLobe(SpectralGenRay &rev, const SpectralGenRay &g, const SurfaceInteraction &si,
+                                  const NearDeltaLobe &lobe, int i);
     /// True if the lobe's direction and index are the same at every carried wavelength.
     static bool UniformLobe(const NearDeltaLobe &lobe, const SampledWavelengths &wl);
     /// ⟨a_j⟩ for a closed-form measurement `m` through listed lobe `lobe` of k (the kernel prepared
@@ -267,9 +274,10 @@ class PathEstimate {
     /// Σ over the closed-form lights of their terms value(m), m what the GR `out` measures of each
     /// from `from` (MeasureOne; from the surface `si` when it leaves one), each light's term reported
     /// through event(light, ensemble, m, term) (an Event, or nullopt to report nothing).
-    template <class Value, class MakeEvent>
+    /// Lights with skip(index in Scene::ClosedFormLights()) true are left out.
+    template <class Value, class MakeEvent, class Skip = bool (*)(std::size_t)>
     SampledSpectrum ClosedForm(const SpectralGenRay &out, const SurfaceInteraction *si, const Vec3 &from,
-                               Value &&value, MakeEvent &&event);
+                               Value &&value, MakeEvent &&event, Skip &&skip = [](std::size_t) { return false; });
     /// Reports the event `make()` builds, if the sink records.
     template <class Make>
     void Report(Make &&make) {
@@ -311,8 +319,10 @@ class PathEstimate {
         Vec3 wo;  // local
         SampledSpectrum f;
     } footprint_;
-    /// FSD events of this sample (their kernels are the path's vertices until Run returns).
-    std::deque<fsd::EventKernel> fsdEvents_;
+    /// FSD events of this sample (their kernels are the path's vertices until Run returns; a list:
+    /// stable references, and no allocation for a sample without events — std::deque allocates
+    /// its map and a block when constructed, 9 % of a boa sample's instructions).
+    std::list<fsd::EventKernel> fsdEvents_;
     const Shape *leaving_ = nullptr;  // the shape the current GR leaves (not an FSD occluder for it)
 };
 
@@ -647,6 +657,18 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
     // integrated over the detector's directions already.
     const bool integrated = depth == 0 && ds_->integratesIncidence && paths_.Lobes(scene_).Covers(si.shape);
     if (!(k.Capabilities() & CapNearDelta) || spreadFree_ || scene_.ClosedFormLights().empty() || integrated) return;
+    // Most lobes point far from every small source: each light first says of the GR it would
+    // measure (the time reverse of the one along the lobe, `probe`, changed in place per lobe and
+    // wavelength) whether it certainly measures nothing (Light::MeasuresNothing), and the GR along
+    // the lobe is built only for a lobe some light may reach (lights 0…63 of
+    // Scene::ClosedFormLights(); later ones are always measured). Not with a recording sink: it
+    // may measure another light in place of the scene's (Sink::Measured, sample_solve's modes).
+    const auto &lights = scene_.ClosedFormLights();
+    SpectralGenRay probe;
+    if constexpr (!Sink::Records) {
+        probe = g_.TimeReversed();
+        probe.pixel.valid = false;  // as Redirect
+    }
     for (const NearDeltaLobe &lobe : k.ListNearDelta()) {
         // Light straight through the surface was measured by the shadow rays of the vertex before,
         // which cross it (Scene::Transmittance, theory §3.5).
@@ -655,8 +677,21 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
         SampledSpectrum v(0.0);
         for (int i = 0; i < (uniform ? 1 : wl_.Count()) && !lobe.weight.IsZero(); ++i) {
             if (!uniform && !(lobe.weight[i] > 0)) continue;
-            SpectralGenRay out = GrPathSampler::AlongLobe(g_, si, lobe, i);
-            if (!uniform) out.measured = 1u << i;  // along λ_i's direction only λ_i is used (w[i] below)
+            const unsigned measured = uniform ? g_.measured : 1u << i;  // along λ_i's direction only λ_i is used (w[i] below)
+            SpectralGenRay out;
+            std::uint64_t skipped = 0;  // bit b: light b measures nothing
+            if constexpr (!Sink::Records) {
+                GrPathSampler::ReversedAlongLobe(probe, g_, si, lobe, i);
+                probe.measured = measured;
+                for (std::size_t b = 0; b < std::min<std::size_t>(lights.size(), 64); ++b)
+                    if (lights[b]->MeasuresNothing(probe)) skipped |= std::uint64_t(1) << b;
+                if (lights.size() <= 64 && skipped == (lights.size() == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << lights.size()) - 1))
+                    continue;
+                out = probe.TimeReversed();  // = AlongLobe(g_, si, lobe, i), every field
+            } else {
+                out = GrPathSampler::AlongLobe(g_, si, lobe, i);
+                out.measured = measured;
+            }
             // a_j·M per light, a_j averaged over the plane waves that light's measurement integrates
             // (ThroughLobeWeight; per wavelength along a dispersive lobe's own direction).
             auto weighted = [&](const GrMeasurement &mi) {
@@ -686,7 +721,8 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
                                 e.dist = mi.dist;
                                 e.profile = mi.profile;
                                 return e;
-                            });
+                            },
+                            [&](std::size_t b) { return b < 64 && ((skipped >> b) & 1u); });
         }
         L_ += T_ * v;
     }
@@ -774,11 +810,14 @@ bool PathEstimate<Sink>::Continue(const SurfaceInteraction &si, const PreparedKe
 }
 
 template <class Sink>
-template <class Value, class MakeEvent>
+template <class Value, class MakeEvent, class Skip>
 SampledSpectrum PathEstimate<Sink>::ClosedForm(const SpectralGenRay &out, const SurfaceInteraction *si,
-                                               const Vec3 &from, Value &&value, MakeEvent &&event) {
+                                               const Vec3 &from, Value &&value, MakeEvent &&event, Skip &&skip) {
     SampledSpectrum sum(0.0);
-    for (const Light *sceneLight : scene_.ClosedFormLights()) {
+    const auto &lights = scene_.ClosedFormLights();
+    for (std::size_t index = 0; index < lights.size(); ++index) {
+        if (skip(index)) continue;
+        const Light *sceneLight = lights[index];
         const Light *light = sink_.Measured(sceneLight, from, wl_);
         std::optional<GrMeasurement> m;
         if (paths_.Fsd().enabled) {

@@ -49,6 +49,7 @@ class DirectionalLight final : public Light {
                                            const SampledWavelengths &wl) const override {
         return MeasureDistantGR(g, dir_, EvalEmission(*spectrum_, wl) * scale_, false, 0, 0);
     }
+    bool MeasuresNothing(const SpectralGenRay &g) const override { return Dot(dir_, g.d) <= 0; }  // facing away
     std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
                                              const SampledWavelengths &wl) const override {
         return DistantIncidence(g, dir_, EvalEmission(*spectrum_, wl) * scale_, 0);

@@ -152,6 +152,10 @@ class DistantLight final : public Light {
         if (m && !m->value.IsZero()) m->value *= Emission(wl);
         return m;
     }
+    /// MeasureDistantGR's two zeros: facing away, and a disc out of reach.
+    bool MeasuresNothing(const SpectralGenRay &g) const override {
+        return Dot(dir_, g.d) <= 0 || (disc_ && DistantDiscOutOfReach(g, dir_, sinAlpha_));
+    }
     std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
                                              const SampledWavelengths &wl) const override {
         const AngularProfile profile = IsDelta() ? AngularProfile{}

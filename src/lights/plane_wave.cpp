@@ -83,6 +83,7 @@ class PlaneWaveLight final : public Light, public CoherentSource {
                                            const SampledWavelengths &wl) const override {
         return MeasureDistantGR(g, dir_, Emission(wl), false, 0, 0);
     }
+    bool MeasuresNothing(const SpectralGenRay &g) const override { return Dot(dir_, g.d) <= 0; }  // facing away
     std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
                                              const SampledWavelengths &wl) const override {
         return DistantIncidence(g, dir_, Emission(wl), 0);

@@ -108,6 +108,42 @@ inline double FresnelComplex(double cosThetaI, double n1, Complex n2) {
     return 0.5 * (std::norm(c.rs) + std::norm(c.rp));
 }
 
+/// The same reflectance in real arithmetic: the conductor equations in terms of a² + b² = |η² − sin²θ|
+/// (η = n2/n1, a + ib = √(η² − sin²θ); Born & Wolf, Principles of Optics, §14.2), exact for any
+/// κ ≥ 0 including total internal reflection (κ = 0, a = 0: R = 1), with a = ηκ/b where a² + b²
+/// nearly cancels η² − sin²θ (beyond a critical angle in a weakly absorbing medium). For callers that
+/// need only the unpolarised power many times (a grating order's efficiency at its source angle):
+/// several times cheaper than the complex coefficients; equal to FresnelComplex to round-off
+/// (tests/materials/fresnel_test.cpp).
+inline double FresnelReflectanceReal(double cosThetaI, double n1, Complex n2) {
+    if (n2 == Complex(n1, 0)) return 0;  // no interface
+    const double c = Clamp(cosThetaI, 0.0, 1.0);
+    if (c == 0) return 1;
+    const double er = n2.real() / n1, ek = n2.imag() / n1, s2 = 1 - c * c;
+    const double t0 = er * er - ek * ek - s2, cross = 2 * er * ek;
+    const double sum = std::sqrt(t0 * t0 + cross * cross);  // a² + b²
+    const double a = t0 >= 0 ? std::sqrt(0.5 * (sum + t0)) : (cross > 0 ? 0.5 * cross / std::sqrt(0.5 * (sum - t0)) : 0.0);
+    const double rs = (sum - 2 * a * c + c * c) / (sum + 2 * a * c + c * c);
+    const double pc = c * c * sum, ps = 2 * a * c * s2, s4 = s2 * s2;  // R_p/R_s's terms (B&W's with tanθ·cos²θ)
+    const double rp = rs * (pc - ps + s4) / (pc + ps + s4);
+    return 0.5 * (rs + rp);
+}
+
+/// The unpolarised transmittance (power, |t|² times the power factor) of a lossless interface
+/// n1 → n2 (both real) in real arithmetic: with a = n₁c, b = n₂c_t, T_s = 4ab/(a + b)²,
+/// T_p = 4ab/(n₂c + n₁c_t)² (0 under total internal reflection) — directly, not as 1 − R, which
+/// loses every digit of a T ~ 1e-7 next to the critical angle. c_t² is FresnelAmplitudes's
+/// (1 − r²) + r²c², r = n₁/n₂: next to the critical angle c_t is round-off of that expression, so
+/// computing it the same way keeps this T equal to the complex coefficients' (EvalLobe's) there.
+inline double FresnelTransmittanceReal(double cosThetaI, double n1, double n2) {
+    if (n2 == n1) return 1;
+    const double c = Clamp(cosThetaI, 0.0, 1.0), r = n1 / n2;
+    const double cos2T = (1 - r * r) + r * r * c * c;
+    if (!(cos2T > 0) || c == 0) return 0;
+    const double ct = std::sqrt(cos2T), a = n1 * c, b = n2 * ct;
+    return 0.5 * (4 * a * b / Sqr(a + b) + 4 * a * b / Sqr(n2 * c + n1 * ct));
+}
+
 /// Reflectance of a conductor with relative complex index eta = (n + iκ)/n_outside.
 inline double FresnelConductor(double cosThetaI, Complex eta) { return FresnelComplex(cosThetaI, 1.0, eta); }
 

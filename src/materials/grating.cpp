@@ -266,7 +266,7 @@ GratingOrders GratingMaterial::Orders(const ScatterQuery &q, int i) const {
 }
 
 void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
-                                 GratingOrders *out, int only) const {
+                                 GratingOrders *out, int only, bool energyOnly) const {
     // *out may hold an earlier call's orders: every field read below is set (without directions,
     // the other orders' amplitude[] and propagating[] keep their earlier values: see grating.h).
     GratingOrders &o = *out;
@@ -284,12 +284,24 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
     o.transmitted.nOut = nT;
     if (q.wi.z == 0 || !(o.period > 0)) return;
     const double cosI = std::abs(q.wi.z);
-    o.surface = surface_->Response(lambda, q.etaOutside, cosI, o.fromInside, site.thickness, substrate);
     // The ray-optics limit of a coated substrate is the incoherent sum of its layers (as the smooth
     // kernels: SmoothKernel::Evaluate).
     o.incoherent = q.rayOptics && surface_->LayerCount() > 0;
-    if (o.incoherent)
+    if (!energyOnly) o.surface = surface_->Response(lambda, q.etaOutside, cosI, o.fromInside, site.thickness, substrate);
+    double fR = 0, fT = 0;  // F of the reflected and the transmitted side: the substrate's R and T at θ_i
+    if (o.incoherent) {
         o.layers = surface_->IncoherentResponse(lambda, q.etaOutside, cosI, o.fromInside, site.thickness, substrate);
+        fR = o.layers.R();
+        fT = o.layers.T();
+    } else if (energyOnly) {  // the sides asked for, their power alone
+        if (sides & SideReflected)
+            fR = surface_->Power(lambda, q.etaOutside, cosI, o.fromInside, site.thickness, substrate, false);
+        if (transmission_ && (sides & SideTransmitted))
+            fT = surface_->Power(lambda, q.etaOutside, cosI, o.fromInside, site.thickness, substrate, true);
+    } else {
+        fR = o.surface.R();
+        fT = o.surface.T();
+    }
     // Ray-optics limit: the smooth substrate (zeroth orders, J_0(0) = 1).
     const int maxOrder = q.rayOptics ? 0 : maxOrder_;
     const double h = q.rayOptics ? 0 : height_, k0 = 2 * Pi / lambda;
@@ -333,20 +345,19 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
         s.scale = !renormalize_ ? 1.0 : (s.propagatingSum > 0 ? 1 / s.propagatingSum : 0.0);
     };
     // Reflection: the phase 2·k·z·cosθ_i of the double pass, a = −k₀·n_i·h·cosθ_i (D6).
-    if (sides & SideReflected) fill(o.reflected, false, -k0 * nI * h * cosI, o.incoherent ? o.layers.R() : o.surface.R());
+    if (sides & SideReflected) fill(o.reflected, false, -k0 * nI * h * cosI, fR);
     if (transmission_ && (sides & SideTransmitted)) {
         // Transmission: a = k₀·(h/2)·(n_t cosθ_t − n_i cosθ_i) with the zeroth order's θ_t.
         const double sin2T = (nI / nT) * (nI / nT) * (1 - cosI * cosI);
-        const double t = o.incoherent ? o.layers.T() : o.surface.T();
-        if (sin2T < 1 && t > 0) fill(o.transmitted, true, k0 * h / 2 * (nT * std::sqrt(1 - sin2T) - nI * cosI), t);
+        if (sin2T < 1 && fT > 0) fill(o.transmitted, true, k0 * h / 2 * (nT * std::sqrt(1 - sin2T) - nI * cosI), fT);
     }
 }
 
 double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source,
-                                         bool transmitted, int j, GratingOrders *orders) const {
+                                         bool transmitted, int j, GratingOrders *orders, bool energyOnly) const {
     ScatterQuery from = q;
     from.wi = source;  // the light arrives from `source`: its order j is the lobe's weight towards q.wi
-    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders, j);
+    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders, j, energyOnly);
     return (transmitted ? orders->transmitted : orders->reflected).Energy(j);
 }
 
@@ -466,7 +477,7 @@ int GratingMaterial::Prepared::Order(const Vec3 &wi, bool transmitted, int j, un
         const auto [nWi, nFar] = Indices(wi, i);
         const double nOut = transmitted ? nFar : nWi;
         if (!NearDeltaDirection(wi, nWi, nOut, shift, q.wl->lambda[i], transmitted, &wo[s])) continue;
-        const double energy = m_->SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch);
+        const double energy = m_->SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch, true);
         const double ratio = nWi / nOut;
         weight[i] = transmitted ? energy * ratio * ratio : energy;  // (η_i/η_t)²: radiance
         if (energy > 0 && lit < 0) lit = i;

@@ -144,14 +144,17 @@ class GratingMaterial final : public Material, public ReferenceDirection {
     /// Orders() into *o for the sides asked for, at the site; with `directions`, every order's
     /// direction too (GratingSide::wo). Without, for one order `only` (an efficiency needs its
     /// amplitude and which orders propagate): amplitude[] and propagating[] hold order `only` alone,
-    /// propagatingSum and scale are complete, evanescent is 0 and truncated is left as it was.
+    /// propagatingSum and scale are complete, evanescent is 0 and truncated is left as it was. With
+    /// `energyOnly` (no directions) only what GratingSide::Energy reads: the substrate's R or T of
+    /// the sides asked for (SmoothSurface::Power), `surface` is not set.
     void FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
-                    GratingOrders *o, int only = 0) const;
+                    GratingOrders *o, int only = 0, bool energyOnly = false) const;
     /// The energy efficiency of order j (reflected or transmitted) at wavelength slot i for light
     /// arriving from `source` (a lobe's direction): what that lobe of the query at q.wi carries.
-    /// The source's orders are left in *orders for order j (FillOrders without directions).
+    /// The source's orders are left in *orders for order j (FillOrders without directions; with
+    /// `energyOnly`, without the substrate's amplitudes: the efficiency alone).
     double SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source, bool transmitted,
-                            int j, GratingOrders *orders) const;
+                            int j, GratingOrders *orders, bool energyOnly = false) const;
 
     FloatTexture period_;  // Λ [m], > 0
     double height_ = 0;    // h, peak-to-peak [m]

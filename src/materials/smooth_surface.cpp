@@ -6,6 +6,8 @@
 #include <sstream>
 #include <vector>
 
+#include "materials/fresnel.h"
+
 namespace phasor {
 
 std::string Coating::ToString() const {
@@ -62,6 +64,19 @@ StackResponse SmoothSurface::Response(double lambda, double etaOutside, double c
         return LayerStackResponse(lambda, fromInside ? substrate : outside, Complex(cosI, 0), layers,
                                   fromInside ? outside : substrate);
     });
+}
+
+double SmoothSurface::Power(double lambda, double etaOutside, double cosI, bool fromInside, const double *thickness,
+                            Complex substrate, bool transmitted) const {
+    // A bare interface from a real medium: n1 → n2 as Response orders them.
+    if (LayerCount() == 0 && (!fromInside || substrate.imag() == 0)) {
+        const double n1 = fromInside ? substrate.real() : etaOutside;
+        const Complex n2 = fromInside ? Complex(etaOutside, 0) : substrate;
+        if (!transmitted) return FresnelReflectanceReal(cosI, n1, n2);
+        if (n2.imag() == 0) return FresnelTransmittanceReal(cosI, n1, n2.real());
+    }
+    const StackResponse r = Response(lambda, etaOutside, cosI, fromInside, thickness, substrate);
+    return transmitted ? r.T() : r.R();
 }
 
 IncoherentStackResponse SmoothSurface::IncoherentResponse(double lambda, double etaOutside, double cosI,

@@ -75,6 +75,12 @@ class SmoothSurface {
     /// passes them.
     StackResponse Response(double lambda, double etaOutside, double cosI, bool fromInside, const double *thickness,
                            Complex substrate) const;
+    /// Response(…).R() or, with `transmitted`, .T() alone (unpolarised power): for a bare surface
+    /// lit from a real medium in real arithmetic (FresnelReflectanceReal; T by FresnelTransmittanceReal
+    /// into a lossless medium), else from Response. Equal to Response's to round-off (1e-13); for callers that need
+    /// the power many times per hit (a grating order's efficiency at each order's source angle).
+    double Power(double lambda, double etaOutside, double cosI, bool fromInside, const double *thickness,
+                 Complex substrate, bool transmitted) const;
     /// The same wave's incoherent response (layer_stack.h's LayerStackIncoherent: multiple
     /// reflections inside every propagating layer summed in power), the ray-optics limit of a
     /// coated surface. Equals Response's R and T for a bare surface.

@@ -20,11 +20,15 @@
 //                 measured where GRs hit them (MeasureGR nullopt);
 //   MeasuresOnlyItsSlots  a GR that measures one wavelength slot (SpectralGenRay::measured) gets
 //                 that slot's value of the full measurement exactly and 0 in the others;
+//   MeasuresNothingOnlyWhereZero  wherever Light::MeasuresNothing claims a GR measures nothing,
+//                 MeasureGR gives nullopt or 0 (GRs over the sphere and at the edge of the light's
+//                 profile, footprints of 2–200 λ, every slot or one);
 // Statistics: χ² with a fixed seed, Šidák-corrected over the suite at family-wise level 1 %.
 // `TamperedLight` shows the checks fail: with a PdfLi twice its sampling density, SamplingMatchesPdf
 // (`LightContractPower.CatchesAPdfOffByTwo`); with a Reach of 0, ReachIsZeroOnlyWhereNothingArrives
 // (`LightContractReach.ZerosAreExercisedAndALyingReachIsCaught`); measuring every slot,
-// MeasuresOnlyItsSlots (`LightContractSlots.ALightThatIgnoresTheMaskIsCaught`).
+// MeasuresOnlyItsSlots (`LightContractSlots.ALightThatIgnoresTheMaskIsCaught`); claiming nothing
+// everywhere, MeasuresNothingOnlyWhereZero (`LightContractNothing.AClaimWhereLightArrivesIsCaught`).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -576,6 +580,59 @@ std::string CheckMeasuresOnlyItsSlots(const Subject &s, const Light &light) {
     return bad.str();
 }
 
+/// Light::MeasuresNothing: wherever it claims a GR measures nothing, MeasureGR gives nullopt or a zero
+/// value. GRs at a point the light reaches: directions over the sphere (a Fibonacci set) and about
+/// the light's own travel direction at 0.5–3 times its angular radius (where a disc's edge and the
+/// GR's window meet), footprints of 2, 20 and 200 λ (angular windows from ~0.08 to ~0.0008 rad),
+/// ρ = 0.5, every slot or slot 1 only. `claims` counts the claims (true answers), each checked.
+std::string CheckMeasuresNothing(const Subject &s, const Light &light, int *claims = nullptr) {
+    std::ostringstream bad;
+    int claimed = 0;
+    for (const SampledWavelengths &wl : Wavelengths(*s.scene)) {
+        const std::optional<Vec3> c = Reached(light, wl);
+        if (!c) continue;
+        const auto ls = light.SampleLi(LightSampleContext{*c, Vec3()}, Vec2(0.5, 0.5), wl);
+        if (!ls) continue;
+        const Vec3 travel = -ls->wi;
+        std::vector<Vec3> dirs;
+        const int fib = 200;
+        for (int j = 0; j < fib; ++j) {  // a Fibonacci sphere
+            const double z = 1 - 2 * (j + 0.5) / fib, r = std::sqrt(1 - z * z), phi = j * Pi * (3 - std::sqrt(5.0));
+            dirs.push_back(Vec3(r * std::cos(phi), r * std::sin(phi), z));
+        }
+        const double alpha = std::max(std::sqrt(light.Coherence(*c).omega) * 2, 1e-3);  // ≈ the disc's radius
+        const Frame tf = Frame::FromNormal(travel);
+        for (double f : {0.0, 0.5, 0.9, 1.0, 1.05, 1.2, 1.5, 2.0, 3.0})
+            for (double phi : {0.0, 2.0, 4.0}) {
+                const double t = f * alpha;
+                dirs.push_back(Normalize(travel * std::cos(t) + (tf.s * std::cos(phi) + tf.t * std::sin(phi)) * std::sin(t)));
+            }
+        for (const Vec3 &d : dirs)
+            for (double foot : {2.0, 20.0, 200.0})
+                for (unsigned mask : {~0u, 2u}) {
+                    SpectralGenRay g;
+                    g.o = *c;
+                    g.d = d;
+                    g.count = wl.Count();
+                    g.measured = mask;
+                    for (int i = 0; i < g.count; ++i) {
+                        const std::size_t k = std::size_t(i);
+                        g.k[k] = 2 * Pi / wl.lambda[k];
+                        g.beta2[k] = Sqr(foot * (1 + 0.3 * i) * wl.lambda[k]);
+                        g.rho[k] = 0.5;
+                    }
+                    if (!light.MeasuresNothing(g)) continue;
+                    ++claimed;
+                    const auto m = light.MeasureGR(g, wl);
+                    if (m && !m->value.IsZero())
+                        bad << "MeasuresNothing along (" << d.x << ", " << d.y << ", " << d.z << "), footprint " << foot
+                            << " λ, but MeasureGR gives " << m->value[0] << ", " << m->value[g.count - 1] << "; ";
+                }
+    }
+    if (claims) *claims = claimed;
+    return bad.str();
+}
+
 /// Light::Reach (the exhaustive light sampler's weight): finite and ≥ 0, or NaN (no estimate);
 /// and 0 only where nothing arrives, whatever the receiver's normal (a kernel weighs by its shading
 /// normal, which the geometric ctx.n does not give) — wherever it is 0, no SampleLi sample (64
@@ -644,6 +701,11 @@ TEST_P(LightContract, MeasuresOnlyItsSlots) {
     EXPECT_EQ(CheckMeasuresOnlyItsSlots(subject_, *subject_.light), "");
 }
 
+TEST_P(LightContract, MeasuresNothingOnlyWhereZero) {
+    if (!subject_.light->MeasuredInClosedForm()) GTEST_SKIP() << "area lights are not measured in closed form";
+    EXPECT_EQ(CheckMeasuresNothing(subject_, *subject_.light), "");
+}
+
 TEST_P(LightContract, ReachIsZeroOnlyWhereNothingArrives) { EXPECT_EQ(CheckReach(subject_, *subject_.light), ""); }
 
 INSTANTIATE_TEST_SUITE_P(AllLights, LightContract, ::testing::ValuesIn(AllCases()),
@@ -661,11 +723,11 @@ TEST(LightRegistry, EveryLightHasPresets) {
 // A light that samples like `of` but tampers with what it says of itself: PdfLi times `pdfFactor`
 // (a density that does not match the samples), with `hideReach` a Reach of 0 everywhere (it
 // hides its light from the exhaustive sampler), with `ignoreMask` a MeasureGR of every wavelength
-// whatever the GR measures.
+// whatever the GR measures, with `claimNothing` a MeasuresNothing that is true everywhere.
 class TamperedLight final : public Light {
   public:
-    TamperedLight(const Light &of, double pdfFactor, bool hideReach, bool ignoreMask = false)
-        : of_(of), pdfFactor_(pdfFactor), hide_(hideReach), ignoreMask_(ignoreMask) {}
+    TamperedLight(const Light &of, double pdfFactor, bool hideReach, bool ignoreMask = false, bool claimNothing = false)
+        : of_(of), pdfFactor_(pdfFactor), hide_(hideReach), ignoreMask_(ignoreMask), claimNothing_(claimNothing) {}
     std::optional<LightSample> SampleLi(const LightSampleContext &c, const Vec2 &u,
                                         const SampledWavelengths &wl) const override {
         return of_.SampleLi(c, u, wl);
@@ -683,12 +745,13 @@ class TamperedLight final : public Light {
         if (ignoreMask_) every.measured = ~0u;
         return of_.MeasureGR(every, wl);
     }
+    bool MeasuresNothing(const SpectralGenRay &g) const override { return claimNothing_ || of_.MeasuresNothing(g); }
     std::string ToString() const override { return "tampered"; }
 
   private:
     const Light &of_;
     double pdfFactor_;
-    bool hide_, ignoreMask_;
+    bool hide_, ignoreMask_, claimNothing_;
 };
 
 TEST(LightContractPower, CatchesAPdfOffByTwo) {
@@ -721,6 +784,19 @@ TEST(LightContractSlots, ALightThatIgnoresTheMaskIsCaught) {
     const TamperedLight every(*s.light, 1, false, true);
     const std::string why = CheckMeasuresOnlyItsSlots(s, every);
     EXPECT_NE(why.find("measured though only"), std::string::npos) << why;
+}
+
+TEST(LightContractNothing, AClaimWhereLightArrivesIsCaught) {
+    // The sun-like disc of `distant` claims nothing for GRs facing away and beyond the disc's reach
+    // (the check sees such claims), and a light that claims nothing everywhere is caught.
+    const Subject s = Build({"distant", 0});
+    ASSERT_TRUE(s.light);
+    int claims = 0;
+    EXPECT_EQ(CheckMeasuresNothing(s, *s.light, &claims), "");
+    EXPECT_GT(claims, 100);
+    const TamperedLight liar(*s.light, 1, false, false, true);
+    const std::string why = CheckMeasuresNothing(s, liar);
+    EXPECT_NE(why.find("but MeasureGR gives"), std::string::npos) << why;
 }
 
 }  // namespace

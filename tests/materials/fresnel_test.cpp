@@ -101,6 +101,56 @@ TEST(Fresnel, ConductorMatchesBornWolf) {
         }
 }
 
+TEST(Fresnel, RealArithmeticReflectanceMatchesTheComplexCoefficients) {
+    // Conductors, dielectrics both ways (total internal reflection), weakly absorbing media beyond a
+    // critical angle (where a² + b² nearly cancels η² − sin²θ), an incident medium other than air.
+    struct Case {
+        double n1;
+        Complex n2;
+    };
+    const Case cases[] = {{1, {1.2, 7.26}}, {1, {0.2, 3.0}},  {1.33, {0.05, 4.15}}, {1, {1.5, 0}},
+                          {1.5, {1, 0}},    {1.5, {1, 1e-9}}, {1.5, {1.2, 1e-4}},   {1, {2.5, 1e-3}},
+                          {1.56, {1, 0}},   {1, {1.56, 0}},   {1.33, {1.33, 0}},    {1, {1, 0.5}}};
+    double worst = 0;
+    for (const Case &c : cases)
+        for (int i = 0; i <= 1000; ++i) {
+            const double cosI = i / 1000.0;
+            const double want = FresnelComplex(cosI, c.n1, c.n2), got = FresnelReflectanceReal(cosI, c.n1, c.n2);
+            worst = std::max(worst, std::abs(got - want));
+            EXPECT_NEAR(got, want, 1e-13) << c.n1 << " → " << c.n2 << ", cosθ = " << cosI;
+        }
+    // A naive a = √((a² + b² + t₀)/2) loses half the digits beyond the critical angle of a weakly
+    // absorbing medium (~1e-8 here): the test would see it.
+    EXPECT_LT(worst, 1e-13);
+}
+
+TEST(Fresnel, RealArithmeticTransmittanceMatchesTheComplexCoefficients) {
+    // Relative to T itself, also where T → 0 next to the critical angle (1 − R would lose it all).
+    const double pairs[][2] = {{1, 1.5}, {1.5, 1}, {1.53085, 1}, {1.33, 1.56}, {1.56, 1.33}, {1, 1}};
+    for (const auto &p : pairs)
+        for (int i = 1; i <= 2000; ++i) {  // (the power factors need cosθ_i > 0)
+            const double cosI = i / 2000.0;
+            const FresnelCoefficients f = FresnelAmplitudes(cosI, p[0], Complex(p[1], 0));
+            const Complex n1(p[0], 0), n2(p[1], 0), ci(cosI, 0);
+            const double want = 0.5 * (FresnelPowerFactorS(n1, ci, n2, f.cosThetaT) * std::norm(f.ts) +
+                                       FresnelPowerFactorP(n1, ci, n2, f.cosThetaT) * std::norm(f.tp));
+            const double got = FresnelTransmittanceReal(cosI, p[0], p[1]);
+            EXPECT_NEAR(got, want, 1e-12 * want + 1e-300) << p[0] << " → " << p[1] << ", cosθ = " << cosI;
+        }
+    // Next to the critical angle of glass → air, T ~ 1e-7 and below: relative agreement still.
+    const double n = 1.5, critical = std::sqrt(1 - 1 / (n * n));
+    for (double eps : {1e-6, 1e-9, 1e-12}) {
+        const double c = critical + eps;
+        const FresnelCoefficients f = FresnelAmplitudes(c, n, Complex(1, 0));
+        const Complex n1(n, 0), n2(1, 0), ci(c, 0);
+        const double want = 0.5 * (FresnelPowerFactorS(n1, ci, n2, f.cosThetaT) * std::norm(f.ts) +
+                                   FresnelPowerFactorP(n1, ci, n2, f.cosThetaT) * std::norm(f.tp));
+        EXPECT_GT(want, 0) << eps;
+        EXPECT_NEAR(FresnelTransmittanceReal(c, n, 1), want, 1e-9 * want) << eps;
+        EXPECT_GT(1 - FresnelReflectanceReal(c, n, Complex(1, 0)), 0) << eps;
+    }
+}
+
 TEST(Fresnel, ConductorNormalIncidence) {
     for (Complex n : {Complex(0.2, 3.0), Complex(1.2, 7.26), Complex(0.05, 4.15)}) {
         const double expected = (Sqr(n.real() - 1) + Sqr(n.imag())) / (Sqr(n.real() + 1) + Sqr(n.imag()));

@@ -107,9 +107,11 @@ void BesselJSequence(double x, int nMax, double *out) {
     // d ≳ 0.3·x^{1/3}·… — d = 6 + √(24·x) covers it with room (x = 250 needs d ≈ 46, this gives
     // 83; x = 1 gets exp(−68)). Above the transition, at n = nMax > x, the contamination is
     // (x/2)^{2d}·(nMax!/N!)², N = nMax + d, smaller still: the margin follows x, not nMax (a
-    // grating's ~10 orders at x ≈ 1 start at 22, not 31).
-    const double top = std::max(double(nMax), x);
-    int start = int(top + 6 + std::sqrt(24 * x));
+    // grating's ~10 orders at x ≈ 1 start at 22, not 31). The normalisation sum J_0 + 2ΣJ_2k needs
+    // 4 more above x whatever nMax is (at nMax = 0, x + 6 + √(24x) leaves 1e-12 at x ≈ 2; measured
+    // by tests/core/numerics/bessel_test.cpp): start at max(nMax + 6, x + 10) + √(24x).
+    const double top = std::max(nMax + 6.0, x + 10);
+    int start = int(top + std::sqrt(24 * x));
     start += start & 1;  // even, so the normalisation sum pairs up
     double next = 0, cur = 1e-30, norm = 0;  // J_{n+1}, J_n up to a common factor
     const double twoOverX = 2 / x;            // a multiplication in the loop, not a division

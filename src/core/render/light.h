@@ -154,6 +154,14 @@ class Light {
     /// MeasurePerWavelength, lights/closed_form.h); nullopt if nothing reaches g.
     virtual std::optional<GrMeasurement> MeasureGR(const SpectralGenRay &g,
                                                    const SampledWavelengths &wl) const;
+    /// A test to make before MeasureGR: true only where MeasureGR(g, ·) certainly returns nullopt or
+    /// a zero value (a GR facing away from a light at infinity; a `distant` disc beyond the reach of
+    /// every measured window, DistantDiscOutOfReach), so a caller may skip what a measurement needs
+    /// (the GR along a listed lobe, its copies). False: no claim (the default). Reads only g.
+    virtual bool MeasuresNothing(const SpectralGenRay &g) const {
+        (void)g;
+        return false;
+    }
     /// D4a: the source integrated over all directions of a GR at its waist (g.o, footprint; g.d is
     /// not used — the caller decides which arrival directions count).
     virtual std::optional<GrIncidence> IncidenceOnGR(const SpectralGenRay &g,
