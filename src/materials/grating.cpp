@@ -428,10 +428,25 @@ void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeLi
     GratingOrders scratch;
     for (const bool transmitted : {false, true}) {
         if (transmitted && !m.transmission_) break;
-        for (int j = -maxOrder; j <= maxOrder; ++j) {
+        // The orders that propagate at each wavelength (an interval, as NearDeltaDirection has them):
+        // Order is asked only for those (most of the 2·max_order + 1 are evanescent at a CD's pitch).
+        std::array<OrderRange, NumWavelengths> range{};
+        int lo = maxOrder + 1, hi = -maxOrder - 1;
+        for (int i = 0; i < count; ++i) {
+            const auto [nWi, nFar] = Indices(q.wi, i);
+            OrderRange &r = range[std::size_t(i)];
+            r = PropagatingOrders(q.wi, nWi, transmitted ? nFar : nWi, unitShift, q.wl->lambda[i], maxOrder);
+            if (r.lo <= r.hi) {
+                lo = std::min(lo, r.lo);
+                hi = std::max(hi, r.hi);
+            }
+        }
+        for (int j = lo; j <= hi; ++j) {
+            unsigned slots = 0;
+            for (int i = 0; i < count; ++i) slots |= range[std::size_t(i)].Contains(j) ? 1u << i : 0u;
             std::array<Vec3, NumWavelengths> wo{};
             SampledSpectrum weight;
-            const int lit = Order(q.wi, transmitted, j, ~0u, wo, weight, scratch);
+            const int lit = Order(q.wi, transmitted, j, slots, wo, weight, scratch);
             if (lit < 0) continue;
             NearDeltaLobe &l = out.Add();
             l.id = (transmitted ? TransmittedId : 0) + j;

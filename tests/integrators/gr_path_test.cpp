@@ -68,7 +68,9 @@ SampledSpectrum EstimateOne(const Scene &scene, const grpath::GrPathSampler &pat
     return paths.Estimate(scene, x, y, wl, *sampler, scratch, ps, sink);
 }
 
-// Per sample: the recording sink's estimate is grt's (NullSink) exactly, and the events sum to it
+// Per sample: the recording sink's estimate is grt's (NullSink) exactly — which also checks grt's
+// early skip of the lights that measure nothing along a listed lobe (Light::MeasuresNothing, asked
+// of the GR ReversedAlongLobe builds in place), taken with NullSink only — and the events sum to it
 // to rounding (1e-12 relative: the estimate multiplies the throughput into a sum over lights or
 // light samples where each event carries its own product).
 void CheckScene(const std::string &file, int pixelsX, int pixelsY, int spp,

@@ -115,18 +115,30 @@ void BesselJSequence(double x, int nMax, double *out) {
     start += start & 1;  // even, so the normalisation sum pairs up
     double next = 0, cur = 1e-30, norm = 0;  // J_{n+1}, J_n up to a common factor
     const double twoOverX = 2 / x;            // a multiplication in the loop, not a division
-    for (int n = start; n > 0; --n) {
-        const double prev = n * twoOverX * cur - next;  // J_{n−1}
+    // One step from J_n to J_{n−1} (n as a double: the same product as with the integer); kept
+    // where n − 1 ≤ nMax; everything kept rescaled when it grows large.
+    auto step = [&](int n, double dn) {
+        const double prev = dn * twoOverX * cur - next;  // J_{n−1}
         next = cur;
         cur = prev;
         if (n - 1 <= nMax) out[n - 1] = cur;
-        if ((n - 1) % 2 == 0 && n - 1 > 0) norm += 2 * cur;
-        if (std::abs(cur) > 1e250) {  // rescale everything kept so far
+    };
+    auto rescale = [&](int from) {
+        if (std::abs(cur) > 1e250) {
             cur *= 1e-250;
             next *= 1e-250;
             norm *= 1e-250;
-            for (int k = n - 1; k <= nMax; ++k) out[k] *= 1e-250;
+            for (int k = from; k <= nMax; ++k) out[k] *= 1e-250;
         }
+    };
+    // In pairs from the even start: J_{n−1} (odd), then J_{n−2} (even: the normalisation's terms).
+    double dn = start;
+    for (int n = start; n > 0; n -= 2, dn -= 2) {
+        step(n, dn);
+        rescale(n - 1);
+        step(n - 1, dn - 1);
+        if (n - 2 > 0) norm += 2 * cur;
+        rescale(n - 2);
     }
     norm += cur;  // + J_0
     for (int k = 0; k <= nMax; ++k) out[k] /= norm;
