@@ -321,7 +321,7 @@ class PathEstimate {
     } footprint_;
     /// FSD events of this sample (their kernels are the path's vertices until Run returns; a list:
     /// stable references, and no allocation for a sample without events — std::deque allocates
-    /// its map and a block when constructed, 9 % of a boa sample's instructions).
+    /// its map and a block when constructed, ~4 % of a boa sample's instructions).
     std::list<fsd::EventKernel> fsdEvents_;
     const Shape *leaving_ = nullptr;  // the shape the current GR leaves (not an FSD occluder for it)
 };

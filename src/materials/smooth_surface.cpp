@@ -69,7 +69,7 @@ StackResponse SmoothSurface::Response(double lambda, double etaOutside, double c
 double SmoothSurface::Power(double lambda, double etaOutside, double cosI, bool fromInside, const double *thickness,
                             Complex substrate, bool transmitted) const {
     // A bare interface from a real medium: n1 → n2 as Response orders them.
-    if (LayerCount() == 0 && (!fromInside || substrate.imag() == 0)) {
+    if (LayerCount() == 0 && substrate.imag() >= 0 && (!fromInside || substrate.imag() == 0)) {
         const double n1 = fromInside ? substrate.real() : etaOutside;
         const Complex n2 = fromInside ? Complex(etaOutside, 0) : substrate;
         if (!transmitted) return FresnelReflectanceReal(cosI, n1, n2);

@@ -76,7 +76,7 @@ class SmoothSurface {
     StackResponse Response(double lambda, double etaOutside, double cosI, bool fromInside, const double *thickness,
                            Complex substrate) const;
     /// Response(…).R() or, with `transmitted`, .T() alone (unpolarised power): for a bare surface
-    /// lit from a real medium in real arithmetic (FresnelReflectanceReal; T by FresnelTransmittanceReal
+    /// (κ ≥ 0) lit from a real medium in real arithmetic (FresnelReflectanceReal; T by FresnelTransmittanceReal
     /// into a lossless medium), else from Response. Equal to Response's to round-off (1e-13); for callers that need
     /// the power many times per hit (a grating order's efficiency at each order's source angle).
     double Power(double lambda, double etaOutside, double cosI, bool fromInside, const double *thickness,

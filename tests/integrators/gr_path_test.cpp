@@ -5,7 +5,8 @@
 // by sample (same sampler, same dimensions) on every validation scene (scenes/validation/*.wscene,
 // rendered by grt), and on scenes chosen so that every event kind occurs:
 // a Cornell box (area light: emission, NEE, a dielectric's lobes), the sun's glint in a mirror
-// (D14 through lobes), a thin lens focused on a point source (closed form at the detector), a screen behind a mirror (D4a at a sensor plane, through lobes) a
+// (D14 through lobes), a grating under two distant discs (D14 through dispersive orders), a thin
+// lens focused on a point source (closed form at the detector), a screen behind a mirror (D4a at a sensor plane, through lobes) a
 // rough plate under the sun (D14 + NEE to a distant source) and a diffuse floor under a wide
 // distant source (NEE and escapes to it).
 #include <gtest/gtest.h>
@@ -181,6 +182,22 @@ TEST(GrPath, EventsSumToTheEstimatePointFocus) {
 }
 TEST(GrPath, EventsSumToTheEstimateScreenBehindMirror) {
     CheckScene("screen_behind_mirror.wscene", 4, 1, 4, {K::LobeIncidence});
+}
+TEST(GrPath, EventsSumToTheEstimateGratingUnderTwoDiscs) {
+    // A CD-like grating under a small lamp and a wide sky, four wavelengths from continuous spectra:
+    // dispersive orders measured per wavelength along their own directions (the probe GR reused
+    // across lobes, wavelengths and lights), most of them out of the lamp's reach.
+    CheckScene("grating_two_discs.wscene", 6, 6, 4, {K::ThroughLobe, K::DirectLight}, R"(wscene 2
+Material "conductor" "al" { ior = "Al" }
+Material "grating" "tracks" { substrate = @al  period = 1.6 um  height = 0.1 um  max_order = 10 }
+Material "diffuse" "table" { reflectance = 0.3 }
+Shape "rectangle" "disc" { material = @tracks  to_world = scale(0.05) }
+Shape "rectangle" "floor" { material = @table  to_world = [scale(1) translate([0 0 -0.001] m)] }
+Light "distant" "lamp" { direction = [0.08 -0.55 -1]  angular_radius = 3 deg  irradiance = 1 W/m^2  spectrum = blackbody(4000 K) }
+Light "distant" "sky" { direction = [-0.3 -0.5 -1]  angular_radius = 25 deg  irradiance = 0.3 W/m^2  spectrum = d65() }
+Detector "perspective" "cam" { to_world = lookat(eye = [0 0.085 0.115] m, target = [0 0 0] m, up = [0 0 1])  fov = 46 deg  resolution = [6 6] }
+Integrator "grt" "gr" { }
+)");
 }
 TEST(GrPath, EventsSumToTheEstimateRoughPlate) {
     CheckScene("harvey_shack.wscene", 8, 8, 4, {K::ThroughLobe, K::DirectLight});

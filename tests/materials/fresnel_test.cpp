@@ -111,17 +111,14 @@ TEST(Fresnel, RealArithmeticReflectanceMatchesTheComplexCoefficients) {
     const Case cases[] = {{1, {1.2, 7.26}}, {1, {0.2, 3.0}},  {1.33, {0.05, 4.15}}, {1, {1.5, 0}},
                           {1.5, {1, 0}},    {1.5, {1, 1e-9}}, {1.5, {1.2, 1e-4}},   {1, {2.5, 1e-3}},
                           {1.56, {1, 0}},   {1, {1.56, 0}},   {1.33, {1.33, 0}},    {1, {1, 0.5}}};
-    double worst = 0;
+    // (A naive a = √((a² + b² + t₀)/2) loses half the digits beyond the critical angle of a weakly
+    // absorbing medium, ~1e-8 in the cases 1.5 → 1 + 1e-9i and 1.5 → 1.2 + 1e-4i: this sees it.)
     for (const Case &c : cases)
         for (int i = 0; i <= 1000; ++i) {
             const double cosI = i / 1000.0;
             const double want = FresnelComplex(cosI, c.n1, c.n2), got = FresnelReflectanceReal(cosI, c.n1, c.n2);
-            worst = std::max(worst, std::abs(got - want));
             EXPECT_NEAR(got, want, 1e-13) << c.n1 << " → " << c.n2 << ", cosθ = " << cosI;
         }
-    // A naive a = √((a² + b² + t₀)/2) loses half the digits beyond the critical angle of a weakly
-    // absorbing medium (~1e-8 here): the test would see it.
-    EXPECT_LT(worst, 1e-13);
 }
 
 TEST(Fresnel, RealArithmeticTransmittanceMatchesTheComplexCoefficients) {

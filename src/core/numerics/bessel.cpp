@@ -107,7 +107,7 @@ void BesselJSequence(double x, int nMax, double *out) {
     // d ≳ 0.3·x^{1/3}·… — d = 6 + √(24·x) covers it with room (x = 250 needs d ≈ 46, this gives
     // 83; x = 1 gets exp(−68)). Above the transition, at n = nMax > x, the contamination is
     // (x/2)^{2d}·(nMax!/N!)², N = nMax + d, smaller still: the margin follows x, not nMax (a
-    // grating's ~10 orders at x ≈ 1 start at 22, not 31). The normalisation sum J_0 + 2ΣJ_2k needs
+    // grating's ~10 orders at x ≈ 1 start at 20, not 31). The normalisation sum J_0 + 2ΣJ_2k needs
     // 4 more above x whatever nMax is (at nMax = 0, x + 6 + √(24x) leaves 1e-12 at x ≈ 2; measured
     // by tests/core/numerics/bessel_test.cpp): start at max(nMax + 6, x + 10) + √(24x).
     const double top = std::max(nMax + 6.0, x + 10);
