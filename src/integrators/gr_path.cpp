@@ -103,18 +103,10 @@ std::string GrPathSampler::ParamString() const {
     return s;
 }
 
-SpectralGenRay GrPathSampler::AlongLobe(const SpectralGenRay &g, const SurfaceInteraction &si,
-                                        const NearDeltaLobe &lobe, int i) {
-    SpectralGenRay out = g;
-    const Vec3 wo = si.shading.ToWorld(lobe.wo[i]);
-    out.Redirect(wo, lobe.Eta(i));
-    out.o = si.SpawnOrigin(wo);
-    return out;
-}
-
 void GrPathSampler::ReversedAlongLobe(SpectralGenRay &rev, const SpectralGenRay &g, const SurfaceInteraction &si,
                                       const NearDeltaLobe &lobe, int i) {
-    // AlongLobe's Redirect and origin, then TimeReversed's direction (ρ was negated already).
+    // SpectralGenRay::Redirect's direction and wavenumbers, the spawn origin, TimeReversed's
+    // direction (ρ was negated already).
     const Vec3 wo = si.shading.ToWorld(lobe.wo[i]);
     const double eta = lobe.Eta(i);
     rev.d = -wo;

@@ -191,13 +191,11 @@ class GrPathSampler {
     static SampledSpectrum Transmitted(const Scene &scene, const GrMeasurement &m, const SpectralGenRay &g,
                                        const SurfaceInteraction *si, const SampledWavelengths &wl,
                                        ScratchBuffer &scratch, PathStats &stats);
-    /// The GR leaving `si` through listed lobe `lobe` at carried wavelength i.
-    static SpectralGenRay AlongLobe(const SpectralGenRay &g, const SurfaceInteraction &si, const NearDeltaLobe &lobe,
-                                    int i);
-    /// Its time reverse (what a light's MeasureGR takes) written into `rev`, which must hold
-    /// g.TimeReversed() with pixel.valid = false or an earlier result of this call for the same g:
-    /// only the direction, the wavenumbers and the origin change. rev.TimeReversed() then equals
-    /// AlongLobe(g, si, lobe, i) in every field.
+    /// The time reverse (what a light's MeasureGR takes) of the GR leaving `si` through listed lobe
+    /// `lobe` at carried wavelength i (g redirected along it, every wavenumber scaled by its η, from
+    /// the spawn origin), written into `rev`, which must hold g.TimeReversed() with pixel.valid =
+    /// false or an earlier result of this call for the same g: only the direction, the wavenumbers
+    /// and the origin change. rev.TimeReversed() is the GR leaving along the lobe.
     static void ReversedAlongLobe(SpectralGenRay &rev, const SpectralGenRay &g, const SurfaceInteraction &si,
                                   const NearDeltaLobe &lobe, int i);
     /// True if the lobe's direction and index are the same at every carried wavelength.
@@ -661,14 +659,12 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
     // measure (the time reverse of the one along the lobe, `probe`, changed in place per lobe and
     // wavelength) whether it certainly measures nothing (Light::MeasuresNothing), and the GR along
     // the lobe is built only for a lobe some light may reach (lights 0…63 of
-    // Scene::ClosedFormLights(); later ones are always measured). Not with a recording sink: it
-    // may measure another light in place of the scene's (Sink::Measured, sample_solve's modes).
+    // Scene::ClosedFormLights(); later ones are always measured). No skipping with a recording
+    // sink: it may measure another light in place of the scene's (Sink::Measured, sample_solve's
+    // modes).
     const auto &lights = scene_.ClosedFormLights();
-    SpectralGenRay probe;
-    if constexpr (!Sink::Records) {
-        probe = g_.TimeReversed();
-        probe.pixel.valid = false;  // as Redirect
-    }
+    SpectralGenRay probe = g_.TimeReversed();
+    probe.pixel.valid = false;  // as Redirect
     for (const NearDeltaLobe &lobe : k.ListNearDelta()) {
         // Light straight through the surface was measured by the shadow rays of the vertex before,
         // which cross it (Scene::Transmittance, theory §3.5).
@@ -678,20 +674,18 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
         for (int i = 0; i < (uniform ? 1 : wl_.Count()) && !lobe.weight.IsZero(); ++i) {
             if (!uniform && !(lobe.weight[i] > 0)) continue;
             const unsigned measured = uniform ? g_.measured : 1u << i;  // along λ_i's direction only λ_i is used (w[i] below)
-            SpectralGenRay out;
+            GrPathSampler::ReversedAlongLobe(probe, g_, si, lobe, i);
+            probe.measured = measured;
             std::uint64_t skipped = 0;  // bit b: light b measures nothing
             if constexpr (!Sink::Records) {
-                GrPathSampler::ReversedAlongLobe(probe, g_, si, lobe, i);
-                probe.measured = measured;
-                for (std::size_t b = 0; b < std::min<std::size_t>(lights.size(), 64); ++b)
+                bool any = lights.size() > 64;  // some light may see the GR
+                for (std::size_t b = 0; b < std::min<std::size_t>(lights.size(), 64); ++b) {
                     if (lights[b]->MeasuresNothing(probe)) skipped |= std::uint64_t(1) << b;
-                if (lights.size() <= 64 && skipped == (lights.size() == 64 ? ~std::uint64_t(0) : (std::uint64_t(1) << lights.size()) - 1))
-                    continue;
-                out = probe.TimeReversed();  // = AlongLobe(g_, si, lobe, i), every field
-            } else {
-                out = GrPathSampler::AlongLobe(g_, si, lobe, i);
-                out.measured = measured;
+                    else any = true;
+                }
+                if (!any) continue;
             }
+            const SpectralGenRay out = probe.TimeReversed();  // the GR leaving along the lobe
             // a_j·M per light, a_j averaged over the plane waves that light's measurement integrates
             // (ThroughLobeWeight; per wavelength along a dispersive lobe's own direction).
             auto weighted = [&](const GrMeasurement &mi) {

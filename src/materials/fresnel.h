@@ -129,19 +129,19 @@ inline double FresnelReflectanceReal(double cosThetaI, double n1, Complex n2) {
     return 0.5 * (rs + rp);
 }
 
-/// The unpolarised transmittance (power, |t|² times the power factor) of a lossless interface
-/// n1 → n2 (both real) in real arithmetic: with a = n₁c, b = n₂c_t, T_s = 4ab/(a + b)²,
-/// T_p = 4ab/(n₂c + n₁c_t)² (0 under total internal reflection) — directly, not as 1 − R, which
-/// loses every digit of a T ~ 1e-7 next to the critical angle. c_t² is FresnelAmplitudes's
-/// (1 − r²) + r²c², r = n₁/n₂: next to the critical angle c_t is round-off of that expression, so
-/// computing it the same way keeps this T equal to the complex coefficients' (EvalLobe's) there.
+/// The unpolarised transmittance (power, |t|² times the power factor n₂c_t/(n₁c)) of a lossless
+/// interface n1 → n2 (both real) from FresnelAmplitudes's real-arithmetic coefficients, with its
+/// c_t² = (1 − r²) + r²c², r = n₁/n₂ (0 under total internal reflection) — directly, not as 1 − R,
+/// which loses every digit of a T ~ 1e-7 next to the critical angle (there c_t is round-off of that
+/// expression, so the same expression keeps this T equal to the complex path's, EvalLobe's).
 inline double FresnelTransmittanceReal(double cosThetaI, double n1, double n2) {
     if (n2 == n1) return 1;
     const double c = Clamp(cosThetaI, 0.0, 1.0), r = n1 / n2;
     const double cos2T = (1 - r * r) + r * r * c * c;
     if (!(cos2T > 0) || c == 0) return 0;
-    const double ct = std::sqrt(cos2T), a = n1 * c, b = n2 * ct;
-    return 0.5 * (4 * a * b / Sqr(a + b) + 4 * a * b / Sqr(n2 * c + n1 * ct));
+    const double ct = std::sqrt(cos2T);
+    const FresnelCoefficients f = FresnelAmplitudes(n1, c, n2, ct);
+    return 0.5 * (n2 * ct) / (n1 * c) * (std::norm(f.ts) + std::norm(f.tp));
 }
 
 /// Reflectance of a conductor with relative complex index eta = (n + iκ)/n_outside.

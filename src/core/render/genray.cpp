@@ -117,13 +117,11 @@ bool DistantDiscOutOfReach(const SpectralGenRay &g, const Vec3 &s, double sinAlp
     if (!(sinAlpha > 0)) return false;  // a plane wave (MeasurePlaneWave) is never exactly 0
     const double gap = Length(Cross(s, g.d)) - sinAlpha - 1e-9;
     if (!(gap > 0) || !(Dot(s, g.d) > 0)) return false;
-    // gap ≥ RiceReach·σ_i, σ_i² = (1 + ρ²)/(2β²k²) (GenRay::AngularVariance), squared and without
-    // the division (a last-bit difference to the square-root form is far inside the 1e-9 above).
+    // gap ≥ RiceReach·σ_i, squared (a last-bit difference to the square-root form is far inside
+    // the 1e-9 above).
     const double reach2 = Sqr(gap / RiceReach);
-    for (int i = 0; i < g.count; ++i) {
-        const std::size_t k = std::size_t(i);
-        if (g.Measures(i) && !(0.5 * (1 + g.rho[k] * g.rho[k]) <= reach2 * g.beta2[k] * g.k[k] * g.k[k])) return false;
-    }
+    for (int i = 0; i < g.count; ++i)
+        if (g.Measures(i) && !(g.At(i).AngularVariance() <= reach2)) return false;
     return true;
 }
 
