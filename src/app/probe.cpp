@@ -179,7 +179,7 @@ ProbeResult Measure(const Material &m, const ScatterQuery &q, long long samples,
             if (!carrier) continue;  // nothing reaches that direction from wi
         }
         const double power = carrier->nOut[0] / carrier->nIn[0];  // undo the radiance factor (n_in/n_out)²
-        p.efficiency = carrier->weight[0] * power * power;
+        p.efficiency = carrier->Weight()[0] * power * power;
         (p.transmission ? r.discreteT : r.discreteR) += p.efficiency;
         r.lobes.push_back(p);
     }

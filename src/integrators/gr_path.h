@@ -671,8 +671,8 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
         if (PassesStraight(*si.material, lobe, k.Query().wi, wl_.Count())) continue;
         const bool uniform = GrPathSampler::UniformLobe(lobe, wl_);
         SampledSpectrum v(0.0);
-        for (int i = 0; i < (uniform ? 1 : wl_.Count()) && !lobe.weight.IsZero(); ++i) {
-            if (!uniform && !(lobe.weight[i] > 0)) continue;
+        for (int i = 0; i < (uniform ? 1 : wl_.Count()) && lobe.MayCarryAny(); ++i) {
+            if (!uniform && !lobe.MayCarry(i)) continue;
             const unsigned measured = uniform ? g_.measured : 1u << i;  // along λ_i's direction only λ_i is used (w[i] below)
             GrPathSampler::ReversedAlongLobe(probe, g_, si, lobe, i);
             probe.measured = measured;
@@ -739,7 +739,7 @@ void PathEstimate<Sink>::EmissionThroughListedLobes(const SurfaceInteraction &si
             if (listedEmissionCount_ == MaxListedEmission) break;
             // A dispersive lobe would need a ray per wavelength; straight through a film the shadow
             // rays of the vertex before measured what lies beyond (theory §3.5): both stay sampled.
-            if (lobe.weight.IsZero() || !GrPathSampler::UniformLobe(lobe, wl_) ||
+            if (!lobe.MayCarryAny() || !GrPathSampler::UniformLobe(lobe, wl_) ||
                 PassesStraight(*si.material, lobe, k.Query().wi, wl_.Count()))
                 continue;
             listedEmissionLobes_[std::size_t(listedEmissionCount_++)] = lobe.id;
@@ -748,7 +748,7 @@ void PathEstimate<Sink>::EmissionThroughListedLobes(const SurfaceInteraction &si
             const std::optional<SurfaceInteraction> hit = scene_.Intersect(Ray{si.SpawnOrigin(wo), wo});
             if (!hit || !hit->areaLight) continue;
             // As the path would find it after this lobe: L_e in full (no MIS after a near-delta lobe).
-            v += lobe.weight * hit->areaLight->L(hit->p, hit->n, -wo, wl_);
+            v += lobe.Weight() * hit->areaLight->L(hit->p, hit->n, -wo, wl_);
         }
         L_ += T_ * v;
     }

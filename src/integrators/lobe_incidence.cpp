@@ -75,7 +75,7 @@ struct LobeTarget {
         const ScratchBuffer::Mark mark = scratch.Save();
         const NearDeltaLobe *lobe = si->material->Prepare(q, scratch).FindLobe(id);
         std::optional<GrIncidence> inc;
-        if (lobe && lobe->weight[i] > 0) inc = light->IncidenceOnGR(gp, wl);
+        if (lobe && lobe->Weight()[i] > 0) inc = light->IncidenceOnGR(gp, wl);
         if (inc) {
             st->si = *si;
             st->lobe = *lobe;

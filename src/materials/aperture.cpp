@@ -449,7 +449,7 @@ class ApertureMaterial final : public Material, public PlateOpenings {
                 lobe_.id = StraightLobe;
                 lobe_.flags = ScatterTransmission | ScatterNearDelta;
                 lobe_.wo.fill(-q.wi);
-                lobe_.weight = SampledSpectrum(t_);
+                lobe_.SetWeight(SampledSpectrum(t_));
                 lobe_.nIn.fill(q.etaOutside);
                 lobe_.nOut.fill(q.etaOutside);
                 lobe_.prob = 1;

@@ -446,36 +446,55 @@ void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeLi
             for (int i = 0; i < count; ++i) slots |= range[std::size_t(i)].Contains(j) ? 1u << i : 0u;
             std::array<Vec3, NumWavelengths> wo{};
             SampledSpectrum weight;
-            const int lit = Order(q.wi, transmitted, j, slots, wo, weight, scratch);
+            // The hero's efficiency now (Sample picks a lobe by it); where the hero carries light,
+            // the companions' only when a caller reads them (NearDeltaLobe::DeferWeights: most
+            // lobes reach no light, and their companions' efficiencies would be computed for
+            // nothing). Their directions are the grating equation's, as Order has them.
+            unsigned deferred = 0;
+            int lit = Order(q.wi, transmitted, j, slots & 1u, wo, weight, scratch);
+            if (lit == 0) {
+                for (int i = 1; i < count; ++i) {
+                    if (!((slots >> i) & 1u)) continue;
+                    const auto [nWi, nFar] = Indices(q.wi, i);
+                    if (NearDeltaDirection(q.wi, nWi, transmitted ? nFar : nWi, unitShift * double(j), q.wl->lambda[i],
+                                           transmitted, &wo[std::size_t(i)]))
+                        deferred |= 1u << i;
+                }
+            } else {
+                lit = Order(q.wi, transmitted, j, slots & ~1u, wo, weight, scratch);
+            }
             if (lit < 0) continue;
             NearDeltaLobe &l = out.Add();
             l.id = (transmitted ? TransmittedId : 0) + j;
             l.flags = ScatterNearDelta | (transmitted ? ScatterTransmission : ScatterReflection) |
                       (j != 0 || (transmitted && m.dispersive_) ? ScatterDispersive : 0u);
             l.shift = unitShift * double(j);
-            l.weight = weight;
+            l.SetWeight(weight);
+            l.DeferWeights(deferred, *this);
             for (int i = 0; i < count; ++i) {
                 const std::size_t s = std::size_t(i);
                 const auto [nWi, nFar] = Indices(q.wi, i);
                 l.nIn[s] = nWi;
                 l.nOut[s] = transmitted ? nFar : nWi;
-                l.wo[s] = weight[i] > 0 ? wo[s] : wo[std::size_t(lit)];
+                l.wo[s] = weight[i] > 0 || ((deferred >> i) & 1u) ? wo[s] : wo[std::size_t(lit)];
             }
         }
     }
     // Sample picks a lobe ∝ its weight at the hero (then a_j/p_j is the same for every lobe);
-    // if the hero carries nothing, ∝ the weight summed over the carried wavelengths.
-    double hero = 0, all = 0;
-    for (int k = 0; k < out.Count(); ++k) {
-        hero += out[k].weight[0];
-        for (int i = 0; i < count; ++i) all += out[k].weight[i];
-    }
+    // if the hero carries nothing, ∝ the weight summed over the carried wavelengths (then no
+    // weight was deferred: only lobes whose hero carries light defer theirs).
+    double hero = 0;
+    for (int k = 0; k < out.Count(); ++k) hero += out[k].Weight(1u)[0];
+    double all = 0;
+    if (!(hero > 0))
+        for (int k = 0; k < out.Count(); ++k)
+            for (int i = 0; i < count; ++i) all += out[k].Weight()[i];
     for (int k = 0; k < out.Count(); ++k) {
         NearDeltaLobe &l = out[k];
         double w = 0;
-        if (hero > 0) w = l.weight[0];
+        if (hero > 0) w = l.Weight(1u)[0];
         else
-            for (int i = 0; i < count; ++i) w += l.weight[i];
+            for (int i = 0; i < count; ++i) w += l.Weight()[i];
         l.prob = hero > 0 ? w / hero : w / all;
     }
 }
@@ -538,7 +557,7 @@ std::optional<LobeResponse> GratingMaterial::Prepared::EvalLobe(int lobe, const 
     // the coating's interference by the light's coherence. The relief itself has none (see above).
     r.coherence.any = !transmitted && surface.LayerCount() > 0;
     for (int i = 0; i < q.wl->Count(); ++i) {
-        if (l->weight[i] == 0) continue;  // evanescent at this wavelength: no response
+        if (l->Weight()[i] == 0) continue;  // evanescent at this wavelength: no response
         // The orders of the light arriving along the lobe (its source direction at this wavelength).
         GratingOrders o;
         m_->SourceEfficiency(q, i, site_, l->wo[std::size_t(i)], transmitted, j, &o);

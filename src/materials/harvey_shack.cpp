@@ -358,7 +358,7 @@ class HarveyShackMaterial final : public Material {
             lobe_.id = SpecularLobe;
             lobe_.flags = ScatterReflection | ScatterNearDelta;
             lobe_.wo.fill(ReflectLocal(q.wi));
-            lobe_.weight = spec_;
+            lobe_.SetWeight(spec_);
             for (int i = 0; i < l_.count; ++i) lobe_.nIn[i] = lobe_.nOut[i] = l_.n[i];
             lobe_.prob = l_.pSpec;
             lobes_ = std::span<const NearDeltaLobe>(&lobe_, 1);

@@ -161,7 +161,7 @@ class MixMaterial final : public Material, public ReferenceDirection {
     /// A child's listed lobe as the mixture's: id remapped, weight and probability times `share`.
     static void Scale(NearDeltaLobe &l, bool isB, double share) {
         l.id = MixId(l.id, isB);
-        l.weight *= share;
+        l.ScaleWeight(share);
         l.prob *= share;
     }
 

@@ -121,7 +121,7 @@ class PlasticMaterial final : public Material {
             l.id = 0;
             l.flags = ScatterReflection | ScatterNearDelta;
             l.wo.fill(ReflectLocal(q.wi));
-            l.weight = c_.fresnel;
+            l.SetWeight(c_.fresnel);
             l.nIn.fill(q.etaOutside);
             l.nOut.fill(q.etaOutside);
             l.prob = c_.specProb;

@@ -129,7 +129,7 @@ int SmoothKernel::Prepared::List(const ScatterQuery &q) {
         r.wo.fill(ReflectLocal(q.wi));
         r.prob = probability(w[0].R, meanR);
         for (int i = 0; i < count; ++i) {
-            r.weight[i] = w[i].R;
+            r.SetWeight(i, w[i].R);
             r.nIn[i] = r.nOut[i] = w[i].nI;
         }
     }
@@ -142,7 +142,7 @@ int SmoothKernel::Prepared::List(const ScatterQuery &q) {
             t.nIn[i] = w[i].nI;
             t.nOut[i] = w[i].nT;
             // Radiance scaling (η_i/η_t)² on crossing (camera paths carry L/n², dielectric.cpp).
-            if (w[i].ok && RefractLocal(q.wi, w[i].eta, &t.wo[i])) t.weight[i] = w[i].T / (w[i].eta * w[i].eta);
+            if (w[i].ok && RefractLocal(q.wi, w[i].eta, &t.wo[i])) t.SetWeight(i, w[i].T / (w[i].eta * w[i].eta));
             else t.wo[i] = hero;  // weight 0 at this companion (total internal reflection, no data)
         }
     }

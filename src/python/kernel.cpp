@@ -144,7 +144,7 @@ class PythonKernel final : public Material {
                 const py::tuple t = py::reinterpret_borrow<py::tuple>(h);  // phasor.Lobe (a named tuple)
                 l.id = t[0].cast<int>();
                 const Vec3 wo = ToDir(t[1], "wo");
-                l.weight = ToSpectrum(t[2], q_.wl->Count(), "Lobe.weight");
+                l.SetWeight(ToSpectrum(t[2], q_.wl->Count(), "Lobe.weight"));
                 l.prob = t[3].cast<double>();
                 const bool transmission = t[4].cast<bool>();
                 l.flags = ScatterNearDelta | (transmission ? ScatterTransmission : ScatterReflection);
@@ -172,7 +172,7 @@ class PythonKernel final : public Material {
             const NearDeltaLobe *l = FindLobe(lobe);
             if (!l || !SameDirection(l->wo[0], wo)) return std::nullopt;
             for (int i = 0; i < q_.wl->Count(); ++i) {
-                r.jones[i] = Jones::Identity() * Complex(std::sqrt(l->weight[i]), 0);
+                r.jones[i] = Jones::Identity() * Complex(std::sqrt(l->Weight()[i]), 0);
                 r.mueller[i] = Mueller::FromJones(r.jones[i]);
             }
             r.hasJones = true;

@@ -57,7 +57,7 @@ class TwoLobeTestMaterial final : public Material {
                 l.nOut.fill(1);
                 for (int i = 0; i < q.wl->Count(); ++i) {
                     NearDeltaDirection(q.wi, 1, 1, shift, q.wl->lambda[i], false, &l.wo[i]);
-                    l.weight[i] = m.a_[j];
+                    l.SetWeight(i, m.a_[j]);
                 }
                 if (j == 1 && q.wl->Count() > 1) l.flags |= ScatterDispersive;
                 l.prob = m.a_[j] / (m.a_[0] + m.a_[1]);
@@ -137,7 +137,7 @@ double Expected(const Scene &scene, int x, int y, bool laser) {
     double v = 0;
     for (const NearDeltaLobe &l : si->material->Prepare(q, scratch).ListNearDelta()) {
         const double cosG = -Dot(s, si->shading.ToWorld(l.wo[0])), sin2 = std::max(0.0, 1 - cosG * cosG);
-        v += l.weight[0] * E * std::exp(-0.5 * sin2 / var) / (2 * Pi * var);
+        v += l.Weight()[0] * E * std::exp(-0.5 * sin2 / var) / (2 * Pi * var);
     }
     return v;
 }

@@ -87,7 +87,7 @@ TEST(CoherenceTerms, RoughAndGratedCoatedSurfacesCarryTheCoatingsTerms) {
                 EXPECT_EQ(r->coherence.any, coated);
                 if (!coated) continue;
                 for (int i = 0; i < wl.Count(); ++i) {
-                    if (!(o.weight[i] > 0)) continue;
+                    if (!(o.Weight()[i] > 0)) continue;
                     ScatterQuery src = q;  // the substrate as the light from the order's source direction meets it
                     src.wi = o.wo[std::size_t(i)];
                     const auto sub = Prep(*metal, src)->EvalLobe(0, ReflectLocal(src.wi));

@@ -103,7 +103,7 @@ inline ListedForward ListedEnergyFrom(const Material &m, const ScatterQuery &q, 
     ScratchBuffer scratch;
     std::vector<Vec3> outs;
     for (const NearDeltaLobe &l : m.Prepare(q, scratch).ListNearDelta())
-        if (l.weight[j] > 0 &&
+        if (l.Weight()[j] > 0 &&
             std::none_of(outs.begin(), outs.end(), [&](const Vec3 &o) { return SameDirection(o, l.wo[j]); }))
             outs.push_back(l.wo[j]);
     ListedForward f;
@@ -112,7 +112,7 @@ inline ListedForward ListedEnergyFrom(const Material &m, const ScatterQuery &q, 
         ScatterQuery back = q;
         back.wi = o;
         for (const NearDeltaLobe &l : m.Prepare(back, scratch).ListNearDelta())
-            if (l.weight[j] > 0 && SameDirection(l.wo[j], q.wi)) f.energy += l.weight[j] * l.Eta(j) * l.Eta(j);
+            if (l.Weight()[j] > 0 && SameDirection(l.wo[j], q.wi)) f.energy += l.Weight()[j] * l.Eta(j) * l.Eta(j);
     }
     return f;
 }

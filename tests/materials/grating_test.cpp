@@ -125,8 +125,8 @@ FromSource OrderFrom(const GratingMaterial &grating, const SampledWavelengths &w
     const std::span<const NearDeltaLobe> lobes = lobesK->ListNearDelta();
     const NearDeltaLobe *l = Find(lobes, (transmitted ? GratingMaterial::TransmittedId : 0) + j);
     if (!l || AngleBetween(l->wo[0], d) > 1e-9) return r;
-    r.weight = l->weight[0];
-    r.energy = l->weight[0] * l->Eta(0) * l->Eta(0);
+    r.weight = l->Weight()[0];
+    r.energy = l->Weight()[0] * l->Eta(0) * l->Eta(0);
     r.response = lobesK->EvalLobe(l->id, l->wo[0]);
     return r;
 }
@@ -177,7 +177,7 @@ TEST(Grating, OrderDirectionsObeyTheVectorGratingEquation) {
                         const Vec2 t(expected.x, expected.y);
                         const bool sourceTir = transmitted && nOut * Length(t) >= nIn;
                         const bool lit = propagates && !sourceTir;
-                        ASSERT_EQ(l && l->weight[i] > 0, lit)
+                        ASSERT_EQ(l && l->Weight()[i] > 0, lit)
                             << substrate << ", θ = " << in.theta / Deg << "°, φ = " << in.phi << ", order " << j
                             << (transmitted ? " (T)" : " (R)") << ", slot " << i;
                         if (!lit) continue;
@@ -484,8 +484,8 @@ TEST(Grating, RayOpticsLimitIsTheSmoothSubstrate) {
                     // (Probabilities differ by design: the grating picks ∝ radiance weight, the
                     // dielectric ∝ R and T.)
                     for (int i = 0; i < wl.Count(); ++i) {
-                        EXPECT_NEAR(a.weight[i], b.weight[i], 1e-12) << name << ", lobe " << a.id << ", slot " << i;
-                        if (b.weight[i] > 0) {
+                        EXPECT_NEAR(a.Weight()[i], b.Weight()[i], 1e-12) << name << ", lobe " << a.id << ", slot " << i;
+                        if (b.Weight()[i] > 0) {
                             EXPECT_LT(AngleBetween(a.wo[i], b.wo[i]), 1e-12) << name;
                         }
                     }
@@ -539,15 +539,15 @@ TEST(Grating, RayOpticsLimitOfACoatedSubstrateIsTheIncoherentSum) {
             for (int k = 0; k < int(got.size()); ++k) {
                 const NearDeltaLobe &a = got[std::size_t(k)], &b = expected[std::size_t(k)];
                 for (int i = 0; i < wl.Count(); ++i) {
-                    EXPECT_NEAR(a.weight[i], b.weight[i], 1e-12) << c.type << ", θ " << theta / Deg << ", lobe " << a.id;
-                    largest = std::max(largest, std::abs(b.weight[i] - coherent[std::size_t(k)].weight[i]));
+                    EXPECT_NEAR(a.Weight()[i], b.Weight()[i], 1e-12) << c.type << ", θ " << theta / Deg << ", lobe " << a.id;
+                    largest = std::max(largest, std::abs(b.Weight()[i] - coherent[std::size_t(k)].Weight()[i]));
                 }
                 auto ga = gotK->EvalLobe(a.id, a.wo[0]);
                 auto ca = expectedK->EvalLobe(b.id, b.wo[0]);
                 ASSERT_TRUE(ga && ca);
                 EXPECT_FALSE(ga->hasJones) << "the incoherent sum has no Jones matrix";
                 for (int i = 0; i < wl.Count(); ++i) {
-                    if (b.weight[i] == 0) continue;
+                    if (b.Weight()[i] == 0) continue;
                     for (int x = 0; x < 4; ++x)
                         for (int y = 0; y < 4; ++y)
                             EXPECT_NEAR(ga->mueller[i].m[x][y], ca->mueller[i].m[x][y], 1e-12)
@@ -630,7 +630,7 @@ TEST(Grating, DispersionFlags) {
             int lit = 0;
             bool same = true;
             for (int i = 0; i < wl.Count(); ++i) {
-                if (l.weight[i] == 0) continue;
+                if (l.Weight()[i] == 0) continue;
                 same = same && (lit == 0 || AngleBetween(l.wo[i], l.wo[0]) < 1e-12);
                 ++lit;
             }
@@ -658,16 +658,55 @@ TEST(Grating, AnOrderEvanescentAtTheHeroIsListedForItsCompanions) {
     for (int j : {-1, 1}) {
         const NearDeltaLobe *l = Find(lobes, j);
         ASSERT_NE(l, nullptr) << "order " << j;
-        EXPECT_EQ(l->weight[0], 0);
+        EXPECT_EQ(l->Weight()[0], 0);
         EXPECT_EQ(l->prob, 0);
         for (int i = 1; i < wl.Count(); ++i) {
             const bool propagates = wl.lambda[i] < 0.6 * Um;
-            EXPECT_EQ(l->weight[i] > 0, propagates) << "order " << j << ", slot " << i;
+            EXPECT_EQ(l->Weight()[i] > 0, propagates) << "order " << j << ", slot " << i;
         }
     }
     double hero = 0;
     for (const NearDeltaLobe &l : lobes) hero += l.prob;
     EXPECT_NEAR(hero, 1, 1e-12);
+}
+
+TEST(Grating, CompanionEfficienciesAreComputedWhenRead) {
+    // Where the hero carries light, the listing computes the companions' efficiencies only when a
+    // caller reads them (most lobes reach no light): the orders of a 1.2 µm grating under four
+    // wavelengths defer slots 1–3, and once read they are the efficiencies a listing with that
+    // wavelength as the hero gives (the kernel contract checks every preset so). A lobe whose
+    // pending weights are asked of another kernel — the grating prepared at another incidence —
+    // reads differently: the comparison sees a wrong completion.
+    auto grating = MakeGrating(ParamDict()
+                                   .Set("substrate", Value::Ref("metal"))
+                                   .Set("period", Len(1.2 * Um))
+                                   .Set("height", Len(0.1 * Um)));
+    ASSERT_TRUE(grating);
+    const SampledWavelengths wl = TestWavelengths(550 * Nm);
+    const ScatterQuery q = Wave(20 * Deg, 0.3, wl), other = Wave(35 * Deg, 0.3, wl);
+    const Prep k(*grating, q), wrong(*grating, other);
+    int deferred = 0, caught = 0;
+    for (const NearDeltaLobe &l : k->ListNearDelta()) {
+        if (!l.PendingSlots()) continue;
+        ++deferred;
+        EXPECT_EQ(l.PendingSlots() & 1u, 0u) << "order " << l.id << ": the hero's efficiency is deferred";
+        NearDeltaLobe misread = l;
+        misread.DeferWeights(l.PendingSlots(), *wrong);
+        for (int i = 1; i < wl.Count(); ++i) {
+            SampledWavelengths swapped = wl;
+            std::swap(swapped.lambda[0], swapped.lambda[std::size_t(i)]);
+            ScatterQuery qi = q;
+            qi.wl = &swapped;
+            const Prep hero(*grating, qi);
+            const NearDeltaLobe *there = Find(hero->ListNearDelta(), l.id);
+            const double eager = there ? there->Weight()[0] : 0.0;
+            EXPECT_EQ(l.Weight()[i], eager) << "order " << l.id << ", slot " << i;
+            caught += misread.Weight()[i] != eager;
+        }
+        EXPECT_EQ(l.PendingSlots(), 0u);
+    }
+    EXPECT_GE(deferred, 3) << "the orders' companion efficiencies were listed eagerly";
+    EXPECT_GT(caught, 0) << "a completion by the wrong kernel went unnoticed";
 }
 
 TEST(Grating, FarOutsideTheThinPhaseRegimeStaysFinite) {
@@ -689,7 +728,7 @@ TEST(Grating, FarOutsideTheThinPhaseRegimeStaysFinite) {
         const std::span<const NearDeltaLobe> lobes = lobesK->ListNearDelta();
         ASSERT_FALSE(lobes.empty());
         for (const NearDeltaLobe &l : lobes)
-            for (int i = 0; i < wl4.Count(); ++i) ASSERT_TRUE(std::isfinite(l.weight[i]) && l.weight[i] >= 0);
+            for (int i = 0; i < wl4.Count(); ++i) ASSERT_TRUE(std::isfinite(l.Weight()[i]) && l.Weight()[i] >= 0);
         const Vec3 d = Wave(theta, 0.3, wl).wi;
         const bool inside = d.z < 0;
         double energy = 0;

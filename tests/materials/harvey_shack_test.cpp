@@ -96,7 +96,7 @@ ParamDict RoughT(const char *substrate, double sigma, double t, double gamma = 3
 double SmoothReflectance(const Material &smooth, const ScatterQuery &q, int slot = 0) {
     const Prep k(smooth, q);
     for (const NearDeltaLobe &l : k->ListNearDelta())
-        if (l.flags & ScatterReflection) return l.weight[slot];
+        if (l.flags & ScatterReflection) return l.Weight()[slot];
     return 0;
 }
 
@@ -210,7 +210,7 @@ TEST(HarveyShack, SmoothLimitIsTheSubstrate) {
                     if (l.flags & ScatterReflection) ref = &l;
                 ASSERT_TRUE(ref);
                 for (int i = 0; i < wl.Count(); ++i) {
-                    EXPECT_NEAR(a[0].weight[i], ref->weight[i], 1e-12) << sub << " θ " << theta << " below " << below;
+                    EXPECT_NEAR(a[0].Weight()[i], ref->Weight()[i], 1e-12) << sub << " θ " << theta << " below " << below;
                     EXPECT_EQ(a[0].nIn[i], ref->nIn[i]);
                 }
                 EXPECT_LT(Length(a[0].wo[0] - ref->wo[0]), 1e-15);
@@ -220,7 +220,7 @@ TEST(HarveyShack, SmoothLimitIsTheSubstrate) {
                     for (int c = 0; c < 2; ++c) EXPECT_LT(std::abs(ja->jones[0].m[r][c] - jb->jones[0].m[r][c]), 1e-12);
                 auto s = aK->Sample(0.7, Vec2(0.2, 0.9));
                 ASSERT_TRUE(s);
-                EXPECT_NEAR(s->weight[0], ref->weight[0], 1e-12);
+                EXPECT_NEAR(s->weight[0], ref->Weight()[0], 1e-12);
             }
     }
 }
@@ -344,7 +344,7 @@ TEST(HarveyShack, SampledWeightsAverageTheirIntegral) {
                 ScratchBuffer scratch;
                 const PreparedKernel &k = hs->Prepare(q, scratch);
                 const std::span<const NearDeltaLobe> lobes = k.ListNearDelta();
-                const double expected = (lobes.empty() ? 0.0 : lobes[0].weight[0]) + ContinuousAlbedo(k, c.core)[0];
+                const double expected = (lobes.empty() ? 0.0 : lobes[0].Weight()[0]) + ContinuousAlbedo(k, c.core)[0];
                 std::vector<double> w;
                 for (int i = 0; i < 50000; ++i) {
                     auto s = k.Sample(rng.Uniform(), Vec2(rng.Uniform(), rng.Uniform()));
@@ -410,9 +410,9 @@ TEST(HarveyShack, RayOpticsLimitOfACoatedSubstrateIsTheIncoherentSum) {
         const std::span<const NearDeltaLobe> hr = hrK->ListNearDelta();
         ASSERT_TRUE(sw.size() == 1 && sr.size() == 1 && hw.size() == 1 && hr.size() == 1);
         const double alphaSpec = std::exp(-Sqr(2 * 2 * Pi / Lambda * 30e-9 * std::cos(Radians(theta))));
-        largest = std::max(largest, std::abs(sr[0].weight[0] - sw[0].weight[0]));
-        EXPECT_NEAR(hr[0].weight[0], alphaSpec * sr[0].weight[0], 1e-12) << "θ " << theta;
-        EXPECT_NEAR(hw[0].weight[0], alphaSpec * sw[0].weight[0], 1e-12) << "θ " << theta;
+        largest = std::max(largest, std::abs(sr[0].Weight()[0] - sw[0].Weight()[0]));
+        EXPECT_NEAR(hr[0].Weight()[0], alphaSpec * sr[0].Weight()[0], 1e-12) << "θ " << theta;
+        EXPECT_NEAR(hw[0].Weight()[0], alphaSpec * sw[0].Weight()[0], 1e-12) << "θ " << theta;
         // EvalLobe of the specular lobe: α_spec × the smooth kernel's response in each regime.
         auto er = hrK->EvalLobe(0, hr[0].wo[0]), cr = srK->EvalLobe(0, sr[0].wo[0]);
         auto ew = hwK->EvalLobe(0, hw[0].wo[0]), cw = swK->EvalLobe(0, sw[0].wo[0]);
@@ -433,9 +433,9 @@ TEST(HarveyShack, RayOpticsLimitOfACoatedSubstrateIsTheIncoherentSum) {
         // Energy of the light from this direction: F of the regime.
         const double specR = ListedEnergyFrom(*hs, ray, 0).energy, haloR = ContinuousFrom(*hs, ray, ray.wi, 0.02)[0];
         const double specW = ListedEnergyFrom(*hs, wave, 0).energy, haloW = ContinuousFrom(*hs, wave, wave.wi, 0.02)[0];
-        const double shareR = sr[0].weight[0] - specR, shareW = sw[0].weight[0] - specW;
-        EXPECT_NEAR(specR + haloR, sr[0].weight[0], 3.5e-4 * shareR + 1e-7) << "ray optics, θ " << theta;
-        EXPECT_NEAR(specW + haloW, sw[0].weight[0], 3.5e-4 * shareW + 1e-7) << "wave regime, θ " << theta;
+        const double shareR = sr[0].Weight()[0] - specR, shareW = sw[0].Weight()[0] - specW;
+        EXPECT_NEAR(specR + haloR, sr[0].Weight()[0], 3.5e-4 * shareR + 1e-7) << "ray optics, θ " << theta;
+        EXPECT_NEAR(specW + haloW, sw[0].Weight()[0], 3.5e-4 * shareW + 1e-7) << "wave regime, θ " << theta;
     }
     EXPECT_GT(largest, 0.05) << "the film's coherent and incoherent reflectances should differ here";
     RecordProperty("largest_coherent_minus_incoherent", std::to_string(largest));

@@ -579,7 +579,7 @@ TEST_P(MaterialContract, Reciprocal) {
         double e = 0;
         for (const NearDeltaLobe &l : k.ListNearDelta())
             if (Length(l.wo[0] - to) <= 1e-8)
-                e += (l.flags & ScatterTransmission) ? l.weight[0] * l.Eta(0) * l.Eta(0) : l.weight[0];
+                e += (l.flags & ScatterTransmission) ? l.Weight()[0] * l.Eta(0) * l.Eta(0) : l.Weight()[0];
         return e;
     };
     for (int i = 0; i < 200; ++i) {
@@ -702,7 +702,7 @@ TEST_P(MaterialContract, DiscreteOrders) {
         ASSERT_EQ(s->flags, l->flags) << "lobe " << s->lobe;
         for (int j = 0; j < Stat().wl->Count(); ++j) {
             if (j > 0 && (s->flags & ScatterDispersive)) break;  // companions follow the hero (D10)
-            ASSERT_NEAR(s->weight[j] * s->pdf, l->weight[j], 1e-9 * l->weight[j] + 1e-15)
+            ASSERT_NEAR(s->weight[j] * s->pdf, l->Weight()[j], 1e-9 * l->Weight()[j] + 1e-15)
                 << "lobe " << s->lobe << ", slot " << j << ": weight·p vs the listed a_j";
         }
     }
@@ -754,10 +754,10 @@ TEST_P(MaterialContract, NearDeltaListing) {
             ids.push_back(l.id);
             // p = 0 is allowed for a lobe Sample never picks at the hero (a companion may still use it).
             EXPECT_TRUE(l.prob >= 0 && l.prob <= 1 + 1e-12) << "lobe " << l.id << ": probability " << l.prob;
-            EXPECT_FALSE(l.weight.IsZero()) << "lobe " << l.id << " carries nothing: do not list it";
+            EXPECT_FALSE(l.Weight().IsZero()) << "lobe " << l.id << " carries nothing: do not list it";
             prob += l.prob;
             for (int j = 0; j < q->wl->Count(); ++j) {
-                const double a = l.weight[j];
+                const double a = l.Weight()[j];
                 ASSERT_TRUE(std::isfinite(a) && a >= 0) << "lobe " << l.id << ", slot " << j << ": weight " << a;
                 if (a == 0) continue;
                 const Vec3 &wo = l.wo[j];
@@ -803,7 +803,7 @@ TEST_P(MaterialContract, NearDeltaListing) {
         ASSERT_NE(l, nullptr) << "ray-optics limit: Sample returned lobe " << s->lobe << ", which is not listed";
         ASSERT_LT(Length(s->wo - l->wo[0]), 1e-9) << "ray-optics limit, lobe " << s->lobe;
         ASSERT_NEAR(s->pdf, l->prob, 1e-12) << "ray-optics limit, lobe " << s->lobe;
-        ASSERT_NEAR(s->weight[0] * s->pdf, l->weight[0], 1e-9 * l->weight[0] + 1e-15)
+        ASSERT_NEAR(s->weight[0] * s->pdf, l->Weight()[0], 1e-9 * l->Weight()[0] + 1e-15)
             << "ray-optics limit, lobe " << s->lobe;
     }
 }
@@ -826,7 +826,7 @@ TEST_P(MaterialContract, LobeMaskSplitsSampleAndEval) {
         for (int j = 0; j < Stat().wl->Count(); ++j) ASSERT_EQ(fa[j], fc[j]) << "slot " << j;
     }
     double listed = 0;
-    for (const NearDeltaLobe &l : k.ListNearDelta()) listed += l.weight[0];
+    for (const NearDeltaLobe &l : k.ListNearDelta()) listed += l.Weight()[0];
     const int n = int(Count(100000));
     Moments all, cpart;
     bool deterministic = true;
@@ -884,7 +884,7 @@ TEST_P(MaterialContract, EvalLobeMatchesListingAndEval) {
                 << regime << ": lobe " << l.id << " reports coherence terms but HasCoherenceTerms() is false";
             for (int j = 0; j < wl_.Count(); ++j) {
                 if (j > 0 && !(l.wo[j] == l.wo[0])) continue;  // a dispersive companion elsewhere
-                EXPECT_NEAR(r->mueller[j].m[0][0], l.weight[j], 1e-9 * l.weight[j] + 1e-15)
+                EXPECT_NEAR(r->mueller[j].m[0][0], l.Weight()[j], 1e-9 * l.Weight()[j] + 1e-15)
                     << regime << ", lobe " << l.id << ", slot " << j;
             }
             checkJones(*r, wl_.Count());
@@ -951,7 +951,7 @@ TEST_P(MaterialContract, StraightThroughIsDeclared) {
                 EXPECT_TRUE(material_->MayPassStraight())
                     << "lobe " << l.id << " goes straight on (" << (below ? "from below" : "from above")
                     << ") but MayPassStraight() is false";
-                for (int i = 0; i < q.wl->Count(); ++i) EXPECT_TRUE(l.weight[i] >= 0 && l.weight[i] <= 1 + 1e-12);
+                for (int i = 0; i < q.wl->Count(); ++i) EXPECT_TRUE(l.Weight()[i] >= 0 && l.Weight()[i] <= 1 + 1e-12);
             }
         }
     }
@@ -983,12 +983,48 @@ TEST_P(MaterialContract, LobeWeightAtIsThePreparedWeight) {
                     const NearDeltaLobe *there = material_->Prepare(qn, scratch_).FindLobe(l.id);
                     for (int i = 0; i < q.wl->Count(); ++i) {
                         if (!((slots >> i) & 1u)) continue;
-                        ASSERT_EQ((*at)[i], there ? there->weight[i] : 0.0)
+                        ASSERT_EQ((*at)[i], there ? there->Weight()[i] : 0.0)
                             << "lobe " << l.id << ", slot " << i << ", wi′ " << ToString(wi)
                             << (below ? " (below)" : "") << (rayOptics ? ", ray optics" : "");
                     }
                 }
         }
+}
+
+TEST_P(MaterialContract, DeferredWeightsAreTheEagerOnes) {
+    // A kernel may leave a lobe's companion weights to be computed when they are first read
+    // (NearDeltaLobe::DeferWeights). Read one slot at a time or all at once, a deferred weight is
+    // bit for bit what the kernel lists for that wavelength as the hero (which is never deferred):
+    // the query with λ_0 and λ_i swapped. From above and below, in both regimes.
+    int deferred = 0;
+    for (const bool below : {false, true})
+        for (const bool rayOptics : {false, true}) {
+            ScatterQuery q = rayOptics ? qRay_ : q_;
+            if (below) q.wi.z = -q.wi.z;
+            const PreparedKernel &k = material_->Prepare(q, scratch_);
+            for (const NearDeltaLobe &listed : k.ListNearDelta()) {
+                const unsigned pending = listed.PendingSlots();
+                if (!pending) continue;
+                ++deferred;
+                ASSERT_FALSE(pending & 1u) << "lobe " << listed.id << ": the hero's weight is deferred (Sample needs it)";
+                const NearDeltaLobe all = listed;  // read at once, the listing one slot at a time
+                for (int i = 1; i < q.wl->Count(); ++i) {
+                    if (!((pending >> i) & 1u)) continue;
+                    SampledWavelengths swapped = *q.wl;
+                    std::swap(swapped.lambda[0], swapped.lambda[std::size_t(i)]);
+                    std::swap(swapped.pdf[0], swapped.pdf[std::size_t(i)]);
+                    ScatterQuery qi = q;
+                    qi.wl = &swapped;
+                    const NearDeltaLobe *there = material_->Prepare(qi, scratch_).FindLobe(listed.id);
+                    const double eager = there ? there->Weight(1u)[0] : 0.0;
+                    ASSERT_EQ(listed.Weight(1u << i)[i], eager)
+                        << "lobe " << listed.id << ", slot " << i << (below ? " (below)" : "") << (rayOptics ? ", ray optics" : "");
+                    ASSERT_EQ(all.Weight()[i], eager) << "lobe " << listed.id << ", slot " << i << ", read at once";
+                }
+                EXPECT_EQ(listed.PendingSlots(), 0u) << "lobe " << listed.id << ": read, but still pending";
+            }
+        }
+    RecordProperty("deferred_lobes", std::to_string(deferred));
 }
 
 TEST_P(MaterialContract, EvalPdfIsEvalAndPdf) {

@@ -107,7 +107,7 @@ TEST(LobeAverage, FilmReflectionAndTransmissionMatchTheAveragedTransferMatrix) {
                                                             << "°, glass " << glass << ", gaussian " << gaussian;
                         worst = std::max(worst, std::abs(gotR - refR) / supR);
                         ++cases;
-                        meanDirectionMissed += std::abs(lr.weight[0] - refR) > tol * supR;
+                        meanDirectionMissed += std::abs(lr.Weight()[0] - refR) > tol * supR;
                         // Transmission: the query from below along the refracted direction; what a sensor
                         // there reads per plane wave is T·cosθ_i/cosθ_t (LobeTransfer::Irradiance).
                         const double n2 = film.substrate.real();
@@ -160,7 +160,7 @@ TEST(LobeAverage, CoatedConductorAndBraggStack) {
                 24, 160);
             EXPECT_NEAR(got, ref, tol) << "coated conductor θ = " << thetaDeg;
             std::printf("MEASURED Cu2O(2 um) on Cu, 5 deg disc, theta %2.0f: average %.6f, reference %.6f, mean direction %.6f\n",
-                        thetaDeg, got, ref, l.weight[0]);
+                        thetaDeg, got, ref, l.Weight()[0]);
         }
     }
     // A leaf beetle's reflector: 10 pairs of 1.55/1.70 (85/78 nm) on a 1.56 base, 5° disc.
@@ -220,7 +220,7 @@ TEST(LobeAverage, DiscThroughAWindowAndThePolarisedAverage) {
     const double got = AverageWeight(*m, w.q, l, e)[0];
     EXPECT_NEAR(got, ref, 3 * LobeAverageTolerance * 0.1);  // sup R < 0.1 here
     // The window's shape is taken in the disc's coordinates (lobe_average.h): the O(ε²) distortion.
-    std::printf("MEASURED disc x window: average %.6f, reference %.6f, mean direction %.6f\n", got, ref, l.weight[0]);
+    std::printf("MEASURED disc x window: average %.6f, reference %.6f, mean direction %.6f\n", got, ref, l.Weight()[0]);
 
     const auto avg = AverageResponse(*m, w.q, 0, Ensemble(source, AngularProfile::Disc(std::sin(alpha))));
     ASSERT_TRUE(avg);
@@ -243,12 +243,12 @@ TEST(LobeAverage, PointEnsembleAtTheLobeIsTheListedWeightAndTheSwitchRestoresIt)
     OneWave w(Lambda, std::cos(theta), Pi);
     w.q.wi = Vec3(-source.x, 0, source.z);
     const NearDeltaLobe l = Lobe(*m, w.q, 0);
-    EXPECT_EQ(AverageWeight(*m, w.q, l, Ensemble(source, AngularProfile{}))[0], l.weight[0]);
+    EXPECT_EQ(AverageWeight(*m, w.q, l, Ensemble(source, AngularProfile{}))[0], l.Weight()[0]);
     const LobeEnsemble wide = Ensemble(source, AngularProfile::Disc(std::sin(Radians(2))));
     const double averaged = AverageWeight(*m, w.q, l, wide)[0];
-    EXPECT_GT(std::abs(averaged - l.weight[0]), 0.01);
+    EXPECT_GT(std::abs(averaged - l.Weight()[0]), 0.01);
     SetLobeAverageDisabledForTesting(true);
-    EXPECT_EQ(AverageWeight(*m, w.q, l, wide)[0], l.weight[0]);
+    EXPECT_EQ(AverageWeight(*m, w.q, l, wide)[0], l.Weight()[0]);
     SetLobeAverageDisabledForTesting(false);
 }
 

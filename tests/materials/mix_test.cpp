@@ -70,7 +70,7 @@ TEST(Mix, EndPointsAreTheChildren) {
             for (std::size_t k = 0; k < lc.size(); ++k) {
                 EXPECT_EQ(lm[k].id, 2 * lc[k].id + int(isB));
                 EXPECT_EQ(lm[k].prob, lc[k].prob);
-                for (int j = 0; j < NumWavelengths; ++j) EXPECT_EQ(lm[k].weight[j], lc[k].weight[j]);
+                for (int j = 0; j < NumWavelengths; ++j) EXPECT_EQ(lm[k].Weight()[j], lc[k].Weight()[j]);
                 auto rm = km->EvalLobe(lm[k].id, lm[k].wo[0]);
                 auto rc = kc->EvalLobe(lc[k].id, lc[k].wo[0]);
                 ASSERT_TRUE(rm && rc);
@@ -145,13 +145,13 @@ TEST(Mix, ListsTheLobesOfTwoConductors) {
             EXPECT_LT(Length(l.wo[0] - ReflectLocal(wi)), 1e-15);
             EXPECT_NEAR(l.prob, share[id], 1e-15);
             for (int j = 0; j < NumWavelengths; ++j)
-                EXPECT_NEAR(l.weight[j], share[id] * FresnelConductor(cosI, n[id]), 1e-14);
+                EXPECT_NEAR(l.Weight()[j], share[id] * FresnelConductor(cosI, n[id]), 1e-14);
             auto r = k->EvalLobe(l.id, l.wo[0]);
             ASSERT_TRUE(r && r->hasJones);
             const FresnelCoefficients c = FresnelAmplitudes(cosI, 1.0, n[id]);
             EXPECT_LT(std::abs(r->jones[0].m[0][0] - std::sqrt(share[id]) * c.rs), 1e-14);
             EXPECT_LT(std::abs(r->jones[0].m[1][1] - std::sqrt(share[id]) * c.rp), 1e-14);
-            EXPECT_NEAR(r->mueller[0].m[0][0], l.weight[0], 1e-14);
+            EXPECT_NEAR(r->mueller[0].m[0][0], l.Weight()[0], 1e-14);
         }
         EXPECT_FALSE(k->EvalLobe(2, ReflectLocal(wi))) << "a's lobe 1 does not exist";
         EXPECT_FALSE(k->EvalLobe(-1, ReflectLocal(wi))) << "b's lobe −1 does not exist";
@@ -186,7 +186,7 @@ TEST(Mix, RemapsNegativeIdsAndKeepsTheirOrder) {
             if (x.id == l.id / 2) src = &x;
         ASSERT_NE(src, nullptr) << "mix lobe " << l.id;
         ++fromGrating;
-        EXPECT_NEAR(l.weight[0], 0.6 * src->weight[0], 1e-15);
+        EXPECT_NEAR(l.Weight()[0], 0.6 * src->Weight()[0], 1e-15);
         EXPECT_NEAR(l.prob, 0.6 * src->prob, 1e-15);
         auto rm = lmK->EvalLobe(l.id, l.wo[0]);
         auto rg = lgK->EvalLobe(src->id, src->wo[0]);
@@ -249,7 +249,7 @@ TEST(Mix, GratingAndRoughSurfaceReflectFOfTheLightFromEachDirection) {
         ASSERT_EQ(ref.size(), 1u);
         const SampledSpectrum halo = ContinuousFrom(*m, q, d, 0.02);
         for (int i = 0; i < wl.Count(); ++i) {
-            const double listed = ListedEnergyFrom(*m, q, i).energy, F = ref[0].weight[i];
+            const double listed = ListedEnergyFrom(*m, q, i).energy, F = ref[0].Weight()[i];
             EXPECT_NEAR(listed + halo[i], F, 3.5e-4 * F + 1e-7)
                 << "light from " << ToString(d) << ", slot " << i << ": listed " << listed << " + halo " << halo[i];
         }

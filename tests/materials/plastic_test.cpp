@@ -58,7 +58,7 @@ std::shared_ptr<Material> Plastic(double rho, double ior) {
 double TotalReflectance(const Material &m, const ScatterQuery &q) {
     double total = 0;
     const Prep k(m, q);
-    for (const NearDeltaLobe &l : k->ListNearDelta()) total += l.weight[0];
+    for (const NearDeltaLobe &l : k->ListNearDelta()) total += l.Weight()[0];
     const int n = 20000;
     const double h = 1.0 / n, side = q.wi.z > 0 ? 1 : -1;
     double s = 0;
@@ -115,7 +115,7 @@ TEST(Plastic, BlackBaseIsTheBareCoat) {
     const Prep k(*m, q);
     const std::span<const NearDeltaLobe> lobes = k->ListNearDelta();
     ASSERT_EQ(lobes.size(), 1u);
-    EXPECT_NEAR(lobes[0].weight[0], 0.04, 1e-15);
+    EXPECT_NEAR(lobes[0].Weight()[0], 0.04, 1e-15);
     EXPECT_EQ(lobes[0].prob, 1);
     EXPECT_EQ(k->Eval(DirectionFromCosTheta(0.5, 1))[0], 0);
 }

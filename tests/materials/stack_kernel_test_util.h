@@ -68,8 +68,8 @@ inline Listed List(const Material &m, const OneWave &w) {
     Listed out;
     out.count = int(k->ListNearDelta().size());
     for (const NearDeltaLobe &l : k->ListNearDelta()) {
-        if (l.id == 0) out.R = l.weight[0];
-        if (l.id == 1) out.T = l.weight[0] * Sqr(l.Eta(0));
+        if (l.id == 0) out.R = l.Weight()[0];
+        if (l.id == 1) out.T = l.Weight()[0] * Sqr(l.Eta(0));
     }
     return out;
 }

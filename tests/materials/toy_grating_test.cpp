@@ -88,15 +88,15 @@ class ToyGratingMaterial final : public Material {
                     const double lambda = q.wl->lambda[i];
                     if (!NearDeltaDirection(q.wi, q.etaOutside, q.etaOutside, shift, lambda, false, &l.wo[i])) continue;
                     const double a = std::pow(std::cyl_bessel_j(double(std::abs(j)), m.Modulation(q, lambda)), 2);
-                    l.weight[i] = a;
+                    l.SetWeight(i, a);
                     total[i] += a;
                 }
             }
             // Renormalised over the propagating orders; lobes are picked ∝ their hero weight.
             for (int k = 0; k < out.Count(); ++k) {
                 NearDeltaLobe &l = out[k];
-                for (int i = 0; i < count; ++i) l.weight[i] = total[i] > 0 ? m.reflectance_ * l.weight[i] / total[i] : 0;
-                l.prob = m.reflectance_ > 0 ? l.weight[0] / m.reflectance_ : 1.0 / out.Count();
+                for (int i = 0; i < count; ++i) l.SetWeight(i, total[i] > 0 ? m.reflectance_ * l.Weight()[i] / total[i] : 0);
+                l.prob = m.reflectance_ > 0 ? l.Weight()[0] / m.reflectance_ : 1.0 / out.Count();
             }
             lobes_ = out.Lobes();
         }
@@ -107,8 +107,8 @@ class ToyGratingMaterial final : public Material {
             LobeResponse r;
             r.hasJones = true;
             for (int i = 0; i < q_.wl->Count(); ++i) {
-                r.jones[i] = Jones::Identity() * Complex(std::sqrt(l->weight[i]), 0);
-                r.mueller[i] = Mueller::Identity() * l->weight[i];
+                r.jones[i] = Jones::Identity() * Complex(std::sqrt(l->Weight()[i]), 0);
+                r.mueller[i] = Mueller::Identity() * l->Weight()[i];
             }
             return r;
         }

@@ -127,7 +127,7 @@ TEST(TwoSided, FromBelowIsTheKernelMirrored) {
                 EXPECT_EQ(a.shift.y, b.shift.y);
                 for (int j = 0; j < NumWavelengths; ++j) {
                     EXPECT_EQ(a.wo[j], map(b.wo[j])) << "lobe " << a.id << ", slot " << j;
-                    EXPECT_EQ(a.weight[j], b.weight[j]);
+                    EXPECT_EQ(a.Weight()[j], b.Weight()[j]);
                 }
                 // Below, the lobe leaves on wi's (lower) side.
                 EXPECT_GT(a.wo[0].z * qt.wi.z, 0) << "lobe " << a.id << " on the wrong side";
@@ -172,7 +172,7 @@ TEST(TwoSided, FrontAndBackAreDifferentKernels) {
     const std::span<const NearDeltaLobe> la = kAbove->ListNearDelta(), lgold = kGold->ListNearDelta(),
                                          lb = kBelow->ListNearDelta();
     ASSERT_EQ(la.size(), 1u);
-    EXPECT_EQ(la[0].weight[0], lgold[0].weight[0]);
+    EXPECT_EQ(la[0].Weight()[0], lgold[0].Weight()[0]);
     EXPECT_EQ(lb.size(), 0u);
 
     TestRng rng(3);
@@ -262,7 +262,7 @@ TEST(TwoSided, FacesKeepTheirEnergySense) {
                 EXPECT_TRUE(halo.IsZero()) << "the grating face has no halo";
             }
             for (int i = 0; i < wl.Count(); ++i) {
-                const double listed = ListedEnergyFrom(*t, q, i).energy, F = ref[0].weight[i];
+                const double listed = ListedEnergyFrom(*t, q, i).energy, F = ref[0].Weight()[i];
                 EXPECT_NEAR(listed + halo[i], F, 3.5e-4 * F + 1e-7)
                     << "light from " << ToString(q.wi) << ", slot " << i << ": listed " << listed << " + halo " << halo[i];
             }

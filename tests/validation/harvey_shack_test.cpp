@@ -92,8 +92,8 @@ TEST(HarveyShackPlate, CameraSeesGlintPlusNarrowHaloCarryTheTotalReflectedFlux) 
         ScratchBuffer scratch;
         const std::span<const NearDeltaLobe> lobes = m.Prepare(q, scratch).ListNearDelta();
         ASSERT_EQ(lobes.size(), 1u);
-        const double glint = lobes[0].weight[0] * E * cosT;
-        RecordProperty("alpha_spec", std::to_string(lobes[0].weight[0] / F));
+        const double glint = lobes[0].Weight()[0] * E * cosT;
+        RecordProperty("alpha_spec", std::to_string(lobes[0].Weight()[0] / F));
         std::printf("harvey_shack plate: predicted glint %.6f + halo in field %.6f = %.6f (F·E·cosθ %.6f, %+.1e)\n",
                     glint, field, glint + field, expected, (glint + field) / expected - 1);
         EXPECT_NEAR(glint + field, expected, 3e-4 * expected)

@@ -223,7 +223,7 @@ SampledSpectrum AverageLobeWeight(const Material &m, const PreparedKernel &k, co
     const int count = q.wl->Count();
     if (disabledForTesting.load(std::memory_order_relaxed)) {
         for (int i = 0; i < count; ++i)
-            if (wavelength < 0 || i == wavelength) out[i] = lobe.weight[i];
+            if (wavelength < 0 || i == wavelength) out[i] = lobe.Weight()[i];
         return out;
     }
     std::array<bool, NumWavelengths> done{};
@@ -245,11 +245,11 @@ SampledSpectrum AverageLobeWeight(const Material &m, const PreparedKernel &k, co
         const double norm = ForEachNode(k, lobe, w, i, [&](const Vec3 &omega, const Vec3 &wiPrime, double weight, bool single) {
             SampledSpectrum a(0.0);
             if (single && SameDirection(omega, lobe.wo[std::size_t(i)], 1e-12)) {
-                a = lobe.weight;  // the lobe's own direction: its listed weight
+                a = lobe.Weight(slots);  // the lobe's own direction: its listed weight
             } else {
                 // The kernel's answer for this lobe alone where it gives one, else a new preparation.
                 if (const std::optional<SampledSpectrum> at = k.LobeWeightAt(lobe.id, wiPrime, slots)) a = *at;
-                else if (const NearDeltaLobe *l = PrepareAt(m, k, wiPrime).FindLobe(lobe.id)) a = l->weight;
+                else if (const NearDeltaLobe *l = PrepareAt(m, k, wiPrime).FindLobe(lobe.id)) a = l->Weight();
                 ++counters.evaluations;
             }
             const double t = transfer == LobeTransfer::Irradiance ? RelativeTransfer(omega, wiPrime, lobe, i, w, q.wi) : 1.0;

@@ -59,6 +59,15 @@ unsigned MaskOf(unsigned scatterFlags) {
 }
 }  // namespace
 
+void NearDeltaLobe::Complete(unsigned slots) const {
+    const std::optional<SampledSpectrum> w = pending_.kernel->LobeWeightAt(pending_.id, pending_.kernel->Query().wi, slots);
+    if (!w) throw Error("a kernel deferred lobe weights it does not answer in LobeWeightAt (a kernel bug)");
+    for (int i = 0; i < NumWavelengths; ++i)
+        if ((slots >> i) & 1u) weight_[i] = (*w)[i] * pending_.scale;
+    pending_.slots &= ~slots;
+    if (!pending_.slots) pending_ = {};
+}
+
 const NearDeltaLobe *PreparedKernel::FindLobe(int id) const {
     for (const NearDeltaLobe &l : lobes_)
         if (l.id == id) return &l;
@@ -100,7 +109,7 @@ std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lob
         if (!(l.prob > 0)) return std::nullopt;
         ScatterSample s;
         s.wo = l.wo[0];
-        s.weight = l.weight / l.prob;
+        s.weight = l.Weight() / l.prob;
         s.pdf = l.prob;
         s.lobe = l.id;
         s.flags = l.flags;

@@ -121,17 +121,64 @@ struct ScatterSample {
 /// tangential wave-vector the lobe adds [rad/m]: 0 for a mirror or Snell's law, j·2π/Λ·ĝ for
 /// grating order j. Evanescent lobes are not listed; a lobe evanescent at some companion
 /// wavelength has weight 0 there.
+class PreparedKernel;
 struct NearDeltaLobe {
     int id = 0;         // stable per kernel; Sample returns the same id in ScatterSample::lobe
     unsigned flags = 0; // ScatterNearDelta | ScatterReflection or ScatterTransmission [| ScatterDispersive]
-    std::array<Vec3, NumWavelengths> wo{};  // local, unit, per wavelength (wo[0]: the hero)
-    /// a_j(λ): the radiance throughput of the lobe, as ScatterSample::weight·pdf (so including
-    /// the (η_i/η_t)² radiance factor on refraction). Σ_j a_j ≤ 1 for a passive surface.
-    SampledSpectrum weight;
+    /// Local, unit, per wavelength (wo[0]: the hero). A slot where the lobe carries nothing has
+    /// some direction of the lobe (a propagating slot its own, an evanescent one the hero's).
+    std::array<Vec3, NumWavelengths> wo{};
     std::array<double, NumWavelengths> nIn{}, nOut{};  // absolute real indices of wi's and wo's media
     Vec2 shift;          // tangential wave-vector shift [rad/m], local x, y
     double prob = 0;     // the probability with which Sample picks this lobe for this query
     double Eta(int i) const { return nOut[i] / nIn[i]; }  // relative index crossed
+
+    /// a_j(λ): the radiance throughput of the lobe, as ScatterSample::weight·pdf (so including
+    /// the (η_i/η_t)² radiance factor on refraction). Σ_j a_j ≤ 1 for a passive surface. A kernel
+    /// may list the companion wavelengths' weights lazily (DeferWeights): the first call computes
+    /// them (PreparedKernel::LobeWeightAt of the kernel that listed the lobe, which must still be
+    /// alive: read it before that kernel's ScratchBuffer is rewound, also through a copy).
+    /// With `slots`, only the slots with their bit set are computed (the others may be pending).
+    const SampledSpectrum &Weight(unsigned slots = ~0u) const {
+        if (pending_.slots & slots) Complete(pending_.slots & slots);
+        return weight_;
+    }
+    /// Whether the lobe may carry light at carried wavelength slot i (its weight there is not
+    /// known to be 0), or at any: without computing a pending weight.
+    bool MayCarry(int i) const { return ((pending_.slots >> i) & 1u) || weight_[i] > 0; }
+    bool MayCarryAny() const { return pending_.slots || !weight_.IsZero(); }
+    /// The slots whose weight is still to be computed (bit i: slot i).
+    unsigned PendingSlots() const { return pending_.slots; }
+    void SetWeight(const SampledSpectrum &w) {
+        weight_ = w;
+        pending_ = {};
+    }
+    void SetWeight(int i, double w) {
+        weight_[i] = w;
+        pending_.slots &= ~(1u << i);
+    }
+    /// The weights of `slots` are left to kernel.LobeWeightAt(id, kernel.Query().wi, slots), asked
+    /// when Weight() is first called (a grating lists its hero wavelength's efficiencies, which
+    /// Sample needs, and computes the companions' only for the lobes some light may reach).
+    void DeferWeights(unsigned slots, const PreparedKernel &kernel) {
+        pending_ = slots ? Pending{&kernel, id, 1.0, slots} : Pending{};
+    }
+    /// Every weight times s (a mixture's share; pending ones once they are computed).
+    void ScaleWeight(double s) {
+        weight_ *= s;
+        pending_.scale *= s;
+    }
+
+  private:
+    struct Pending {
+        const PreparedKernel *kernel = nullptr;  // the kernel that listed the lobe
+        int id = 0;                              // the lobe's id there
+        double scale = 1;                        // times this
+        unsigned slots = 0;                      // bit i: slot i is pending
+    };
+    void Complete(unsigned slots) const;  // fills these pending slots (material.cpp)
+    mutable SampledSpectrum weight_;
+    mutable Pending pending_;
 };
 /// The near-delta lobes a kernel lists while it is prepared (Material::Prepare), in the scratch
 /// buffer: room for at most `capacity` lobes, which the kernel knows (a smooth surface 2, a grating

@@ -115,7 +115,7 @@ class Scene {
                                   ScratchBuffer &scratch, long long &rays) const {
         return Transmittance(ray, tMax, wl, rayOptics, scratch, rays,
                              [](const SurfaceInteraction &, const PreparedKernel &, const NearDeltaLobe &l, double) {
-                                 return l.weight;
+                                 return l.Weight();
                              });
     }
     /// The shadow ray from the surface point `from` to the point `to` (stopping ShadowEpsilon of the

@@ -53,7 +53,7 @@ bool Transmits(const Material &m) {
         ScratchBuffer scratch;
         const PreparedKernel &k = m.Prepare(q, scratch);
         for (const NearDeltaLobe &l : k.ListNearDelta())
-            if ((l.flags & ScatterTransmission) && l.weight.Max() > 0) return true;
+            if ((l.flags & ScatterTransmission) && l.Weight().Max() > 0) return true;
         for (int i = 0; i < 16; ++i) {
             const double u = (i + 0.5) / 16;
             auto s = k.Sample(u, Vec2(std::fmod(u * 7.31, 1.0), std::fmod(u * 3.77, 1.0)));
