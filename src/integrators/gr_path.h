@@ -49,6 +49,7 @@ inline ScatterQuery GrQuery(const SurfaceInteraction &si, const SpectralGenRay &
     q.wi = si.shading.ToLocal(-gr.d);
     q.wl = &wl;
     q.rayOptics = rayOptics;  // a spread-free GR continues as a classical ray (theory §9 item 5)
+    q.heroAfterDispersive = true;  // PathEstimate::Continue drops the companions after a dispersive lobe
     q.tex = TextureEvalContext(si, rayOptics ? 0 : std::sqrt(gr.beta2[0]));  // hero footprint radius β
     q.gr = rayOptics ? nullptr : &gr;
     q.si = &si;
@@ -685,6 +686,7 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
                 }
                 if (!any) continue;
             }
+            if (!uniform && !(lobe.Weight(1u << i)[i] > 0)) continue;  // a deferred weight that came out 0
             const SpectralGenRay out = probe.TimeReversed();  // the GR leaving along the lobe
             // a_j·M per light, a_j averaged over the plane waves that light's measurement integrates
             // (ThroughLobeWeight; per wavelength along a dispersive lobe's own direction).

@@ -78,7 +78,7 @@ struct LobeTarget {
         if (lobe && lobe->Weight()[i] > 0) inc = light->IncidenceOnGR(gp, wl);
         if (inc) {
             st->si = *si;
-            st->lobe = *lobe;
+            st->lobe = lobe->Detached();  // kept past the Rewind below
             st->dir = dir;
             st->inc = *inc;
             st->wo = si->shading.ToWorld(lobe->wo[i]);

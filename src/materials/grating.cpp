@@ -557,7 +557,7 @@ std::optional<LobeResponse> GratingMaterial::Prepared::EvalLobe(int lobe, const 
     // the coating's interference by the light's coherence. The relief itself has none (see above).
     r.coherence.any = !transmitted && surface.LayerCount() > 0;
     for (int i = 0; i < q.wl->Count(); ++i) {
-        if (l->Weight()[i] == 0) continue;  // evanescent at this wavelength: no response
+        if (l->Weight(1u << i)[i] == 0) continue;  // evanescent at this wavelength: no response
         // The orders of the light arriving along the lobe (its source direction at this wavelength).
         GratingOrders o;
         m_->SourceEfficiency(q, i, site_, l->wo[std::size_t(i)], transmitted, j, &o);

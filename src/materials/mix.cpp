@@ -92,11 +92,11 @@ class MixMaterial final : public Material, public ReferenceDirection {
         return std::make_unique<MixMaterial>(std::move(a), std::move(b), std::move(w));
     }
 
-    /// Presets for the contract suite (fixtures of tests/materials/material_test_util.h). Three keep
+    /// Presets for the contract suite (fixtures of tests/materials/material_test_util.h). Four keep
     /// its run time down; the end points w = 0 and 1 and a mix of two continuous kernels are tested
     /// against the children themselves (tests/materials/mix_test.cpp).
     static std::vector<ParamDict> TestPresets() {
-        std::vector<ParamDict> p(3);
+        std::vector<ParamDict> p(4);
         // Two metals under a textured weight (a ramp over u from 0.1 to 0.9): two lobes in the same
         // direction.
         p[0].Set("a", Value::Ref("contract_gold"))
@@ -110,6 +110,9 @@ class MixMaterial final : public Material, public ReferenceDirection {
         p[2].Set("a", Value::Ref("contract_grating"))
             .Set("b", Value::Ref("contract_rough"))
             .Set("weight_texture", Value::Ref("contract_ramp"));
+        // A mixture of mixtures: a grating's orders scaled twice (deferred weights bit for bit as
+        // the eager listing's, (a·s₁)·s₂).
+        p[3].Set("a", Value::Ref("contract_grating_mix")).Set("b", Value::Ref("contract_grating")).Set("weight", Value::Number(0.6));
         return p;
     }
 
@@ -158,11 +161,13 @@ class MixMaterial final : public Material, public ReferenceDirection {
     /// The mixture's id of child lobe `id` (a: 2·id, b: 2·id + 1).
     static int MixId(int id, bool isB) { return 2 * id + int(isB); }
 
-    /// A child's listed lobe as the mixture's: id remapped, weight and probability times `share`.
-    static void Scale(NearDeltaLobe &l, bool isB, double share) {
+    /// A child's listed lobe as the mixture's: id remapped, weight and probability times `share`;
+    /// weights the child deferred are the mixture's LobeWeightAt (the child's times `share`).
+    static void Scale(NearDeltaLobe &l, bool isB, double share, const PreparedKernel &mixture) {
         l.id = MixId(l.id, isB);
         l.ScaleWeight(share);
         l.prob *= share;
+        l.DeferWeights(l.PendingSlots(), mixture);
     }
 
     /// The mixture at one hit: w there and the children prepared (a if w < 1, b if w > 0).
@@ -182,7 +187,7 @@ class MixMaterial final : public Material, public ReferenceDirection {
                     const bool takeA = ib == lb.size() || (ia < la.size() && MixId(la[ia].id, false) < MixId(lb[ib].id, true));
                     NearDeltaLobe &l = out.Add();
                     l = takeA ? la[ia++] : lb[ib++];
-                    Scale(l, !takeA, takeA ? 1 - w_ : w_);
+                    Scale(l, !takeA, takeA ? 1 - w_ : w_, *this);
                 }
                 lobes_ = out.Lobes();
             }

@@ -1027,6 +1027,42 @@ TEST_P(MaterialContract, DeferredWeightsAreTheEagerOnes) {
     RecordProperty("deferred_lobes", std::to_string(deferred));
 }
 
+TEST_P(MaterialContract, HeroAfterDispersiveChangesOnlyCompanions) {
+    // ScatterQuery::heroAfterDispersive (the caller follows a dispersive lobe at the hero alone)
+    // changes nothing of a sample but a dispersive near-delta lobe's companion weights, which may
+    // then be 0: the same lobe, direction, pdf, flags, η and hero weight, bit for bit, at the same
+    // random numbers; every other sample's weights the same in every slot.
+    for (const bool rayOptics : {false, true}) {
+        const ScatterQuery &q = rayOptics ? qRay_ : q_;
+        ScatterQuery hero = q;
+        hero.heroAfterDispersive = true;
+        const PreparedKernel &full = material_->Prepare(q, scratch_), &lean = material_->Prepare(hero, scratch_);
+        TestRng rng = Rng(rayOptics ? "heroafterdispersive-ray" : "heroafterdispersive");
+        int heroOnly = 0;
+        for (int n = 0; n < 2000; ++n) {
+            const double u0 = rng.Uniform();
+            const Vec2 u(rng.Uniform(), rng.Uniform());
+            const std::optional<ScatterSample> a = full.Sample(u0, u), b = lean.Sample(u0, u);
+            ASSERT_EQ(a.has_value(), b.has_value()) << "sample " << n;
+            if (!a) continue;
+            ASSERT_EQ(a->lobe, b->lobe);
+            ASSERT_EQ(a->flags, b->flags);
+            ASSERT_EQ(a->pdf, b->pdf);
+            ASSERT_EQ(a->eta, b->eta);
+            ASSERT_TRUE(a->wo == b->wo) << ToString(a->wo) << " vs " << ToString(b->wo);
+            ASSERT_EQ(a->weight[0], b->weight[0]) << "lobe " << a->lobe;
+            const bool dispersive = (a->flags & ScatterNearDelta) && (a->flags & ScatterDispersive);
+            bool lean0 = false;
+            for (int i = 1; i < q.wl->Count(); ++i) {
+                if (dispersive && b->weight[i] == 0) lean0 = lean0 || a->weight[i] != 0;
+                else ASSERT_EQ(a->weight[i], b->weight[i]) << "lobe " << a->lobe << ", slot " << i;
+            }
+            heroOnly += lean0;
+        }
+        RecordProperty(rayOptics ? "hero_only_ray" : "hero_only", std::to_string(heroOnly));
+    }
+}
+
 TEST_P(MaterialContract, EvalPdfIsEvalAndPdf) {
     // EvalPdf is a faster way to the same numbers: exactly (EvalFrom, Pdf), for a plane wave, a
     // spherical wave from 0.1 mm and, for footprint-aware kernels, from 5 µm, in both regimes.

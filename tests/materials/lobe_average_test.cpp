@@ -34,7 +34,7 @@ struct Film {
 // The lobe `id` listed for query q (fails the test if absent).
 NearDeltaLobe Lobe(const Material &m, const ScatterQuery &q, int id) {
     ScratchBuffer scratch;
-    if (const NearDeltaLobe *l = m.Prepare(q, scratch).FindLobe(id)) return *l;
+    if (const NearDeltaLobe *l = m.Prepare(q, scratch).FindLobe(id)) return l->Detached();
     ADD_FAILURE() << "lobe " << id << " not listed";
     return NearDeltaLobe{};
 }

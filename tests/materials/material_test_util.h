@@ -38,6 +38,8 @@ inline constexpr const char *UnderTestName = "under_test";
 ///                      max_order = 5)   (energy per incident direction, listed orders)
 ///   @contract_rough    material harvey_shack(substrate = @contract_gold, sigma_h = 20 nm,
 ///                      alpha_r = 0.1)   (energy per incident direction, a glint and a halo)
+///   @contract_grating_mix material mix(a = @contract_grating, b = @contract_rough, weight = 0.3)
+///                      (for a mixture of mixtures)
 inline void AddFixtures(SceneDesc &desc) {
     auto add = [&](const char *keyword, const char *type, const char *name, const ParamDict &params) {
         SceneEntity e;
@@ -80,6 +82,11 @@ inline void AddFixtures(SceneDesc &desc) {
             .Set("substrate", Value::Ref("contract_gold"))
             .Set("sigma_h", Value::Number(20e-9, Dim::Length()))
             .Set("alpha_r", Value::Number(0.1)));
+    add("Material", "mix", "contract_grating_mix",
+        ParamDict()
+            .Set("a", Value::Ref("contract_grating"))
+            .Set("b", Value::Ref("contract_rough"))
+            .Set("weight", Value::Number(0.3)));
     add("Texture", "gradient", "contract_thickness",
         ParamDict()
             .Set("value0", Value::Number(80e-9, Dim::Length()))

@@ -104,7 +104,7 @@ enum class LobeTransfer {
 };
 
 /// ⟨a_j⟩ of listed lobe `lobe` of `k` (kernel m prepared for the hit's query) over the ensemble, per
-/// carried wavelength (only `wavelength` when ≥ 0; the others are 0). Equals lobe.weight where the
+/// carried wavelength (only `wavelength` when ≥ 0; the others are 0). Equals lobe.Weight() where the
 /// ensemble is a single direction along the lobe. Every node asks k.LobeWeightAt, or prepares m for
 /// its own direction in a scratch buffer of this file's (k's buffer is not touched).
 SampledSpectrum AverageLobeWeight(const Material &m, const PreparedKernel &k, const NearDeltaLobe &lobe,

@@ -59,11 +59,16 @@ unsigned MaskOf(unsigned scatterFlags) {
 }
 }  // namespace
 
+void NearDeltaLobe::DeferWeights(unsigned slots, const PreparedKernel &kernel) {
+    if (slots & 1u) throw Error("a kernel deferred the hero's weight of lobe " + std::to_string(id) + " (a kernel bug)");
+    pending_ = slots ? Pending{&kernel, id, slots} : Pending{};
+}
+
 void NearDeltaLobe::Complete(unsigned slots) const {
     const std::optional<SampledSpectrum> w = pending_.kernel->LobeWeightAt(pending_.id, pending_.kernel->Query().wi, slots);
     if (!w) throw Error("a kernel deferred lobe weights it does not answer in LobeWeightAt (a kernel bug)");
     for (int i = 0; i < NumWavelengths; ++i)
-        if ((slots >> i) & 1u) weight_[i] = (*w)[i] * pending_.scale;
+        if ((slots >> i) & 1u) weight_[i] = (*w)[i];
     pending_.slots &= ~slots;
     if (!pending_.slots) pending_ = {};
 }
@@ -81,7 +86,7 @@ std::optional<ScatterSample> PreparedKernel::Sample(double u0, const Vec2 &u, un
 }
 
 std::optional<ScatterSample> PreparedKernel::SampleLobes(double u0, const Vec2 &) const {
-    return SampleListedLobe(lobes_, u0);
+    return SampleListedLobe(lobes_, u0, q_.heroAfterDispersive);
 }
 
 std::optional<LobeResponse> PreparedKernel::EvalContinuousLobes(const Vec3 &wo) const {
@@ -101,7 +106,7 @@ std::optional<LobeResponse> PreparedKernel::EvalContinuousLobes(const Vec3 &wo) 
     return sum;
 }
 
-std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0) {
+std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0, bool heroOnlyIfDispersive) {
     double c = 0;
     for (const NearDeltaLobe &l : lobes) {
         c += l.prob;
@@ -109,7 +114,8 @@ std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lob
         if (!(l.prob > 0)) return std::nullopt;
         ScatterSample s;
         s.wo = l.wo[0];
-        s.weight = l.Weight() / l.prob;
+        if (heroOnlyIfDispersive && (l.flags & ScatterDispersive)) s.weight[0] = l.Weight(1u)[0] / l.prob;
+        else s.weight = l.Weight() / l.prob;
         s.pdf = l.prob;
         s.lobe = l.id;
         s.flags = l.flags;

@@ -69,6 +69,11 @@ struct ScatterQuery {
     /// Ray-optics limit requested (the `ray` integrator, spread-free GRs): near-delta lobes are
     /// true deltas and wave effects collapse to their geometric limit.
     bool rayOptics = true;
+    /// The caller follows a sampled dispersive near-delta lobe at the hero wavelength alone (theory
+    /// §0 D10: `grt` drops the companions from the throughput there): Sample may then return such a
+    /// lobe's weight at the hero only, the companions 0 (a kernel that defers companion weights,
+    /// NearDeltaLobe::DeferWeights, need not compute them). Nothing else changes.
+    bool heroAfterDispersive = false;
     TextureEvalContext tex;                // where textures are evaluated (uv, p, dp/du, β …)
     /// The incident generalized ray and the hit, for kernels that depend on the GR's footprint:
     /// `gr` is the traced GR at the hit point in world space (gr->d points into the surface,
@@ -157,23 +162,25 @@ struct NearDeltaLobe {
         weight_[i] = w;
         pending_.slots &= ~(1u << i);
     }
-    /// The weights of `slots` are left to kernel.LobeWeightAt(id, kernel.Query().wi, slots), asked
-    /// when Weight() is first called (a grating lists its hero wavelength's efficiencies, which
-    /// Sample needs, and computes the companions' only for the lobes some light may reach).
-    void DeferWeights(unsigned slots, const PreparedKernel &kernel) {
-        pending_ = slots ? Pending{&kernel, id, 1.0, slots} : Pending{};
-    }
-    /// Every weight times s (a mixture's share; pending ones once they are computed).
-    void ScaleWeight(double s) {
-        weight_ *= s;
-        pending_.scale *= s;
+    /// The weights of `slots` (never the hero's, bit 0: Sample needs it) are left to
+    /// kernel.LobeWeightAt(id, kernel.Query().wi, slots) — `id` as set now — asked when Weight()
+    /// is first called (a grating lists its hero wavelength's efficiencies and computes the
+    /// companions' only for the lobes some light may reach). A kernel that lists a child's lobes
+    /// as its own (a mixture, scaled by ScaleWeight) defers their pending slots again to itself.
+    void DeferWeights(unsigned slots, const PreparedKernel &kernel);
+    /// The computed weights times s (a mixture's share; pending slots are deferred again, above).
+    void ScaleWeight(double s) { weight_ *= s; }
+    /// A copy with every weight computed and no tie to the kernel that listed it: what to keep
+    /// past that kernel's ScratchBuffer (Rewind, Reset).
+    NearDeltaLobe Detached() const {
+        Weight();
+        return *this;
     }
 
   private:
     struct Pending {
         const PreparedKernel *kernel = nullptr;  // the kernel that listed the lobe
         int id = 0;                              // the lobe's id there
-        double scale = 1;                        // times this
         unsigned slots = 0;                      // bit i: slot i is pending
     };
     void Complete(unsigned slots) const;  // fills these pending slots (material.cpp)
@@ -338,7 +345,7 @@ class PreparedKernel {
         (void)kappaMax;
         return 0;
     }
-    /// The weight [radiance throughput, as NearDeltaLobe::weight] listed lobe `id` would have if the
+    /// The weight [radiance throughput, as NearDeltaLobe::Weight()] listed lobe `id` would have if the
     /// kernel were prepared at the same hit (same textures, wavelengths, media) for the incident
     /// direction wiPrime (local, unit, on Query().wi's side of the surface) instead of Query().wi:
     /// per carried wavelength slot i with bit i set in `slots` (the others may be anything), 0 where
@@ -509,9 +516,10 @@ struct OrderRange {
 OrderRange PropagatingOrders(const Vec3 &wi, double nIn, double nOut, const Vec2 &unit, double lambda, int maxOrder);
 
 /// A kernel's SampleLobes for lobes it has listed: picks lobe j with probability `prob` (u0) and
-/// returns its hero direction with weight a_j/p_j, pdf p_j, its id, flags and η. Nullopt if no
+/// returns its hero direction with weight a_j/p_j (with `heroOnlyIfDispersive`, a dispersive lobe's
+/// at the hero only: ScatterQuery::heroAfterDispersive), pdf p_j, its id, flags and η. Nullopt if no
 /// lobe is listed or the pick has p = 0.
-std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0);
+std::optional<ScatterSample> SampleListedLobe(std::span<const NearDeltaLobe> lobes, double u0, bool heroOnlyIfDispersive = false);
 
 /// True if unit directions a and b agree to `tol` [rad] (EvalLobe's test for a near-delta lobe).
 inline bool SameDirection(const Vec3 &a, const Vec3 &b, double tol = 1e-9) { return Length(a - b) <= tol; }
