@@ -48,6 +48,11 @@ std::shared_ptr<GratingMaterial> MakeGrating(const ParamDict &p, bool deep = fal
 }
 
 // A wave-regime query (as grt asks) from direction (θ, φ) of the local frame; θ > 90° is below.
+/// A plain grating of period Λ [m] and height 0.1 µm on the metal below.
+std::shared_ptr<GratingMaterial> MetalGrating(double period) {
+    return MakeGrating(ParamDict().Set("substrate", Value::Ref("metal")).Set("period", Len(period)).Set("height", Len(0.1 * Um)));
+}
+
 ScatterQuery Wave(double theta, double phi, const SampledWavelengths &wl, Vec2 uv = Vec2(0.5, 0.5)) {
     ScatterQuery q;
     q.wi = Vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
@@ -645,10 +650,7 @@ TEST(Grating, AnOrderEvanescentAtTheHeroIsListedForItsCompanions) {
     // Λ = 0.6 µm at normal incidence: order ±1 is evanescent at the 700 nm hero (λ/Λ > 1) but
     // propagates at the 445 and 530 nm companions. It must be listed (grt measures companions
     // along their own directions), with weight 0 and probability 0 at the hero.
-    auto grating = MakeGrating(ParamDict()
-                                   .Set("substrate", Value::Ref("metal"))
-                                   .Set("period", Len(0.6 * Um))
-                                   .Set("height", Len(0.1 * Um)));
+    auto grating = MetalGrating(0.6 * Um);
     ASSERT_TRUE(grating);
     const SampledWavelengths wl = TestWavelengths(700 * Nm);
     ASSERT_NEAR(wl.lambda[1], 445 * Nm, 1e-15);
@@ -677,10 +679,7 @@ TEST(Grating, CompanionEfficienciesAreComputedWhenRead) {
     // wavelength as the hero gives (the kernel contract checks every preset so). A lobe whose
     // pending weights are asked of another kernel — the grating prepared at another incidence —
     // reads differently: the comparison sees a wrong completion.
-    auto grating = MakeGrating(ParamDict()
-                                   .Set("substrate", Value::Ref("metal"))
-                                   .Set("period", Len(1.2 * Um))
-                                   .Set("height", Len(0.1 * Um)));
+    auto grating = MetalGrating(1.2 * Um);
     ASSERT_TRUE(grating);
     const SampledWavelengths wl = TestWavelengths(550 * Nm);
     const ScatterQuery q = Wave(20 * Deg, 0.3, wl), other = Wave(35 * Deg, 0.3, wl);
