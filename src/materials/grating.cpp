@@ -388,6 +388,13 @@ class GratingMaterial::Prepared final : public PreparedKernel {
     /// first wavelength where it carries light, or −1. `scratch` holds the source's orders.
     int Order(const Vec3 &wi, bool transmitted, int j, unsigned slots, std::array<Vec3, NumWavelengths> &wo,
               SampledSpectrum &weight, GratingOrders &scratch) const;
+    /// Order j's direction at carried wavelength slot i for light leaving along wi (the vector
+    /// grating equation, shift j·2π/Λ·ĝ as List's l.shift); false where it is evanescent.
+    bool OrderDirection(const Vec3 &wi, bool transmitted, int j, int i, Vec3 *wo) const {
+        const auto [nWi, nFar] = Indices(wi, i);
+        const Vec2 shift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period) * double(j);
+        return NearDeltaDirection(wi, nWi, transmitted ? nFar : nWi, shift, q_.wl->lambda[i], transmitted, wo);
+    }
     /// The indices of wi's medium and of the far side (the substrate, or the outside when wi is
     /// inside) at carried wavelength slot i.
     std::pair<double, double> Indices(const Vec3 &wi, int i) const {
@@ -453,13 +460,8 @@ void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeLi
             unsigned deferred = 0;
             int lit = Order(q.wi, transmitted, j, slots & 1u, wo, weight, scratch);
             if (lit == 0) {
-                for (int i = 1; i < count; ++i) {
-                    if (!((slots >> i) & 1u)) continue;
-                    const auto [nWi, nFar] = Indices(q.wi, i);
-                    if (NearDeltaDirection(q.wi, nWi, transmitted ? nFar : nWi, unitShift * double(j), q.wl->lambda[i],
-                                           transmitted, &wo[std::size_t(i)]))
-                        deferred |= 1u << i;
-                }
+                for (int i = 1; i < count; ++i)
+                    if (((slots >> i) & 1u) && OrderDirection(q.wi, transmitted, j, i, &wo[std::size_t(i)])) deferred |= 1u << i;
             } else {
                 lit = Order(q.wi, transmitted, j, slots & ~1u, wo, weight, scratch);
             }
@@ -503,14 +505,13 @@ int GratingMaterial::Prepared::Order(const Vec3 &wi, bool transmitted, int j, un
                                      std::array<Vec3, NumWavelengths> &wo, SampledSpectrum &weight,
                                      GratingOrders &scratch) const {
     const ScatterQuery &q = q_;
-    const Vec2 shift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period) * double(j);  // as List's l.shift
     int lit = -1;
     for (int i = 0; i < q.wl->Count(); ++i) {
         if (!((slots >> i) & 1u)) continue;
         const std::size_t s = std::size_t(i);
+        if (!OrderDirection(wi, transmitted, j, i, &wo[s])) continue;
         const auto [nWi, nFar] = Indices(wi, i);
         const double nOut = transmitted ? nFar : nWi;
-        if (!NearDeltaDirection(wi, nWi, nOut, shift, q.wl->lambda[i], transmitted, &wo[s])) continue;
         const double energy = m_->SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch, true);
         const double ratio = nWi / nOut;
         weight[i] = transmitted ? energy * ratio * ratio : energy;  // (η_i/η_t)²: radiance
