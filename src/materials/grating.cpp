@@ -425,7 +425,7 @@ double GratingMaterial::Prepared::AngularBandwidth(double kappaMax) const {
     if (m.transmission_)
         relief += k0 * m.height_ * kappaMax / std::sqrt(std::max(nSub * nSub - kappaMax * kappaMax, 1e-6));
     return HeroToShortest(*q.wl) * (relief + m.surface_->Bandwidth(lambda, q.etaOutside, kappaMax, inside,
-                                                                      site_.thickness, LobeAverageTolerance));
+                                                                      site_.thickness, site_.substrate[0], LobeAverageTolerance));
 }
 
 void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeList &out) const {

@@ -372,7 +372,8 @@ class HarveyShackMaterial final : public Material {
             const double lambda = q_.wl->lambda[0];
             const double k0 = 2 * Pi / lambda;
             return HeroToShortest(*q_.wl) *
-                   (m.surface_->Bandwidth(lambda, q_.etaOutside, kappaMax, inside, l_.thickness, LobeAverageTolerance) +
+                   (m.surface_->Bandwidth(lambda, q_.etaOutside, kappaMax, inside, l_.thickness, l_.substrate[0],
+                                          LobeAverageTolerance) +
                     8 * k0 * k0 * m.sigma_ * m.sigma_ * kappaMax);
         }
 

@@ -77,7 +77,8 @@ class SmoothKernel::Prepared final : public PreparedKernel {
     std::optional<SampledSpectrum> LobeWeightAt(int id, const Vec3 &wiPrime, unsigned slots) const override;
     double AngularBandwidth(double kappaMax) const override {
         return HeroToShortest(*q_.wl) * k_->surface_.Bandwidth(q_.wl->lambda[0], q_.etaOutside, kappaMax,
-                                                              k_->FromInside(q_), thickness_, LobeAverageTolerance);
+                                                              k_->FromInside(q_), thickness_, w_[0].substrate,
+                                                              LobeAverageTolerance);
     }
 
   private:

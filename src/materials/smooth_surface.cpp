@@ -123,8 +123,8 @@ double SmoothSurface::Shear(double lambda, double etaOutside, double cosI, bool 
 }
 
 double SmoothSurface::Bandwidth(double lambda, double etaOutside, double kappa, bool fromInside,
-                                const double *thickness, double tol) const {
-    const Complex substrate = SubstrateIndex(lambda), outside(etaOutside, 0);
+                                const double *thickness, Complex substrate, double tol) const {
+    const Complex outside(etaOutside, 0);
     const Complex incident = fromInside ? substrate : outside;
     // cosθ in the incident medium for this κ (complex beyond grazing: the bound then still holds).
     const Complex cosI = std::sqrt(1.0 - Complex(kappa * kappa, 0) / (incident * incident));

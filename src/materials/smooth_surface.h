@@ -100,10 +100,11 @@ class SmoothSurface {
 
     /// PreparedKernel::AngularBandwidth of the surface for light arriving with tangential wave-vector
     /// κ = kappa (units of k₀) from the outside (index etaOutside) or, if fromInside, from the
-    /// substrate, with the layers' thicknesses at the hit (Thicknesses; nullptr for a bare surface):
+    /// substrate, with the layers' thicknesses at the hit (Thicknesses; nullptr for a bare surface)
+    /// and the substrate's index at lambda (SubstrateIndex(lambda), as the caller has it):
     /// LayerStackBandwidth at vacuum wavelength lambda, tolerance tol (theory §0 D15).
     double Bandwidth(double lambda, double etaOutside, double kappa, bool fromInside, const double *thickness,
-                     double tol) const;
+                     Complex substrate, double tol) const;
 
     std::string ToString() const;
 

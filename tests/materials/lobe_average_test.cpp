@@ -8,7 +8,10 @@
 // LobeAverageTolerance); a mean-direction evaluation misses it (shown).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
+#include <random>
+#include <vector>
 
 #include "core/render/lobe_average.h"
 #include "stack_kernel_test_util.h"
@@ -250,6 +253,49 @@ TEST(LobeAverage, PointEnsembleAtTheLobeIsTheListedWeightAndTheSwitchRestoresIt)
     SetLobeAverageDisabledForTesting(true);
     EXPECT_EQ(AverageWeight(*m, w.q, l, wide)[0], l.Weight()[0]);
     SetLobeAverageDisabledForTesting(false);
+}
+
+// The rules ask a cheap rate bound first (RateBound::Bound) and skip the 5×5 sampled rates where it
+// already allows one node: the bound must be at least the sampled rates wherever it answers, answer
+// for the small boxes off the normal the renders ask about, and be tight enough there to matter.
+TEST(LobeAverage, TheCheapRateBoundIsAtLeastTheSampledRates) {
+    std::mt19937_64 rng(20261205);
+    std::uniform_real_distribution<double> u01(0, 1);
+    int cases = 0, answered = 0, small = 0, smallAnswered = 0;
+    std::vector<double> ratio;  // bound / sampled on small boxes
+    for (const double d : {0.3e-6, 3e-6, 30e-6}) {
+        Film film;
+        film.d = d;
+        film.n = 1.56;
+        auto m = Kernel("thin_film", film.Params());
+        for (int t = 0; t < 400; ++t) {
+            const double theta = Radians(1 + 84 * u01(rng)), phi = 2 * Pi * u01(rng);
+            OneWave w(Lambda, std::cos(theta), phi);
+            const Prep k(*m, w.q);
+            const Vec3 centre(std::sin(theta) * std::cos(phi + Pi), std::sin(theta) * std::sin(phi + Pi), std::cos(theta));
+            const double half = std::pow(10.0, -6 + 5 * u01(rng));
+            const Vec2 c(0.2 * (u01(rng) - 0.5), 0.2 * (u01(rng) - 0.5));
+            const Vec2 lo = c - Vec2(half, half * (0.5 + u01(rng))), hi = c + Vec2(half * (0.5 + u01(rng)), half);
+            const auto [sampled, bound] = LobeAverageRatesForTesting(*k, centre, 1.0, lo, hi);
+            ++cases;
+            // (towards grazing the bandwidth at the box's largest κ grows without bound: the bound is loose there)
+            const bool isSmall = half <= 1e-3 && theta >= Radians(5) && theta <= Radians(75);
+            small += isSmall;
+            if (!std::isfinite(bound.x)) continue;
+            ++answered;
+            smallAnswered += isSmall;
+            EXPECT_GE(bound.x, sampled.x) << "d " << d << " θ " << theta << " half " << half;
+            EXPECT_GE(bound.y, sampled.y) << "d " << d << " θ " << theta << " half " << half;
+            if (isSmall) ratio.push_back(bound.x / std::max(sampled.x, sampled.y));
+        }
+    }
+    std::sort(ratio.begin(), ratio.end());
+    const double median = ratio.empty() ? Infinity : ratio[ratio.size() / 2];
+    std::printf("cheap rate bound: %d of %d boxes answered (%d of %d small ones), bound/sampled min %.4f median %.3f "
+                "max %.3f\n", answered, cases, smallAnswered, small, ratio.empty() ? 0.0 : ratio.front(), median,
+                ratio.empty() ? Infinity : ratio.back());
+    EXPECT_EQ(smallAnswered, small);
+    EXPECT_LE(median, 1.5);
 }
 
 }  // namespace

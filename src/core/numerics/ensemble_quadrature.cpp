@@ -141,12 +141,18 @@ double Normal1(double x, double mean, double var) {
     return std::exp(-0.5 * Sqr(x - mean) / var) / std::sqrt(2 * Pi * var);
 }
 
+// The Gauss–Hermite nodes GaussianAxis takes for N(mean, var) and a function of rate `rate`
+// (MaxGaussHermiteNodes + 1: more than a Hermite rule has; Gauss–Legendre then).
+int GaussianAxisNodes(double var, double rate, double tol) {
+    return GaussHermiteNodesFor(std::sqrt(2.0) * std::sqrt(var) * rate, tol);
+}
+
 // ∫ f(x)·N(x; mean, var) dx: Gauss–Hermite when a rule of ≤ 64 nodes meets the bound for `rate`,
 // else Gauss–Legendre over mean ± 6σ with the Gaussian as a factor. q = N(x; mean, var).
 void GaussianAxis(double mean, double var, double rate, double tol, std::vector<AxisNode> &out, bool *capped) {
     out.clear();
     const double sigma = std::sqrt(var);
-    const int n = GaussHermiteNodesFor(std::sqrt(2.0) * sigma * rate, tol);
+    const int n = GaussianAxisNodes(var, rate, tol);
     if (n <= MaxGaussHermiteNodes) {
         const GaussHermiteRule &r = GaussHermite(n);
         for (int i = 0; i < n; ++i) {
@@ -658,7 +664,12 @@ EnsembleRuleInfo Build(const EnsembleShape &shape, const RatesRef &rates, double
     // disc): the product Gaussian N(μ, v·I), by Gauss–Hermite per axis.
     auto gaussian = [&](Vec2 mean, double var) {
         const double half = GaussianBox * std::sqrt(var);
-        const Vec2 r = rates(EnsembleBox{mean - Vec2(half, half), mean + Vec2(half, half)});
+        const EnsembleBox box{mean - Vec2(half, half), mean + Vec2(half, half)};
+        // The cheap bound first: where it needs one Gauss–Hermite node per axis, so do the rates
+        // (GaussianAxis's rule depends on the rate only through the node count).
+        Vec2 r(Infinity, Infinity);
+        if (rates.bound) r = rates.bound(rates.ctx, box);
+        if (!(GaussianAxisNodes(var, r.x, tol) == 1 && GaussianAxisNodes(var, r.y, tol) == 1)) r = rates(box);
         GaussianAxis(mean.x, var, r.x, tol, xs, &capped);
         GaussianAxis(mean.y, var, r.y, tol, ys, &capped);
         Tensor(xs, ys, out);

@@ -126,6 +126,10 @@ struct EnsembleRuleInfo {
 /// file); it is called at most twice. `tol` is the remainder bound relative to sup|g| (per unit
 /// length or Gaussian mass). A Delta profile, or an ensemble so narrow that one node meets the
 /// bound, gives one node at the ensemble's mean.
+/// Optionally `rates.Bound(box)` returns cheaper, looser bounds (each ≥ what rates(box) returns, or
+/// Infinity): a Gaussian ensemble asks it first, and where even its rates need one node per axis the
+/// rule is that node without asking rates(box) — the rule rates(box) would give, since node counts
+/// never fall as a rate grows.
 template <typename Rates>
 EnsembleRuleInfo BuildEnsembleRule(const EnsembleShape &shape, Rates &&rates, double tol, std::vector<EnsembleNode> &out);
 
@@ -134,6 +138,7 @@ namespace ensemble_detail {
 struct RatesRef {
     void *ctx;
     Vec2 (*call)(void *, const EnsembleBox &);
+    Vec2 (*bound)(void *, const EnsembleBox &);  // nullptr: the rates have no cheaper bound
     Vec2 operator()(const EnsembleBox &b) const { return call(ctx, b); }
 };
 EnsembleRuleInfo Build(const EnsembleShape &shape, const RatesRef &rates, double tol, std::vector<EnsembleNode> &out);
@@ -142,8 +147,10 @@ EnsembleRuleInfo Build(const EnsembleShape &shape, const RatesRef &rates, double
 template <typename Rates>
 EnsembleRuleInfo BuildEnsembleRule(const EnsembleShape &shape, Rates &&rates, double tol, std::vector<EnsembleNode> &out) {
     using R = std::remove_reference_t<Rates>;
-    const ensemble_detail::RatesRef ref{const_cast<void *>(static_cast<const void *>(&rates)),
-                                        [](void *c, const EnsembleBox &b) { return (*static_cast<R *>(c))(b); }};
+    ensemble_detail::RatesRef ref{const_cast<void *>(static_cast<const void *>(&rates)),
+                                  [](void *c, const EnsembleBox &b) { return (*static_cast<R *>(c))(b); }, nullptr};
+    if constexpr (requires(R &r, const EnsembleBox &b) { r.Bound(b); })
+        ref.bound = [](void *c, const EnsembleBox &b) { return static_cast<R *>(c)->Bound(b); };
     return ensemble_detail::Build(shape, ref, tol, out);
 }
 

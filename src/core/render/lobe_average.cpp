@@ -109,7 +109,6 @@ struct RateBound {
     const EnsembleFrame &f;
     double nOut;  // index of the light's medium (κ = nOut·s)
     Vec2 operator()(const EnsembleBox &b) const {
-        constexpr int N = 5;
         double grad[N][N][2], smax = 0;
         Vec2 g1(0, 0);
         for (int i = 0; i < N; ++i)
@@ -144,8 +143,42 @@ struct RateBound {
         const double B = nOut * k.AngularBandwidth(std::min(nOut * smax, nOut));
         const double sRef = std::max(smax, 1e-6);
         Vec2 r;
-        for (int c = 0; c < 2; ++c) r[c] = B * g1[c] + std::sqrt(B * (g2[c] + g1[c] * g1[c] / sRef)) + EnvelopeRate;
+        for (int c = 0; c < 2; ++c) r[c] = Rate(B, g1[c], g2[c], sRef);
         return r;
+    }
+
+    /// Rates at least operator()'s over b, without sampling it (BuildEnsembleRule asks this first):
+    /// from bounds of s's derivatives over the whole box, for a box off the normal (s > 0: s is
+    /// smooth there) and inside |u| ≤ 0.99 (operator() clamps nothing there); Infinity elsewhere.
+    /// With z = √(1 − |u|²) ≥ z₋ over the box and ω′ = ∂ω/∂u_c = e_c − a·u_c/z:
+    ///   |∂s/∂u_c| ≤ |ω′| = √(1 + u_c²/z²) ≤ 1/z₋ = G₁,
+    ///   |∂²s/∂u_c²| ≤ |∂²ω/∂u_c²| + |ω′|²/s ≤ 1/z₋³ + G₁²/s₋ (≥ the sampled differences of ∂s),
+    /// s within s(centre) ± √2·G₁·(half the box's diagonal) = [s₋, s₊]; the kernel's bandwidth at
+    /// κ = n·s₊, the largest the box holds (AngularBandwidth bounds κ ≤ kappaMax).
+    Vec2 Bound(const EnsembleBox &b) const {
+        const double ux = std::max(std::abs(b.lo.x), std::abs(b.hi.x)), uy = std::max(std::abs(b.lo.y), std::abs(b.hi.y));
+        const double u2 = ux * ux + uy * uy;
+        if (!(u2 <= 0.99 * 0.99)) return Vec2(Infinity, Infinity);
+        const double zMin = std::sqrt(1 - u2);
+        constexpr double Slack = 1 + 1e-9;  // over the sampled values' rounding
+        const double g1 = Slack / zMin;
+        const Vec3 w = f.Direction((b.lo + b.hi) * 0.5);
+        const double s = std::sqrt(w.x * w.x + w.y * w.y), spread = std::sqrt(2.0) * g1 * 0.5 * Length(b.hi - b.lo);
+        const double sLo = s - spread - 1e-12, sHi = s + spread + 1e-12;
+        if (!(sLo > 1e-9)) return Vec2(Infinity, Infinity);
+        const double B = nOut * k.AngularBandwidth(std::min(nOut * sHi, nOut));
+        // The sampled second differences carry the gradients' rounding (≲ 1e-15·G₁) over the step.
+        const double hMin = std::min(b.hi.x - b.lo.x, b.hi.y - b.lo.y) / (N - 1);
+        const double g2 = Slack / (zMin * zMin * zMin) + g1 * g1 / sLo + (hMin > 0 ? 1e-14 * g1 / hMin : 0.0);
+        const double r = Slack * Rate(B, g1, g2, std::max(sLo, 1e-6));
+        return Vec2(r, r);
+    }
+
+  private:
+    static constexpr int N = 5;  // operator()'s samples per axis
+    /// The rate from the bandwidth B, |∂s| ≤ g1, |∂²s| ≤ g2 and s ≥ sRef (see above).
+    static double Rate(double B, double g1, double g2, double sRef) {
+        return B * g1 + std::sqrt(B * (g2 + g1 * g1 / sRef)) + EnvelopeRate;
     }
 };
 
@@ -317,5 +350,13 @@ double HeroToShortest(const SampledWavelengths &wl) {
 LobeAverageCounters &LobeAverageCost() { return counters; }
 
 void SetLobeAverageDisabledForTesting(bool disabled) { disabledForTesting.store(disabled); }
+
+std::pair<Vec2, Vec2> LobeAverageRatesForTesting(const PreparedKernel &k, const Vec3 &centre, double nOut,
+                                                 const Vec2 &lo, const Vec2 &hi) {
+    const EnsembleFrame f(centre);
+    const RateBound rates{k, f, nOut};
+    const EnsembleBox box{lo, hi};
+    return {rates(box), rates.Bound(box)};
+}
 
 }  // namespace phasor

@@ -44,6 +44,7 @@
 
 #include <array>
 #include <optional>
+#include <utility>
 
 #include "core/render/genray.h"
 #include "core/render/material.h"
@@ -133,5 +134,11 @@ LobeAverageCounters &LobeAverageCost();
 /// direction (the mean-direction evaluation this file replaces) — for showing that the tests of the
 /// accuracy map fail without it. Per thread; off by default.
 void SetLobeAverageDisabledForTesting(bool disabled);
+
+/// A test hook: the rates (R_x, R_y) the rules of this file get for the ensemble coordinates about
+/// `centre` (local, unit; the ensemble's frame) over the box [lo, hi], with nOut the index of the
+/// light's medium: {sampled at 5×5 points, the cheap bound asked first (Infinity where it declines)}.
+std::pair<Vec2, Vec2> LobeAverageRatesForTesting(const PreparedKernel &k, const Vec3 &centre, double nOut,
+                                                 const Vec2 &lo, const Vec2 &hi);
 
 }  // namespace phasor

@@ -213,6 +213,57 @@ TEST(EnsembleRule, GaussianProfileTimesWindowIsTheProductGaussian) {
     EXPECT_LE(std::abs(RuleAverage(nodes, k, 0) - exact), 3 * tol);
 }
 
+// Rates with a cheap bound (BuildEnsembleRule asks Bound first): counts the calls of the exact rates.
+struct BoundedRates {
+    Vec2 exact, bound;
+    int *calls;
+    Vec2 operator()(const EnsembleBox &) const {
+        ++*calls;
+        return exact;
+    }
+    Vec2 Bound(const EnsembleBox &) const { return bound; }
+};
+
+bool SameRule(const std::vector<EnsembleNode> &a, const std::vector<EnsembleNode> &b) {
+    if (a.size() != b.size()) return false;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        if (!(a[i].p == b[i].p) || a[i].w != b[i].w || a[i].q != b[i].q) return false;
+    return true;
+}
+
+TEST(EnsembleRule, ACheapBoundSkipsTheRatesOnlyWhereOneNodeSuffices) {
+    const double tol = 1e-4;
+    EnsembleShape gaussian;
+    gaussian.profile = EnsembleShape::Profile::Gaussian;
+    gaussian.variance = 1e-6;  // σ = 1e-3: one Gauss–Hermite node up to a rate of ~10/σ·√tol
+    EnsembleShape inside;      // a window well inside a disc: the same Gaussian path
+    inside.profile = EnsembleShape::Profile::Disc;
+    inside.radius = 0.05;
+    inside.windowCentre = Vec2(0.01, -0.005);
+    inside.windowVariance = 1e-6;
+    for (const EnsembleShape &shape : {gaussian, inside}) {
+        struct Case {
+            Vec2 exact, bound;
+            int calls;   // of the exact rates
+            bool same;   // the rule is the one the exact rates alone give
+        };
+        const Case cases[] = {
+            {Vec2(1, 2), Vec2(2, 3), 0, true},         // the bound allows one node: the rates are not asked
+            {Vec2(1, 2), Vec2(1e5, 3), 1, true},       // it does not: they are
+            {Vec2(1e4, 10), Vec2(2e4, 20), 1, true},   // the rates need more nodes
+            {Vec2(1e4, 1e4), Vec2(1, 1), 0, false},    // a "bound" below the rates changes the rule (the check can fail)
+        };
+        for (const Case &c : cases) {
+            int calls = 0;
+            std::vector<EnsembleNode> withBound, exact;
+            BuildEnsembleRule(shape, BoundedRates{c.exact, c.bound, &calls}, tol, withBound);
+            BuildEnsembleRule(shape, [&](const EnsembleBox &) { return c.exact; }, tol, exact);
+            EXPECT_EQ(calls, c.calls) << c.exact.x << " " << c.bound.x;
+            EXPECT_EQ(SameRule(withBound, exact), c.same) << c.exact.x << " " << c.bound.x;
+        }
+    }
+}
+
 double Jinc(double v) { return v == 0 ? 1 : 2 * std::cyl_bessel_j(1, v) / v; }
 
 TEST(EnsembleRule, DiscMatchesTheAiryPatternAndFailsWithTooSmallARate) {
