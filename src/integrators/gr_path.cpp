@@ -104,14 +104,14 @@ std::string GrPathSampler::ParamString() const {
 }
 
 void GrPathSampler::ReversedAlongLobe(SpectralGenRay &rev, const SpectralGenRay &g, const SurfaceInteraction &si,
-                                      const NearDeltaLobe &lobe, int i) {
+                                      const std::array<Vec3, 2> &origins, const NearDeltaLobe &lobe, int i) {
     // SpectralGenRay::Redirect's direction and wavenumbers, the spawn origin, TimeReversed's
     // direction (ρ was negated already).
     const Vec3 wo = si.shading.ToWorld(lobe.wo[i]);
     const double eta = lobe.Eta(i);
     rev.d = -wo;
     for (int s = 0; s < g.count; ++s) rev.k[std::size_t(s)] = g.k[std::size_t(s)] * eta;
-    rev.o = si.SpawnOrigin(wo);
+    rev.o = origins[Dot(wo, si.n) >= 0 ? 0 : 1];  // si.SpawnOrigin(wo)
 }
 
 bool GrPathSampler::UniformLobe(const NearDeltaLobe &lobe, const SampledWavelengths &wl) {

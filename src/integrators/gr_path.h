@@ -196,9 +196,10 @@ class GrPathSampler {
     /// `lobe` at carried wavelength i (g redirected along it, every wavenumber scaled by its η, from
     /// the spawn origin), written into `rev`, which must hold g.TimeReversed() with pixel.valid =
     /// false or an earlier result of this call for the same g: only the direction, the wavenumbers
-    /// and the origin change. rev.TimeReversed() is the GR leaving along the lobe.
+    /// and the origin change. rev.TimeReversed() is the GR leaving along the lobe. `origins`:
+    /// si.SpawnOrigin towards +si.n and towards −si.n (it depends on the direction only so).
     static void ReversedAlongLobe(SpectralGenRay &rev, const SpectralGenRay &g, const SurfaceInteraction &si,
-                                  const NearDeltaLobe &lobe, int i);
+                                  const std::array<Vec3, 2> &origins, const NearDeltaLobe &lobe, int i);
     /// True if the lobe's direction and index are the same at every carried wavelength.
     static bool UniformLobe(const NearDeltaLobe &lobe, const SampledWavelengths &wl);
     /// ⟨a_j⟩ for a closed-form measurement `m` through listed lobe `lobe` of k (the kernel prepared
@@ -666,6 +667,7 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
     const auto &lights = scene_.ClosedFormLights();
     SpectralGenRay probe = g_.TimeReversed();
     probe.pixel.valid = false;  // as Redirect
+    const std::array<Vec3, 2> origins{si.SpawnOrigin(si.n), si.SpawnOrigin(-si.n)};
     for (const NearDeltaLobe &lobe : k.ListNearDelta()) {
         // Light straight through the surface was measured by the shadow rays of the vertex before,
         // which cross it (Scene::Transmittance, theory §3.5).
@@ -675,7 +677,7 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
         for (int i = 0; i < (uniform ? 1 : wl_.Count()) && lobe.MayCarryAny(); ++i) {
             if (!uniform && !lobe.MayCarry(i)) continue;
             const unsigned measured = uniform ? g_.measured : 1u << i;  // along λ_i's direction only λ_i is used (w[i] below)
-            GrPathSampler::ReversedAlongLobe(probe, g_, si, lobe, i);
+            GrPathSampler::ReversedAlongLobe(probe, g_, si, origins, lobe, i);
             probe.measured = measured;
             std::uint64_t skipped = 0;  // bit b: light b measures nothing
             if constexpr (!Sink::Records) {
