@@ -256,36 +256,53 @@ TEST(LobeAverage, PointEnsembleAtTheLobeIsTheListedWeightAndTheSwitchRestoresIt)
 }
 
 // The rules ask a cheap rate bound first (RateBound::Bound) and skip the 5×5 sampled rates where it
-// already allows one node: the bound must be at least the sampled rates wherever it answers, answer
-// for the small boxes off the normal the renders ask about, and be tight enough there to matter.
+// already allows one node: the bound must be at least the sampled rates wherever it answers — also
+// where the kernel's bandwidth falls as κ grows (inside a dense dielectric past its critical angle)
+// and far from the ensemble's centre (|u| up to 0.9) — answer for the small boxes off the normal the
+// renders ask about, and be tight enough there to matter.
 TEST(LobeAverage, TheCheapRateBoundIsAtLeastTheSampledRates) {
     std::mt19937_64 rng(20261205);
-    std::uniform_real_distribution<double> u01(0, 1);
-    int cases = 0, answered = 0, small = 0, smallAnswered = 0;
-    std::vector<double> ratio;  // bound / sampled on small boxes
+    auto u01 = [&] { return double(rng() >> 11) * 0x1p-53; };
+    struct Setup {
+        std::shared_ptr<Material> m;
+        double nLight;  // the index of the light's medium
+        bool inside;    // lit from inside (wi below the surface)
+        double thetaLo, thetaHi;  // [degrees]
+    };
+    std::vector<Setup> setups;
     for (const double d : {0.3e-6, 3e-6, 30e-6}) {
         Film film;
         film.d = d;
         film.n = 1.56;
-        auto m = Kernel("thin_film", film.Params());
-        for (int t = 0; t < 400; ++t) {
-            const double theta = Radians(1 + 84 * u01(rng)), phi = 2 * Pi * u01(rng);
-            OneWave w(Lambda, std::cos(theta), phi);
-            const Prep k(*m, w.q);
-            const Vec3 centre(std::sin(theta) * std::cos(phi + Pi), std::sin(theta) * std::sin(phi + Pi), std::cos(theta));
-            const double half = std::pow(10.0, -6 + 5 * u01(rng));
-            const Vec2 c(0.2 * (u01(rng) - 0.5), 0.2 * (u01(rng) - 0.5));
-            const Vec2 lo = c - Vec2(half, half * (0.5 + u01(rng))), hi = c + Vec2(half * (0.5 + u01(rng)), half);
-            const auto [sampled, bound] = LobeAverageRatesForTesting(*k, centre, 1.0, lo, hi);
+        setups.push_back({Kernel("thin_film", film.Params()), 1.0, false, 1, 85});
+    }
+    ParamDict dense;
+    dense.Set("ior", Value::Number(2.4));
+    // From inside: the critical angle 24.6° and total internal reflection beyond it.
+    setups.push_back({Kernel("dielectric", dense), 2.4, true, 15, 35});
+    int cases = 0, answered = 0, small = 0, smallAnswered = 0;
+    std::vector<double> ratio;  // bound / sampled on small boxes
+    for (const Setup &setup : setups) {
+        for (int t = 0; t < 600; ++t) {
+            const double theta = Radians(setup.thetaLo + (setup.thetaHi - setup.thetaLo) * u01()), phi = 2 * Pi * u01();
+            const double z = setup.inside ? -std::cos(theta) : std::cos(theta);
+            OneWave w(Lambda, z, phi);
+            const Prep k(*setup.m, w.q);
+            const Vec3 centre(std::sin(theta) * std::cos(phi + Pi), std::sin(theta) * std::sin(phi + Pi), z);
+            const double half = std::pow(10.0, -6 + 5 * u01());
+            const double reach = t % 2 ? 0.05 : 0.6;  // the box's centre within ±reach of the ensemble's
+            const Vec2 c(2 * reach * (u01() - 0.5), 2 * reach * (u01() - 0.5));
+            const Vec2 lo = c - Vec2(half, half * (0.5 + u01())), hi = c + Vec2(half * (0.5 + u01()), half);
+            const auto [sampled, bound] = LobeAverageRatesForTesting(*k, centre, setup.nLight, lo, hi);
             ++cases;
-            // (towards grazing the bandwidth at the box's largest κ grows without bound: the bound is loose there)
-            const bool isSmall = half <= 1e-3 && theta >= Radians(5) && theta <= Radians(75);
+            // Off the normal by more than the box's reach (s > 0 over it), not towards grazing.
+            const bool isSmall = half <= 1e-3 && reach < 0.1 && theta >= Radians(10) && theta <= Radians(75);
             small += isSmall;
             if (!std::isfinite(bound.x)) continue;
             ++answered;
             smallAnswered += isSmall;
-            EXPECT_GE(bound.x, sampled.x) << "d " << d << " θ " << theta << " half " << half;
-            EXPECT_GE(bound.y, sampled.y) << "d " << d << " θ " << theta << " half " << half;
+            EXPECT_GE(bound.x, sampled.x) << "setup " << &setup - setups.data() << " θ " << theta << " half " << half;
+            EXPECT_GE(bound.y, sampled.y) << "setup " << &setup - setups.data() << " θ " << theta << " half " << half;
             if (isSmall) ratio.push_back(bound.x / std::max(sampled.x, sampled.y));
         }
     }

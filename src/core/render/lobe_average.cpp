@@ -3,6 +3,7 @@
 #include "core/render/lobe_average.h"
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <vector>
@@ -109,26 +110,15 @@ struct RateBound {
     const EnsembleFrame &f;
     double nOut;  // index of the light's medium (κ = nOut·s)
     Vec2 operator()(const EnsembleBox &b) const {
-        double grad[N][N][2], smax = 0;
+        double grad[N][N][2];
         Vec2 g1(0, 0);
         for (int i = 0; i < N; ++i)
             for (int j = 0; j < N; ++j) {
-                Vec2 u(b.lo.x + (b.hi.x - b.lo.x) * i / (N - 1), b.lo.y + (b.hi.y - b.lo.y) * j / (N - 1));
-                // (unit-scale components throughout: plain square roots, no hypot — the rates may
-                // differ from hypot's in the last bit)
-                double l2 = LengthSquared(u);
-                if (l2 > 0.999 * 0.999) {
-                    u = u * (0.999 / std::sqrt(l2));
-                    l2 = LengthSquared(u);
-                }
-                const double z = std::sqrt(1 - l2);
-                const Vec3 w = f.e1 * u.x + f.e2 * u.y + f.a * z;  // f.Direction(u)
-                const Vec3 dx = f.e1 - f.a * (u.x / z), dy = f.e2 - f.a * (u.y / z);
-                const double s = std::sqrt(w.x * w.x + w.y * w.y);
-                smax = std::max(smax, s);
+                const Point p = At(b, i, j);
+                const Vec3 dx = f.e1 - f.a * (p.u.x / p.z), dy = f.e2 - f.a * (p.u.y / p.z);
                 for (int c = 0; c < 2; ++c) {
                     const Vec3 &d = c == 0 ? dx : dy;
-                    const double ds = s > 1e-12 ? (w.x * d.x + w.y * d.y) / s : std::sqrt(d.x * d.x + d.y * d.y);
+                    const double ds = p.s > 1e-12 ? (p.w.x * d.x + p.w.y * d.y) / p.s : std::sqrt(d.x * d.x + d.y * d.y);
                     grad[i][j][c] = ds;
                     g1[c] = std::max(g1[c], std::abs(ds));
                 }
@@ -140,21 +130,21 @@ struct RateBound {
                 if (hx > 0) g2.x = std::max(g2.x, std::abs(grad[i + 1][j][0] - grad[i][j][0]) / hx);
                 if (hy > 0) g2.y = std::max(g2.y, std::abs(grad[i][j + 1][1] - grad[i][j][1]) / hy);
             }
-        const double B = nOut * k.AngularBandwidth(std::min(nOut * smax, nOut));
-        const double sRef = std::max(smax, 1e-6);
+        const double smax = SampledMaxS(b), B = Bandwidth(smax), sRef = std::max(smax, 1e-6);
         Vec2 r;
         for (int c = 0; c < 2; ++c) r[c] = Rate(B, g1[c], g2[c], sRef);
         return r;
     }
 
-    /// Rates at least operator()'s over b, without sampling it (BuildEnsembleRule asks this first):
-    /// from bounds of s's derivatives over the whole box, for a box off the normal (s > 0: s is
-    /// smooth there) and inside |u| ≤ 0.99 (operator() clamps nothing there); Infinity elsewhere.
-    /// With z = √(1 − |u|²) ≥ z₋ over the box and ω′ = ∂ω/∂u_c = e_c − a·u_c/z:
+    /// Rates at least operator()'s over b with only s sampled (BuildEnsembleRule asks this first):
+    /// the kernel's bandwidth and sRef exactly as operator() has them (the same samples of s; the
+    /// bandwidth need not grow with κ), and bounds of s's derivatives over the whole box in place of
+    /// its sampled ones, for a box off the normal (s > 0: s is smooth there) and inside |u| ≤ 0.99
+    /// (operator() clamps nothing there); Infinity elsewhere. With z = √(1 − |u|²) ≥ z₋ over the
+    /// box and ω′ = ∂ω/∂u_c = e_c − a·u_c/z:
     ///   |∂s/∂u_c| ≤ |ω′| = √(1 + u_c²/z²) ≤ 1/z₋ = G₁,
-    ///   |∂²s/∂u_c²| ≤ |∂²ω/∂u_c²| + |ω′|²/s ≤ 1/z₋³ + G₁²/s₋ (≥ the sampled differences of ∂s),
-    /// s within s(centre) ± √2·G₁·(half the box's diagonal) = [s₋, s₊]; the kernel's bandwidth at
-    /// κ = n·s₊, the largest the box holds (AngularBandwidth bounds κ ≤ kappaMax).
+    ///   |∂²s/∂u_c²| ≤ |∂²ω/∂u_c²| + |ω′|²/s ≤ 1/z₋³ + G₁²/s₋ (≥ the sampled differences of ∂s,
+    ///   by the mean value theorem), s ≥ s(centre) − √2·G₁·(half the box's diagonal) = s₋.
     Vec2 Bound(const EnsembleBox &b) const {
         const double ux = std::max(std::abs(b.lo.x), std::abs(b.hi.x)), uy = std::max(std::abs(b.lo.y), std::abs(b.hi.y));
         const double u2 = ux * ux + uy * uy;
@@ -163,19 +153,80 @@ struct RateBound {
         constexpr double Slack = 1 + 1e-9;  // over the sampled values' rounding
         const double g1 = Slack / zMin;
         const Vec3 w = f.Direction((b.lo + b.hi) * 0.5);
-        const double s = std::sqrt(w.x * w.x + w.y * w.y), spread = std::sqrt(2.0) * g1 * 0.5 * Length(b.hi - b.lo);
-        const double sLo = s - spread - 1e-12, sHi = s + spread + 1e-12;
+        const double sLo = std::sqrt(w.x * w.x + w.y * w.y) - std::sqrt(2.0) * g1 * 0.5 * Length(b.hi - b.lo) - 1e-12;
         if (!(sLo > 1e-9)) return Vec2(Infinity, Infinity);
-        const double B = nOut * k.AngularBandwidth(std::min(nOut * sHi, nOut));
-        // The sampled second differences carry the gradients' rounding (≲ 1e-15·G₁) over the step.
+        // The sampled ∂s = (ω.xy·ω′.xy)/s carries a rounding of a few ε·G₁/s, their differences
+        // twice that over the step.
         const double hMin = std::min(b.hi.x - b.lo.x, b.hi.y - b.lo.y) / (N - 1);
-        const double g2 = Slack / (zMin * zMin * zMin) + g1 * g1 / sLo + (hMin > 0 ? 1e-14 * g1 / hMin : 0.0);
-        const double r = Slack * Rate(B, g1, g2, std::max(sLo, 1e-6));
+        const double g2 = Slack / (zMin * zMin * zMin) + g1 * g1 / sLo + (hMin > 0 ? 1e-14 * g1 / (sLo * hMin) : 0.0);
+        const double smax = SampledMaxS(b);
+        const double r = Slack * Rate(Bandwidth(smax), g1, g2, std::max(smax, 1e-6));
         return Vec2(r, r);
     }
 
   private:
-    static constexpr int N = 5;  // operator()'s samples per axis
+    static constexpr int N = 5;  // samples per axis
+    /// Sample (i, j) of the box: u (pulled in to |u| = 0.999 beyond it), z = √(1 − |u|²), ω and
+    /// s = |ω.xy|. (Unit-scale components throughout: plain square roots, no hypot.)
+    struct Point {
+        Vec2 u;
+        double z;
+        Vec3 w;
+        double s;
+    };
+    /// Sample (i, j)'s u and z.
+    static Vec2 SampleU(const EnsembleBox &b, int i, int j, double *z) {
+        Vec2 u(b.lo.x + (b.hi.x - b.lo.x) * i / (N - 1), b.lo.y + (b.hi.y - b.lo.y) * j / (N - 1));
+        double l2 = LengthSquared(u);
+        if (l2 > 0.999 * 0.999) {
+            u = u * (0.999 / std::sqrt(l2));
+            l2 = LengthSquared(u);
+        }
+        *z = std::sqrt(1 - l2);
+        return u;
+    }
+    Point At(const EnsembleBox &b, int i, int j) const {
+        Point p;
+        p.u = SampleU(b, i, j, &p.z);
+        p.w = f.e1 * p.u.x + f.e2 * p.u.y + f.a * p.z;  // f.Direction(u)
+        p.s = std::sqrt(p.w.x * p.w.x + p.w.y * p.w.y);
+        return p;
+    }
+    /// The largest s over the samples (At's, as √ of the largest s²: √ is monotone): the
+    /// κ = nOut·s at which both ask the kernel's bandwidth.
+    double SampledMaxS(const EnsembleBox &b) const {
+        double s2 = 0;
+        // Where no sample is pulled in, the same products as At's from per-row and per-column terms.
+        const double ux = std::max(std::abs(b.lo.x), std::abs(b.hi.x)), uy = std::max(std::abs(b.lo.y), std::abs(b.hi.y));
+        if (ux * ux + uy * uy <= 0.99 * 0.99) {
+            std::array<double, N> x2, y2, e1x, e1y, e2x, e2y;
+            for (int i = 0; i < N; ++i) {
+                const double x = b.lo.x + (b.hi.x - b.lo.x) * i / (N - 1), y = b.lo.y + (b.hi.y - b.lo.y) * i / (N - 1);
+                x2[i] = x * x;
+                y2[i] = y * y;
+                e1x[i] = f.e1.x * x;
+                e1y[i] = f.e1.y * x;
+                e2x[i] = f.e2.x * y;
+                e2y[i] = f.e2.y * y;
+            }
+            for (int i = 0; i < N; ++i)
+                for (int j = 0; j < N; ++j) {
+                    const double z = std::sqrt(1 - (x2[i] + y2[j]));
+                    const double wx = e1x[i] + e2x[j] + f.a.x * z, wy = e1y[i] + e2y[j] + f.a.y * z;
+                    s2 = std::max(s2, wx * wx + wy * wy);
+                }
+            return std::sqrt(s2);
+        }
+        for (int i = 0; i < N; ++i)
+            for (int j = 0; j < N; ++j) {
+                double z;
+                const Vec2 u = SampleU(b, i, j, &z);
+                const double wx = f.e1.x * u.x + f.e2.x * u.y + f.a.x * z, wy = f.e1.y * u.x + f.e2.y * u.y + f.a.y * z;
+                s2 = std::max(s2, wx * wx + wy * wy);
+            }
+        return std::sqrt(s2);
+    }
+    double Bandwidth(double smax) const { return nOut * k.AngularBandwidth(std::min(nOut * smax, nOut)); }
     /// The rate from the bandwidth B, |∂s| ≤ g1, |∂²s| ≤ g2 and s ≥ sRef (see above).
     static double Rate(double B, double g1, double g2, double sRef) {
         return B * g1 + std::sqrt(B * (g2 + g1 * g1 / sRef)) + EnvelopeRate;

@@ -250,6 +250,7 @@ TEST(EnsembleRule, ACheapBoundSkipsTheRatesOnlyWhereOneNodeSuffices) {
         const Case cases[] = {
             {Vec2(1, 2), Vec2(2, 3), 0, true},         // the bound allows one node: the rates are not asked
             {Vec2(1, 2), Vec2(1e5, 3), 1, true},       // it does not: they are
+            {Vec2(1, 2), Vec2(3, 1e5), 1, true},       // (on either axis)
             {Vec2(1e4, 10), Vec2(2e4, 20), 1, true},   // the rates need more nodes
             {Vec2(1e4, 1e4), Vec2(1, 1), 0, false},    // a "bound" below the rates changes the rule (the check can fail)
         };
