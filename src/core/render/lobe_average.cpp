@@ -146,8 +146,7 @@ struct RateBound {
     ///   |∂²s/∂u_c²| ≤ |∂²ω/∂u_c²| + |ω′|²/s ≤ 1/z₋³ + G₁²/s₋ (≥ the sampled differences of ∂s,
     ///   by the mean value theorem), s ≥ s(centre) − √2·G₁·(half the box's diagonal) = s₋.
     Vec2 Bound(const EnsembleBox &b) const {
-        const double ux = std::max(std::abs(b.lo.x), std::abs(b.hi.x)), uy = std::max(std::abs(b.lo.y), std::abs(b.hi.y));
-        const double u2 = ux * ux + uy * uy;
+        const double u2 = MaxU2(b);
         if (!(u2 <= 0.99 * 0.99)) return Vec2(Infinity, Infinity);
         const double zMin = std::sqrt(1 - u2);
         constexpr double Slack = 1 + 1e-9;  // over the sampled values' rounding
@@ -166,6 +165,11 @@ struct RateBound {
 
   private:
     static constexpr int N = 5;  // samples per axis
+    /// The largest |u|² over the box.
+    static double MaxU2(const EnsembleBox &b) {
+        const double ux = std::max(std::abs(b.lo.x), std::abs(b.hi.x)), uy = std::max(std::abs(b.lo.y), std::abs(b.hi.y));
+        return ux * ux + uy * uy;
+    }
     /// Sample (i, j) of the box: u (pulled in to |u| = 0.999 beyond it), z = √(1 − |u|²), ω and
     /// s = |ω.xy|. (Unit-scale components throughout: plain square roots, no hypot.)
     struct Point {
@@ -197,8 +201,7 @@ struct RateBound {
     double SampledMaxS(const EnsembleBox &b) const {
         double s2 = 0;
         // Where no sample is pulled in, the same products as At's from per-row and per-column terms.
-        const double ux = std::max(std::abs(b.lo.x), std::abs(b.hi.x)), uy = std::max(std::abs(b.lo.y), std::abs(b.hi.y));
-        if (ux * ux + uy * uy <= 0.99 * 0.99) {
+        if (MaxU2(b) <= 0.99 * 0.99) {
             std::array<double, N> x2, y2, e1x, e1y, e2x, e2y;
             for (int i = 0; i < N; ++i) {
                 const double x = b.lo.x + (b.hi.x - b.lo.x) * i / (N - 1), y = b.lo.y + (b.hi.y - b.lo.y) * i / (N - 1);
