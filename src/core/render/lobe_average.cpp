@@ -178,9 +178,11 @@ struct RateBound {
         Vec3 w;
         double s;
     };
+    /// The i-th of N sample coordinates over [lo, hi].
+    static double Grid(double lo, double hi, int i) { return lo + (hi - lo) * i / (N - 1); }
     /// Sample (i, j)'s u and z.
     static Vec2 SampleU(const EnsembleBox &b, int i, int j, double *z) {
-        Vec2 u(b.lo.x + (b.hi.x - b.lo.x) * i / (N - 1), b.lo.y + (b.hi.y - b.lo.y) * j / (N - 1));
+        Vec2 u(Grid(b.lo.x, b.hi.x, i), Grid(b.lo.y, b.hi.y, j));
         double l2 = LengthSquared(u);
         if (l2 > 0.999 * 0.999) {
             u = u * (0.999 / std::sqrt(l2));
@@ -196,15 +198,15 @@ struct RateBound {
         p.s = std::sqrt(p.w.x * p.w.x + p.w.y * p.w.y);
         return p;
     }
-    /// The largest s over the samples (At's, as √ of the largest s²: √ is monotone): the
-    /// κ = nOut·s at which both ask the kernel's bandwidth.
+    /// The largest s over the samples (At's): the κ = nOut·s at which both ask the kernel's bandwidth.
     double SampledMaxS(const EnsembleBox &b) const {
-        double s2 = 0;
-        // Where no sample is pulled in, the same products as At's from per-row and per-column terms.
+        // Where no sample is pulled in, At's products from per-row and per-column terms, and √ of
+        // the largest s² (√ is monotone): the same value, ~200 fewer instructions.
         if (MaxU2(b) <= 0.99 * 0.99) {
+            double s2 = 0;
             std::array<double, N> x2, y2, e1x, e1y, e2x, e2y;
             for (int i = 0; i < N; ++i) {
-                const double x = b.lo.x + (b.hi.x - b.lo.x) * i / (N - 1), y = b.lo.y + (b.hi.y - b.lo.y) * i / (N - 1);
+                const double x = Grid(b.lo.x, b.hi.x, i), y = Grid(b.lo.y, b.hi.y, i);
                 x2[i] = x * x;
                 y2[i] = y * y;
                 e1x[i] = f.e1.x * x;
@@ -220,14 +222,10 @@ struct RateBound {
                 }
             return std::sqrt(s2);
         }
+        double smax = 0;
         for (int i = 0; i < N; ++i)
-            for (int j = 0; j < N; ++j) {
-                double z;
-                const Vec2 u = SampleU(b, i, j, &z);
-                const double wx = f.e1.x * u.x + f.e2.x * u.y + f.a.x * z, wy = f.e1.y * u.x + f.e2.y * u.y + f.a.y * z;
-                s2 = std::max(s2, wx * wx + wy * wy);
-            }
-        return std::sqrt(s2);
+            for (int j = 0; j < N; ++j) smax = std::max(smax, At(b, i, j).s);
+        return smax;
     }
     double Bandwidth(double smax) const { return nOut * k.AngularBandwidth(std::min(nOut * smax, nOut)); }
     /// The rate from the bandwidth B, |∂s| ≤ g1, |∂²s| ≤ g2 and s ≥ sRef (see above).
