@@ -43,9 +43,10 @@ bool GrPathSampler::DropCompanions(SampledSpectrum &T, const SampledWavelengths 
 }
 
 std::optional<GrMeasurement> GrPathSampler::MeasureOne(const Scene &scene, const Light &light, const SpectralGenRay &g,
-                                                       const SurfaceInteraction *si, const SampledWavelengths &wl,
-                                                       ScratchBuffer &scratch, PathStats &stats) {
-    auto m = light.MeasureGR(g.TimeReversed(), wl);
+                                                       const SpectralGenRay &reversed, const SurfaceInteraction *si,
+                                                       const SampledWavelengths &wl, ScratchBuffer &scratch,
+                                                       PathStats &stats) {
+    auto m = light.MeasureGR(reversed, wl);
     if (!m || m->value.IsZero()) return std::nullopt;
     m->value *= Transmitted(scene, *m, g, si, wl, scratch, stats);
     if (m->value.IsZero()) return std::nullopt;
@@ -104,13 +105,17 @@ std::string GrPathSampler::ParamString() const {
 }
 
 void GrPathSampler::ReversedAlongLobe(SpectralGenRay &rev, const SpectralGenRay &g, const SurfaceInteraction &si,
-                                      const std::array<Vec3, 2> &origins, const NearDeltaLobe &lobe, int i) {
+                                      const std::array<Vec3, 2> &origins, const NearDeltaLobe &lobe, int i,
+                                      double &revEta) {
     // SpectralGenRay::Redirect's direction and wavenumbers, the spawn origin, TimeReversed's
     // direction (ρ was negated already).
     const Vec3 wo = si.shading.ToWorld(lobe.wo[i]);
     const double eta = lobe.Eta(i);
     rev.d = -wo;
-    for (int s = 0; s < g.count; ++s) rev.k[std::size_t(s)] = g.k[std::size_t(s)] * eta;
+    if (!(eta == revEta)) {  // (the same η gives the same products)
+        for (int s = 0; s < g.count; ++s) rev.k[std::size_t(s)] = g.k[std::size_t(s)] * eta;
+        revEta = eta;
+    }
     rev.o = origins[Dot(wo, si.n) >= 0 ? 0 : 1];  // si.SpawnOrigin(wo)
 }
 

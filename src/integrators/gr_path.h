@@ -28,6 +28,7 @@
 #include <array>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <list>
 #include <memory>
 #include <mutex>
@@ -178,11 +179,12 @@ class GrPathSampler {
     // ---- helpers of the estimate ----------------------------------------------------------------
     /// Drops the companion wavelengths from the throughput (theory §0 D10); false for a line sample.
     static bool DropCompanions(SampledSpectrum &T, const SampledWavelengths &wl);
-    /// One closed-form light seen by the GR g (traced; measured as its time reverse, D3) from g's
-    /// origin (from the surface `si` when g leaves one): its k²·M times the transmittance of the
-    /// way there (Transmitted), or nullopt if nothing arrives.
+    /// One closed-form light seen by the GR g (traced; measured as its time reverse `reversed` =
+    /// g.TimeReversed(), D3) from g's origin (from the surface `si` when g leaves one): its k²·M
+    /// times the transmittance of the way there (Transmitted), or nullopt if nothing arrives.
     static std::optional<GrMeasurement> MeasureOne(const Scene &scene, const Light &light, const SpectralGenRay &g,
-                                                   const SurfaceInteraction *si, const SampledWavelengths &wl,
+                                                   const SpectralGenRay &reversed, const SurfaceInteraction *si,
+                                                   const SampledWavelengths &wl,
                                                    ScratchBuffer &scratch, PathStats &stats);
     /// The shadow ray of MeasureOne, from g's origin (or si) towards the measurement m's source:
     /// 0 if blocked, else the product of the straight-through surfaces' weights on the way
@@ -198,8 +200,11 @@ class GrPathSampler {
     /// false or an earlier result of this call for the same g: only the direction, the wavenumbers
     /// and the origin change. rev.TimeReversed() is the GR leaving along the lobe. `origins`:
     /// si.SpawnOrigin towards +si.n and towards −si.n (it depends on the direction only so).
+    /// `revEta`: the η rev's wavenumbers carry (g's times it; NaN for none yet), kept up to date
+    /// here — the wavenumbers are written only when the lobe's η differs.
     static void ReversedAlongLobe(SpectralGenRay &rev, const SpectralGenRay &g, const SurfaceInteraction &si,
-                                  const std::array<Vec3, 2> &origins, const NearDeltaLobe &lobe, int i);
+                                  const std::array<Vec3, 2> &origins, const NearDeltaLobe &lobe, int i,
+                                  double &revEta);
     /// True if the lobe's direction and index are the same at every carried wavelength.
     static bool UniformLobe(const NearDeltaLobe &lobe, const SampledWavelengths &wl);
     /// ⟨a_j⟩ for a closed-form measurement `m` through listed lobe `lobe` of k (the kernel prepared
@@ -274,10 +279,12 @@ class PathEstimate {
     /// Σ over the closed-form lights of their terms value(m), m what the GR `out` measures of each
     /// from `from` (MeasureOne; from the surface `si` when it leaves one), each light's term reported
     /// through event(light, ensemble, m, term) (an Event, or nullopt to report nothing).
+    /// `reversed` is out.TimeReversed() (what each light measures, D3), made once by the caller.
     /// Lights with skip(index in Scene::ClosedFormLights()) true are left out.
     template <class Value, class MakeEvent, class Skip = bool (*)(std::size_t)>
-    SampledSpectrum ClosedForm(const SpectralGenRay &out, const SurfaceInteraction *si, const Vec3 &from,
-                               Value &&value, MakeEvent &&event, Skip &&skip = [](std::size_t) { return false; });
+    SampledSpectrum ClosedForm(const SpectralGenRay &out, const SpectralGenRay &reversed, const SurfaceInteraction *si,
+                               const Vec3 &from, Value &&value, MakeEvent &&event,
+                               Skip &&skip = [](std::size_t) { return false; });
     /// Reports the event `make()` builds, if the sink records.
     template <class Make>
     void Report(Make &&make) {
@@ -500,7 +507,7 @@ template <class Sink>
 void PathEstimate<Sink>::MeasureAtDetector() {
     if (!ds_->integratesIncidence) {
         const SampledSpectrum m = ClosedForm(
-            g_, nullptr, g_.o, [](const GrMeasurement &mi) { return mi.value; },
+            g_, g_.TimeReversed(), nullptr, g_.o, [](const GrMeasurement &mi) { return mi.value; },
             [&](const Light *light, bool ensemble, const GrMeasurement &mi, const SampledSpectrum &) {
                 Event e;
                 e.kind = EventKind::Detector;
@@ -668,6 +675,7 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
     SpectralGenRay probe = g_.TimeReversed();
     probe.pixel.valid = false;  // as Redirect
     const std::array<Vec3, 2> origins{si.SpawnOrigin(si.n), si.SpawnOrigin(-si.n)};
+    double probeEta = std::numeric_limits<double>::quiet_NaN();  // no wavenumbers written yet
     for (const NearDeltaLobe &lobe : k.ListNearDelta()) {
         // Light straight through the surface was measured by the shadow rays of the vertex before,
         // which cross it (Scene::Transmittance, theory §3.5).
@@ -677,7 +685,7 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
         for (int i = 0; i < (uniform ? 1 : wl_.Count()) && lobe.MayCarryAny(); ++i) {
             if (!uniform && !lobe.MayCarry(i)) continue;
             const unsigned measured = uniform ? g_.measured : 1u << i;  // along λ_i's direction only λ_i is used (w[i] below)
-            GrPathSampler::ReversedAlongLobe(probe, g_, si, origins, lobe, i);
+            GrPathSampler::ReversedAlongLobe(probe, g_, si, origins, lobe, i, probeEta);
             probe.measured = measured;
             std::uint64_t skipped = 0;  // bit b: light b measures nothing
             if constexpr (!Sink::Records) {
@@ -699,7 +707,7 @@ void PathEstimate<Sink>::ThroughListedLobes(const SurfaceInteraction &si, const 
                 else w[i] = a[i] * mi.value[i];
                 return w;
             };
-            v += ClosedForm(out, &si, si.p, weighted,
+            v += ClosedForm(out, probe, &si, si.p, weighted,
                             [&](const Light *light, bool ensemble, const GrMeasurement &mi,
                                 const SampledSpectrum &w) -> std::optional<Event> {
                                 if (w.IsZero()) return std::nullopt;
@@ -809,8 +817,9 @@ bool PathEstimate<Sink>::Continue(const SurfaceInteraction &si, const PreparedKe
 
 template <class Sink>
 template <class Value, class MakeEvent, class Skip>
-SampledSpectrum PathEstimate<Sink>::ClosedForm(const SpectralGenRay &out, const SurfaceInteraction *si,
-                                               const Vec3 &from, Value &&value, MakeEvent &&event, Skip &&skip) {
+SampledSpectrum PathEstimate<Sink>::ClosedForm(const SpectralGenRay &out, const SpectralGenRay &reversed,
+                                               const SurfaceInteraction *si, const Vec3 &from, Value &&value,
+                                               MakeEvent &&event, Skip &&skip) {
     SampledSpectrum sum(0.0);
     const auto &lights = scene_.ClosedFormLights();
     for (std::size_t index = 0; index < lights.size(); ++index) {
@@ -820,13 +829,13 @@ SampledSpectrum PathEstimate<Sink>::ClosedForm(const SpectralGenRay &out, const 
         std::optional<GrMeasurement> m;
         if (paths_.Fsd().enabled) {
             // Through an FSD event on the way to the source, else the shadow ray.
-            m = light->MeasureGR(out.TimeReversed(), wl_);
+            m = light->MeasureGR(reversed, wl_);
             if (!m || m->value.IsZero()) continue;
             if (auto fsdT = FsdTransmission(out, m->wi, m->dist, si)) m->value *= *fsdT;
             else m->value *= GrPathSampler::Transmitted(scene_, *m, out, si, wl_, scratch_, stats_);
             if (m->value.IsZero()) continue;
         } else {
-            m = GrPathSampler::MeasureOne(scene_, *light, out, si, wl_, scratch_, stats_);
+            m = GrPathSampler::MeasureOne(scene_, *light, out, reversed, si, wl_, scratch_, stats_);
             if (!m) continue;
         }
         const SampledSpectrum v = value(*m);

@@ -3,6 +3,7 @@
 #include "core/render/genray.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 
 #include "core/numerics/rice.h"
@@ -120,8 +121,9 @@ bool DistantDiscOutOfReach(const SpectralGenRay &g, const Vec3 &s, double sinAlp
     // gap ≥ RiceReach·σ_i, squared (a last-bit difference to the square-root form is far inside
     // the 1e-9 above).
     const double reach2 = Sqr(gap / RiceReach);
-    for (int i = 0; i < g.count; ++i)
-        if (g.Measures(i) && !(g.At(i).AngularVariance() <= reach2)) return false;
+    // Each measured wavelength (the set bits of g.measured below g.count).
+    for (unsigned m = g.measured & ((1u << g.count) - 1); m != 0; m &= m - 1)
+        if (!(g.At(std::countr_zero(m)).AngularVariance() <= reach2)) return false;
     return true;
 }
 
