@@ -506,6 +506,7 @@ std::optional<SampledSpectrum> PathEstimate<Sink>::FsdTransmission(const Spectra
 template <class Sink>
 void PathEstimate<Sink>::MeasureAtDetector() {
     if (!ds_->integratesIncidence) {
+        if (scene_.ClosedFormLights().empty()) return;  // nothing to measure (and no GR to reverse)
         const SampledSpectrum m = ClosedForm(
             g_, g_.TimeReversed(), nullptr, g_.o, [](const GrMeasurement &mi) { return mi.value; },
             [&](const Light *light, bool ensemble, const GrMeasurement &mi, const SampledSpectrum &) {
