@@ -122,6 +122,7 @@ bool DistantDiscOutOfReach(const SpectralGenRay &g, const Vec3 &s, double sinAlp
     // the 1e-9 above).
     const double reach2 = Sqr(gap / RiceReach);
     // Each measured wavelength (the set bits of g.measured below g.count).
+    static_assert(NumWavelengths < 32, "the measured mask is an unsigned of 32 bits");
     for (unsigned m = g.measured & ((1u << g.count) - 1); m != 0; m &= m - 1)
         if (!(g.At(std::countr_zero(m)).AngularVariance() <= reach2)) return false;
     return true;
