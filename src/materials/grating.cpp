@@ -319,10 +319,13 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
         for (double t = 1; used < maxOrder && (used < half || t >= 1e-10);) t *= half / ++used;
         s.maxOrder = used;
         double jAbs[GratingSide::MaxOrder + 1];
-        BesselJSequence(std::abs(a), used, jAbs);
         if (!directions) {
-            // Which orders propagate is an interval found at once; the sum over it, and order `only`.
+            // Which orders propagate is an interval found at once; the sum over it, and order `only`
+            // (J_n up to the largest |n| of these, not to `used`).
             const OrderRange range = PropagatingOrders(q.wi, s.nIn, s.nOut, unitShift, lambda, used);
+            int top = std::abs(only) <= used ? std::abs(only) : 0;
+            if (range.lo <= range.hi) top = std::max({top, std::abs(range.lo), std::abs(range.hi)});
+            BesselJSequence(std::abs(a), top, jAbs);
             for (int j = range.lo; j <= range.hi; ++j) s.propagatingSum += Sqr(SignedBessel(jAbs, j, a));
             if (std::abs(only) <= used) {
                 const std::size_t k = std::size_t(only + GratingSide::MaxOrder);
@@ -330,6 +333,7 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
                 s.propagating[k] = range.Contains(only);
             }
         } else {
+            BesselJSequence(std::abs(a), used, jAbs);
             double total = 0;
             for (int j = -used; j <= used; ++j) {
                 const std::size_t k = std::size_t(j + GratingSide::MaxOrder);

@@ -29,7 +29,8 @@ double BesselI0Scaled(double x);
 
 /// J_0(x), J_1(x), …, J_nMax(x) for x ≥ 0 into out[0 … nMax], by Miller's backward recurrence
 /// J_{n−1} = (2n/x)·J_n − J_{n+1} started well above max(nMax, x) and normalised with
-/// J_0 + 2·Σ_k J_2k = 1 (DLMF 10.74(iv), 10.12.4); a power series for x < 1e-8. One pass costs
+/// J_0 + 2·Σ_k J_2k = 1 (DLMF 10.74(iv), 10.12.4); a power series for x < 1e-8; for x ≤ 2 and
+/// nMax ≤ 24 the series of the top two orders and the same recurrence from there. One pass costs
 /// O(max(nMax, x)) flops, ~50× less than nMax + 1 calls of std::cyl_bessel_j; agrees with it to
 /// ~1e-15 absolute (tests/core/numerics/bessel_test.cpp).
 void BesselJSequence(double x, int nMax, double *out);

@@ -111,6 +111,21 @@ TEST(BesselJSequence, FewOrdersAreAsAccurateAsMany) {
         }
 }
 
+TEST(BesselJSequence, SmallArgumentSeriesPathMatchesStd) {
+    // x ≤ 2 with nMax ≤ 24 takes the series of the top two orders and the recurrence down (a
+    // grating's m ≈ 1): every order of every nMax, from x = 1e-8 (where J_24 ≈ 1e-225) to the
+    // switch at 2 and just past it (the Miller path), with the tolerance of MatchesStdCylBesselJ.
+    double j[25];
+    for (int nMax = 0; nMax <= 24; ++nMax)
+        for (double x : {1e-8, 3e-6, 1e-3, 0.05, 0.37, 0.99, 1.1377, 1.5, 1.999, 2.0, 2.0000001}) {
+            BesselJSequence(x, nMax, j);
+            for (int n = 0; n <= nMax; ++n) {
+                const double ref = std::cyl_bessel_j(double(n), x);
+                EXPECT_NEAR(j[n], ref, 2e-15 + 1e-12 * std::abs(ref)) << "n = " << n << ", nMax = " << nMax << ", x = " << x;
+            }
+        }
+}
+
 TEST(BesselJSequence, SumOfSquaresIsOne) {
     // Σ_{n∈ℤ} J_n(x)² = J_0² + 2Σ_{n≥1} J_n² = 1 (DLMF 10.23.3) once nMax ≫ x.
     constexpr int N = 60;
