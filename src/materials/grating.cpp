@@ -266,7 +266,7 @@ GratingOrders GratingMaterial::Orders(const ScatterQuery &q, int i) const {
 }
 
 void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
-                                 GratingOrders *out, int only, bool energyOnly) const {
+                                 GratingOrders *out, int only, bool energyOnly, const OrderRange *back) const {
     // *out may hold an earlier call's orders: every field read below is set (without directions,
     // the other orders' amplitude[] and propagating[] keep their earlier values: see grating.h).
     GratingOrders &o = *out;
@@ -322,7 +322,9 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
         if (!directions) {
             // Which orders propagate is an interval found at once; the sum over it, and order `only`
             // (J_n up to the largest |n| of these, not to `used`).
-            const OrderRange range = PropagatingOrders(q.wi, s.nIn, s.nOut, unitShift, lambda, used);
+            const OrderRange range =
+                back ? OrderRange{std::max(only - back->hi, -used), std::min(only - back->lo, used)}
+                     : PropagatingOrders(q.wi, s.nIn, s.nOut, unitShift, lambda, used);
             int top = std::abs(only) <= used ? std::abs(only) : 0;
             if (range.lo <= range.hi) top = std::max({top, std::abs(range.lo), std::abs(range.hi)});
             BesselJSequence(std::abs(a), top, jAbs);
@@ -358,10 +360,11 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
 }
 
 double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source,
-                                         bool transmitted, int j, GratingOrders *orders, bool energyOnly) const {
+                                         bool transmitted, int j, GratingOrders *orders, bool energyOnly,
+                                         const OrderRange *back) const {
     ScatterQuery from = q;
     from.wi = source;  // the light arrives from `source`: its order j is the lobe's weight towards q.wi
-    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders, j, energyOnly);
+    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders, j, energyOnly, back);
     return (transmitted ? orders->transmitted : orders->reflected).Energy(j);
 }
 
@@ -373,6 +376,9 @@ class GratingMaterial::Prepared final : public PreparedKernel {
         caps_ = CapNearDelta;
         if (q.wi.z == 0) return;
         const int maxOrder = q.rayOptics ? 0 : m.maxOrder_;
+        const Vec2 unitShift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period);
+        for (int i = 0; i < q.wl->Count(); ++i)
+            back_[std::size_t(i)] = BackOrders(q.wi, Indices(q.wi, i).first, unitShift, q.wl->lambda[i]);
         LobeList lobes(scratch, (m.transmission_ ? 2 : 1) * (2 * maxOrder + 1));
         List(q, maxOrder, lobes);
         lobes_ = lobes.Lobes();
@@ -392,6 +398,11 @@ class GratingMaterial::Prepared final : public PreparedKernel {
     /// first wavelength where it carries light, or −1. `scratch` holds the source's orders.
     int Order(const Vec3 &wi, bool transmitted, int j, unsigned slots, std::array<Vec3, NumWavelengths> &wo,
               SampledSpectrum &weight, GratingOrders &scratch) const;
+    /// Wavelength slot i's BackOrders at wi (back_'s at the query's own wi).
+    OrderRange BackAt(const Vec3 &wi, int i) const {
+        if (wi == q_.wi) return back_[std::size_t(i)];
+        return BackOrders(wi, Indices(wi, i).first, Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period), q_.wl->lambda[i]);
+    }
     /// Order j's direction at carried wavelength slot i for light leaving along wi (the vector
     /// grating equation, shift j·2π/Λ·ĝ as List's l.shift); false where it is evanescent.
     bool OrderDirection(const Vec3 &wi, bool transmitted, int j, int i, Vec3 *wo) const {
@@ -409,6 +420,7 @@ class GratingMaterial::Prepared final : public PreparedKernel {
 
     const GratingMaterial *m_;
     Site site_;
+    std::array<OrderRange, NumWavelengths> back_{};  // BackOrders at q.wi per carried wavelength slot
 };
 
 const PreparedKernel &GratingMaterial::Prepare(const ScatterQuery &q, ScratchBuffer &scratch) const {
@@ -446,7 +458,12 @@ void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeLi
         for (int i = 0; i < count; ++i) {
             const auto [nWi, nFar] = Indices(q.wi, i);
             OrderRange &r = range[std::size_t(i)];
-            r = PropagatingOrders(q.wi, nWi, transmitted ? nFar : nWi, unitShift, q.wl->lambda[i], maxOrder);
+            if (!transmitted) {  // BackOrders' range within ±max_order
+                const OrderRange &b = back_[std::size_t(i)];
+                r = {std::max(b.lo, -maxOrder), std::min(b.hi, maxOrder)};
+            } else {
+                r = PropagatingOrders(q.wi, nWi, nFar, unitShift, q.wl->lambda[i], maxOrder);
+            }
             if (r.lo <= r.hi) {
                 lo = std::min(lo, r.lo);
                 hi = std::max(hi, r.hi);
@@ -516,7 +533,8 @@ int GratingMaterial::Prepared::Order(const Vec3 &wi, bool transmitted, int j, un
         if (!OrderDirection(wi, transmitted, j, i, &wo[s])) continue;
         const auto [nWi, nFar] = Indices(wi, i);
         const double nOut = transmitted ? nFar : nWi;
-        const double energy = m_->SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch, true);
+        const OrderRange back = BackAt(wi, i);
+        const double energy = m_->SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch, true, &back);
         const double ratio = nWi / nOut;
         weight[i] = transmitted ? energy * ratio * ratio : energy;  // (η_i/η_t)²: radiance
         if (energy > 0 && lit < 0) lit = i;

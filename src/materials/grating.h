@@ -146,15 +146,26 @@ class GratingMaterial final : public Material, public ReferenceDirection {
     /// amplitude and which orders propagate): amplitude[] and propagating[] hold order `only` alone,
     /// propagatingSum and scale are complete, evanescent is 0 and truncated is left as it was. With
     /// `energyOnly` (no directions) only what GratingSide::Energy reads: the substrate's R or T of
-    /// the sides asked for (SmoothSurface::Power), `surface` is not set.
+    /// the sides asked for (SmoothSurface::Power), `surface` is not set. `back` (without directions,
+    /// one side): see SourceEfficiency.
     void FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
-                    GratingOrders *o, int only = 0, bool energyOnly = false) const;
+                    GratingOrders *o, int only = 0, bool energyOnly = false, const OrderRange *back = nullptr) const;
     /// The energy efficiency of order j (reflected or transmitted) at wavelength slot i for light
     /// arriving from `source` (a lobe's direction): what that lobe of the query at q.wi carries.
     /// The source's orders are left in *orders for order j (FillOrders without directions; with
-    /// `energyOnly`, without the substrate's amplitudes: the efficiency alone).
+    /// `energyOnly`, without the substrate's amplitudes: the efficiency alone). `back`, if given, is
+    /// BackOrders(q.wi, …) of the query: the source's propagating orders are then j minus those
+    /// (its order m leaves along q.wi's tangential wavevector shifted by m − j), not found again.
     double SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source, bool transmitted,
-                            int j, GratingOrders *orders, bool energyOnly = false) const;
+                            int j, GratingOrders *orders, bool energyOnly = false, const OrderRange *back = nullptr) const;
+    /// The query's reflected orders p at wi that propagate (PropagatingOrders over ±2·MaxOrder,
+    /// wi's medium on both sides). The light that leaves along wi through order j comes from a
+    /// source whose own orders m propagate exactly where j − m is such a p: its order m leaves along
+    /// wi's tangential wavevector shifted by (m − j)·2π/Λ·ĝ into wi's medium (where a reflected lobe's
+    /// source lies, and where a transmitted lobe's source sends its transmitted orders).
+    static OrderRange BackOrders(const Vec3 &wi, double nWi, const Vec2 &unitShift, double lambda) {
+        return PropagatingOrders(wi, nWi, nWi, unitShift, lambda, 2 * GratingSide::MaxOrder);
+    }
 
     FloatTexture period_;  // Λ [m], > 0
     double height_ = 0;    // h, peak-to-peak [m]

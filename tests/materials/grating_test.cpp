@@ -12,6 +12,7 @@
 
 #include <cmath>
 #include <optional>
+#include <random>
 #include <sstream>
 
 #include "material_test_util.h"
@@ -706,6 +707,74 @@ TEST(Grating, CompanionEfficienciesAreComputedWhenRead) {
     }
     EXPECT_GE(deferred, 3) << "the orders' companion efficiencies were listed eagerly";
     EXPECT_GT(caught, 0) << "a completion by the wrong kernel went unnoticed";
+}
+
+TEST(Grating, ListedWeightsAreTheirSourcesOrderEnergies) {
+    // Each listed lobe j at wavelength i carries what its source direction's order j carries:
+    // Orders() at the source (every order's direction from the grating equation) gives Energy(j),
+    // times (n_query/n_source)² (radiance) on transmission. The listing finds the source's propagating orders from the
+    // query's own (GratingMaterial::BackOrders) and its Bessel values only up to the largest of
+    // them; a wrong shift or sign there changes the renormalisation Σ_prop J² and fails here.
+    // Renormalised reflection (CD pitch, a long period) and transmission into BK7, from both sides,
+    // 400 random incidences each (fixed seed); incidences where some order grazes (|t|² within 1e-9
+    // of 1, a Rayleigh anomaly where rounding decides) are skipped.
+    struct Case {
+        std::shared_ptr<GratingMaterial> grating;
+        double period;
+        bool transmission;
+    };
+    std::vector<Case> cases;
+    cases.push_back({MetalGrating(1.6 * Um), 1.6 * Um, false});
+    cases.push_back({MetalGrating(7.3 * Um), 7.3 * Um, false});
+    cases.push_back({MakeGrating(ParamDict()
+                                     .Set("substrate", Value::Ref("contract_bk7"))
+                                     .Set("transmission", Value::Bool(true))
+                                     .Set("period", Len(2.1 * Um))
+                                     .Set("height", Len(0.3 * Um))),
+                     2.1 * Um, true});
+    std::mt19937 rng(20261205);
+    std::uniform_real_distribution<double> u(0, 1);
+    int compared = 0, skipped = 0;
+    for (const Case &c : cases) {
+        ASSERT_TRUE(c.grating);
+        for (int trial = 0; trial < 400; ++trial) {
+            const SampledWavelengths wl = TestWavelengths(380 * Nm + 340 * Nm * u(rng));
+            const double theta = std::acos(0.02 + 0.98 * u(rng));
+            const bool inside = c.transmission && trial % 2;  // a transmission grating from the glass
+            const ScatterQuery q = Wave(inside ? Pi - theta : theta, 2 * Pi * u(rng), wl);
+            bool grazes = false;
+            for (int i = 0; i < wl.Count() && !grazes; ++i) {
+                const double nWi = inside ? c.grating->Orders(q, i).reflected.nIn : 1.0;
+                for (int p = -40; p <= 40; ++p) {
+                    const double tx = -nWi * q.wi.x, ty = -nWi * q.wi.y + p * wl.lambda[std::size_t(i)] / c.period;
+                    grazes = grazes || std::abs((tx * tx + ty * ty) / (nWi * nWi) - 1) < 1e-9;
+                }
+            }
+            if (grazes) {
+                ++skipped;
+                continue;
+            }
+            const Prep k(*c.grating, q);
+            for (const NearDeltaLobe &l : k->ListNearDelta()) {
+                const bool transmitted = (l.flags & ScatterTransmission) != 0;
+                const int j = transmitted ? l.id - GratingMaterial::TransmittedId : l.id;
+                const SampledSpectrum w = l.Weight();
+                for (int i = 0; i < wl.Count(); ++i) {
+                    if (!(w[i] > 0)) continue;
+                    ScatterQuery from = q;
+                    from.wi = l.wo[std::size_t(i)];
+                    const GratingOrders o = c.grating->Orders(from, i);
+                    const GratingSide &side = transmitted ? o.transmitted : o.reflected;
+                    const double ratio = side.nOut / side.nIn;  // the query's medium over the source's
+                    const double expected = side.Energy(j) * (transmitted ? ratio * ratio : 1.0);
+                    EXPECT_NEAR(w[i], expected, 2e-12 * expected + 1e-15) << "order " << j << ", slot " << i << ", trial " << trial;
+                    ++compared;
+                }
+            }
+        }
+    }
+    EXPECT_GT(compared, 5000);
+    EXPECT_LT(skipped, 20);
 }
 
 TEST(Grating, FarOutsideTheThinPhaseRegimeStaysFinite) {
