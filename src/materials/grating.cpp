@@ -65,7 +65,9 @@
 // (renormalised) reflects and `phasor compare` shows only what diffraction redistributes.
 //
 // Lobes (all listed near-delta lobes, listed once when the kernel is prepared for a query — a
-// listing evaluates the orders of every lobe's source direction; Sample picks one ∝ its radiance
+// listing evaluates the orders of every lobe's source direction (which of them propagate follows
+// from the query's own reflected orders, BackOrders: one rounding for all lobes, so the listing,
+// LobeWeightAt and EvalLobe agree even at a Rayleigh anomaly); Sample picks one ∝ its radiance
 // weight at the hero wavelength, SampleListedLobe): reflected order j has id j, transmitted order j id 1000 + j
 // (GratingMaterial::TransmittedId). Orders j ≠ 0 are ScatterDispersive (their direction depends
 // on λ); the zeroth reflected order is not, the zeroth transmitted order is when the substrate
@@ -106,6 +108,21 @@ double SignedBessel(const double *jAbs, int j, double a) {
     const int n = std::abs(j);
     const bool flip = (n & 1) && ((j < 0) != (a < 0));
     return flip ? -jAbs[n] : jAbs[n];
+}
+
+/// The orders worth considering at |a|/2 = half: up to the first n ≥ half with halfⁿ/n! < 1e-10
+/// (past it |J_n(a)| ≤ halfⁿ/n!, DLMF 10.14.4, falls faster still), at most maxOrder. halfⁿ/n! <
+/// 1e-10 ⟺ half < (1e-10·n!)^{1/n}, tabulated: compares, where a running product needs a division
+/// per order.
+int ConsideredOrders(double half, int maxOrder) {
+    static const std::array<double, GratingSide::MaxOrder + 1> below = [] {
+        std::array<double, GratingSide::MaxOrder + 1> b{};
+        for (int n = 1; n <= GratingSide::MaxOrder; ++n) b[std::size_t(n)] = std::exp((std::log(1e-10) + std::lgamma(n + 1.0)) / n);
+        return b;
+    }();
+    int n = 1;
+    while (n < maxOrder && (n < half || !(half < below[std::size_t(n)]))) ++n;
+    return std::min(n, maxOrder);
 }
 
 }  // namespace
@@ -311,20 +328,15 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
         s.propagatingSum = s.evanescent = 0;
         s.modulation = a;
         s.substrate = f;
-        // Orders whose efficiency is below 1e-20 are not considered (they count as truncated):
-        // |J_n(x)| ≤ (x/2)ⁿ/n! (DLMF 10.14.4), so past n ≥ x/2 with (x/2)ⁿ/n! < 1e-10 every
-        // further order is smaller still. At m ≈ 1 this lists ~10 orders instead of 2·max_order + 1.
-        const double half = std::abs(a) / 2;
-        int used = 0;
-        for (double t = 1; used < maxOrder && (used < half || t >= 1e-10);) t *= half / ++used;
+        // Orders whose efficiency is below 1e-20 are not considered (they count as truncated,
+        // ConsideredOrders): at m ≈ 1 this lists ~10 orders instead of 2·max_order + 1.
+        const int used = ConsideredOrders(std::abs(a) / 2, maxOrder);
         s.maxOrder = used;
         double jAbs[GratingSide::MaxOrder + 1];
         if (!directions) {
             // Which orders propagate is an interval found at once; the sum over it, and order `only`
             // (J_n up to the largest |n| of these, not to `used`).
-            const OrderRange range =
-                back ? OrderRange{std::max(only - back->hi, -used), std::min(only - back->lo, used)}
-                     : PropagatingOrders(q.wi, s.nIn, s.nOut, unitShift, lambda, used);
+            const OrderRange range{std::max(only - back->hi, -used), std::min(only - back->lo, used)};
             int top = std::abs(only) <= used ? std::abs(only) : 0;
             if (range.lo <= range.hi) top = std::max({top, std::abs(range.lo), std::abs(range.hi)});
             BesselJSequence(std::abs(a), top, jAbs);
@@ -360,11 +372,11 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
 }
 
 double GratingMaterial::SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source,
-                                         bool transmitted, int j, GratingOrders *orders, bool energyOnly,
-                                         const OrderRange *back) const {
+                                         bool transmitted, int j, const OrderRange &back, GratingOrders *orders,
+                                         bool energyOnly) const {
     ScatterQuery from = q;
     from.wi = source;  // the light arrives from `source`: its order j is the lobe's weight towards q.wi
-    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders, j, energyOnly, back);
+    FillOrders(from, i, site, transmitted ? SideTransmitted : SideReflected, false, orders, j, energyOnly, &back);
     return (transmitted ? orders->transmitted : orders->reflected).Energy(j);
 }
 
@@ -534,7 +546,7 @@ int GratingMaterial::Prepared::Order(const Vec3 &wi, bool transmitted, int j, un
         const auto [nWi, nFar] = Indices(wi, i);
         const double nOut = transmitted ? nFar : nWi;
         const OrderRange back = BackAt(wi, i);
-        const double energy = m_->SourceEfficiency(q, i, site_, wo[s], transmitted, j, &scratch, true, &back);
+        const double energy = m_->SourceEfficiency(q, i, site_, wo[s], transmitted, j, back, &scratch, true);
         const double ratio = nWi / nOut;
         weight[i] = transmitted ? energy * ratio * ratio : energy;  // (η_i/η_t)²: radiance
         if (energy > 0 && lit < 0) lit = i;
@@ -583,7 +595,7 @@ std::optional<LobeResponse> GratingMaterial::Prepared::EvalLobe(int lobe, const 
         if (l->Weight(1u << i)[i] == 0) continue;  // evanescent at this wavelength: no response
         // The orders of the light arriving along the lobe (its source direction at this wavelength).
         GratingOrders o;
-        m_->SourceEfficiency(q, i, site_, l->wo[std::size_t(i)], transmitted, j, &o);
+        m_->SourceEfficiency(q, i, site_, l->wo[std::size_t(i)], transmitted, j, back_[std::size_t(i)], &o);
         const GratingSide &s = transmitted ? o.transmitted : o.reflected;
         const std::size_t k = std::size_t(j + GratingSide::MaxOrder);
         // Order j's field relative to the substrate's: J_j(a)·√scale.

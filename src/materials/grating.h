@@ -146,18 +146,19 @@ class GratingMaterial final : public Material, public ReferenceDirection {
     /// amplitude and which orders propagate): amplitude[] and propagating[] hold order `only` alone,
     /// propagatingSum and scale are complete, evanescent is 0 and truncated is left as it was. With
     /// `energyOnly` (no directions) only what GratingSide::Energy reads: the substrate's R or T of
-    /// the sides asked for (SmoothSurface::Power), `surface` is not set. `back` (without directions,
-    /// one side): see SourceEfficiency.
+    /// the sides asked for (SmoothSurface::Power), `surface` is not set. Without directions (one
+    /// side, from SourceEfficiency) `back` gives which orders propagate: see there.
     void FillOrders(const ScatterQuery &q, int i, const Site &site, unsigned sides, bool directions,
                     GratingOrders *o, int only = 0, bool energyOnly = false, const OrderRange *back = nullptr) const;
     /// The energy efficiency of order j (reflected or transmitted) at wavelength slot i for light
     /// arriving from `source` (a lobe's direction): what that lobe of the query at q.wi carries.
+    /// `back` is BackOrders(q.wi, …) at slot i: the source's propagating orders are j minus those
+    /// (its order m leaves along q.wi's tangential wavevector shifted by m − j) — one rounding for
+    /// every lobe of the query, so the listing and EvalLobe agree even where an order grazes.
     /// The source's orders are left in *orders for order j (FillOrders without directions; with
-    /// `energyOnly`, without the substrate's amplitudes: the efficiency alone). `back`, if given, is
-    /// BackOrders(q.wi, …) of the query: the source's propagating orders are then j minus those
-    /// (its order m leaves along q.wi's tangential wavevector shifted by m − j), not found again.
+    /// `energyOnly`, without the substrate's amplitudes: the efficiency alone).
     double SourceEfficiency(const ScatterQuery &q, int i, const Site &site, const Vec3 &source, bool transmitted,
-                            int j, GratingOrders *orders, bool energyOnly = false, const OrderRange *back = nullptr) const;
+                            int j, const OrderRange &back, GratingOrders *orders, bool energyOnly = false) const;
     /// The query's reflected orders p at wi that propagate (PropagatingOrders over ±2·MaxOrder,
     /// wi's medium on both sides). The light that leaves along wi through order j comes from a
     /// source whose own orders m propagate exactly where j − m is such a p: its order m leaves along
