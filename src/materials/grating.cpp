@@ -336,12 +336,14 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
         if (!directions) {
             // Which orders propagate is an interval found at once; the sum over it, and order `only`
             // (J_n up to the largest |n| of these, not to `used`).
+            if (!back) throw Error("GratingMaterial::FillOrders without directions needs `back` (a kernel bug)");
             const OrderRange range{std::max(only - back->hi, -used), std::min(only - back->lo, used)};
-            int top = std::abs(only) <= used ? std::abs(only) : 0;
+            const bool onlyUsed = std::abs(only) <= used;
+            int top = onlyUsed ? std::abs(only) : -1;  // -1: no J_n needed
             if (range.lo <= range.hi) top = std::max({top, std::abs(range.lo), std::abs(range.hi)});
             BesselJSequence(std::abs(a), top, jAbs);
             for (int j = range.lo; j <= range.hi; ++j) s.propagatingSum += Sqr(SignedBessel(jAbs, j, a));
-            if (std::abs(only) <= used) {
+            if (onlyUsed) {
                 const std::size_t k = std::size_t(only + GratingSide::MaxOrder);
                 s.amplitude[k] = SignedBessel(jAbs, only, a);
                 s.propagating[k] = range.Contains(only);

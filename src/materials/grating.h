@@ -101,7 +101,9 @@ class GratingMaterial final : public Material, public ReferenceDirection {
     /// The orders of a plane wave arriving from q.wi (physical incidence) at carried wavelength
     /// slot i (q.wl->lambda[i]): their directions, plain thin-phase amplitudes, which propagate,
     /// the renormalisation and the dropped share per side. Order j's energy (GratingSide::Energy)
-    /// is what lobe j of a query at that order's direction lists towards q.wi. In the ray-optics
+    /// is what lobe j of a query at that order's direction lists towards q.wi (at a Rayleigh
+    /// anomaly, an order grazing, up to which side of the rounding each puts it: the listing
+    /// decides from the query's direction, BackOrders, this from q.wi's). In the ray-optics
     /// limit (q.rayOptics) the zeroth orders only, with J_0 = 1.
     GratingOrders Orders(const ScatterQuery &q, int i) const;
     /// The unit grating vector ĝ at the query's hit (local frame, z = 0): the direction in which

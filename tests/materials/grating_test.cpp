@@ -712,9 +712,10 @@ TEST(Grating, CompanionEfficienciesAreComputedWhenRead) {
 TEST(Grating, ListedWeightsAreTheirSourcesOrderEnergies) {
     // Each listed lobe j at wavelength i carries what its source direction's order j carries:
     // Orders() at the source (every order's direction from the grating equation) gives Energy(j),
-    // times (n_query/n_source)² (radiance) on transmission. The listing finds the source's propagating orders from the
-    // query's own (GratingMaterial::BackOrders) and its Bessel values only up to the largest of
-    // them; a wrong shift or sign there changes the renormalisation Σ_prop J² and fails here.
+    // times (n_query/n_source)² (radiance) on transmission; an order that does not propagate from
+    // the query, or is not listed, carries 0. The listing finds the source's propagating orders
+    // from the query's own (GratingMaterial::BackOrders) and its Bessel values only up to the
+    // largest of them; a wrong shift or sign there changes the renormalisation Σ_prop J² and fails.
     // Renormalised reflection (CD pitch, a long period) and transmission into BK7, from both sides,
     // 400 random incidences each (fixed seed); incidences where some order grazes (|t|² within 1e-9
     // of 1, a Rayleigh anomaly where rounding decides) are skipped.
@@ -755,20 +756,39 @@ TEST(Grating, ListedWeightsAreTheirSourcesOrderEnergies) {
                 continue;
             }
             const Prep k(*c.grating, q);
-            for (const NearDeltaLobe &l : k->ListNearDelta()) {
-                const bool transmitted = (l.flags & ScatterTransmission) != 0;
-                const int j = transmitted ? l.id - GratingMaterial::TransmittedId : l.id;
-                const SampledSpectrum w = l.Weight();
-                for (int i = 0; i < wl.Count(); ++i) {
-                    if (!(w[i] > 0)) continue;
-                    ScatterQuery from = q;
-                    from.wi = l.wo[std::size_t(i)];
-                    const GratingOrders o = c.grating->Orders(from, i);
-                    const GratingSide &side = transmitted ? o.transmitted : o.reflected;
-                    const double ratio = side.nOut / side.nIn;  // the query's medium over the source's
-                    const double expected = side.Energy(j) * (transmitted ? ratio * ratio : 1.0);
-                    EXPECT_NEAR(w[i], expected, 2e-12 * expected + 1e-15) << "order " << j << ", slot " << i << ", trial " << trial;
-                    ++compared;
+            const std::span<const NearDeltaLobe> lobes = k->ListNearDelta();
+            // Every order of every side at every wavelength, listed or not: a lobe missing, or a
+            // slot left at 0 where its source's order carries light, fails as a wrong weight.
+            for (const bool transmitted : {false, true}) {
+                if (transmitted && !c.transmission) continue;
+                for (int j = -GratingSide::MaxOrder; j <= GratingSide::MaxOrder; ++j) {
+                    const NearDeltaLobe *l = Find(lobes, (transmitted ? GratingMaterial::TransmittedId : 0) + j);
+                    const SampledSpectrum w = l ? l->Weight() : SampledSpectrum(0.0);
+                    for (int i = 0; i < wl.Count(); ++i) {
+                        const GratingOrders here = c.grating->Orders(q, i);
+                        const double nWi = here.reflected.nIn, nFar = here.transmitted.nOut;
+                        Vec3 source;
+                        double expected = 0;
+                        if (ExpectedDirection(q.wi, nWi, transmitted ? nFar : nWi, Vec2(0, 1), j,
+                                              wl.lambda[std::size_t(i)], c.period, transmitted, &source)) {
+                            ScatterQuery from = q;
+                            from.wi = source;
+                            const GratingOrders o = c.grating->Orders(from, i);
+                            const GratingSide &side = transmitted ? o.transmitted : o.reflected;
+                            const double ratio = side.nOut / side.nIn;  // the query's medium over the source's
+                            expected = side.Energy(j) * (transmitted ? ratio * ratio : 1.0);
+                        }
+                        // 2e-12 relative: the Bessel values of the two paths (the listing's up to the
+                        // orders it sums, Orders()' up to the truncation) and F (Power and R()) differ in
+                        // the last bits; 1e-15 absolute where J_j nears a zero (largest seen 1.1e-12
+                        // relative at a weight of 1.4e-9).
+                        EXPECT_NEAR(w[i], expected, 2e-12 * expected + 1e-15)
+                            << (transmitted ? "T" : "R") << " order " << j << ", slot " << i << ", trial " << trial;
+                        if (expected > 0 && w[i] > 0) {
+                            EXPECT_LT(AngleBetween(l->wo[std::size_t(i)], source), 1e-9) << "order " << j << ", slot " << i;
+                            ++compared;
+                        }
+                    }
                 }
             }
         }

@@ -126,10 +126,12 @@ void BesselJSequence(double x, int nMax, double *out) {
         // Small x (a grating's m = k₀·h·cosθ ≈ 1): J_top and J_{top−1} from their power series
         // J_n(x) = (x/2)ⁿ/n!·Σ_k (−x²/4)^k/(k!·(n+1)_k) (DLMF 10.2.2), the rest by the recurrence
         // downwards — stable, J being the recessive solution as n grows (DLMF 3.6(ii)); for x ≤ 2
-        // below J₀'s first zero (2.405) every J_n(x) > 0 and the series' terms stay below
-        // e^{x²/4} ≤ e times its sum. No normalisation and no division: at x ≈ 1 about 70 % of
+        // below J₀'s first zero (2.405) every J_n(x) > 0, and the terms' magnitudes sum to at most
+        // e^{x²/4} ≤ e times the first while the sum is at least J₀(2) ≈ 0.22 of it: at most a
+        // factor ~10 of cancellation. The recurrence adds about an ulp per step (≲ 3.5e-15
+        // absolute at 24 orders). No normalisation and no division: at x ≈ 1 about 70 % of
         // the instructions of the start at max(nMax + 6, x + 10) + √(24x) below. x ≥ 1e-8 and
-        // top ≤ 24 keep (x/2)^top/top! above 1e-225, far from underflow.
+        // top ≤ 24 keep (x/2)^top/top! above 1e-241, far from underflow.
         const int top = std::max(nMax, 1);
         const double h = x / 2, q = -h * h;
         double power = 1;  // (x/2)^(top − 1)
@@ -161,8 +163,8 @@ void BesselJSequence(double x, int nMax, double *out) {
     // like exp(−(2/3)(2d)^{3/2}/√x) past the transition n ≈ x (DLMF 10.19.8), below 1e-16 for
     // d ≳ 0.3·x^{1/3}·… — d = 6 + √(24·x) covers it with room (x = 250 needs d ≈ 46, this gives
     // 83; x = 1 gets exp(−68)). Above the transition, at n = nMax > x, the contamination is
-    // (x/2)^{2d}·(nMax!/N!)², N = nMax + d, smaller still: the margin follows x, not nMax (a
-    // grating's ~10 orders at x ≈ 1 start at 20, not 31). The normalisation sum J_0 + 2ΣJ_2k needs
+    // (x/2)^{2d}·(nMax!/N!)², N = nMax + d, smaller still: the margin follows x, not nMax (10
+    // orders at x = 3 start at 24, not 34). The normalisation sum J_0 + 2ΣJ_2k needs
     // 4 more above x whatever nMax is (at nMax = 0, x + 6 + √(24x) leaves 1e-12 at x ≈ 2; measured
     // by tests/core/numerics/bessel_test.cpp): start at max(nMax + 6, x + 10) + √(24x).
     const double top = std::max(nMax + 6.0, x + 10);

@@ -32,7 +32,7 @@ double BesselI0Scaled(double x);
 /// J_0 + 2·Σ_k J_2k = 1 (DLMF 10.74(iv), 10.12.4); a power series for x < 1e-8; for x ≤ 2 and
 /// nMax ≤ 24 the series of the top two orders and the same recurrence from there. One pass costs
 /// O(max(nMax, x)) flops, ~50× less than nMax + 1 calls of std::cyl_bessel_j; agrees with it to
-/// ~1e-15 absolute (tests/core/numerics/bessel_test.cpp).
+/// ~1e-15 absolute (~3.5e-15 on the series path at 24 orders; tests/core/numerics/bessel_test.cpp).
 void BesselJSequence(double x, int nMax, double *out);
 
 }  // namespace phasor
