@@ -322,7 +322,7 @@ void GratingMaterial::FillOrders(const ScatterQuery &q, int i, const Site &site,
     // Ray-optics limit: the smooth substrate (zeroth orders, J_0(0) = 1).
     const int maxOrder = q.rayOptics ? 0 : maxOrder_;
     const double h = q.rayOptics ? 0 : height_, k0 = 2 * Pi / lambda;
-    const Vec2 unitShift = o.vector * (2 * Pi / o.period);
+    const Vec2 unitShift = site.UnitShift();
     auto fill = [&](GratingSide &s, bool transmitted, double a, double f) {
         s.present = true;
         s.propagatingSum = s.evanescent = 0;
@@ -390,7 +390,7 @@ class GratingMaterial::Prepared final : public PreparedKernel {
         caps_ = CapNearDelta;
         if (q.wi.z == 0) return;
         const int maxOrder = q.rayOptics ? 0 : m.maxOrder_;
-        const Vec2 unitShift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period);
+        const Vec2 unitShift = site_.UnitShift();
         for (int i = 0; i < q.wl->Count(); ++i)
             back_[std::size_t(i)] = BackOrders(q.wi, Indices(q.wi, i).first, unitShift, q.wl->lambda[i]);
         LobeList lobes(scratch, (m.transmission_ ? 2 : 1) * (2 * maxOrder + 1));
@@ -415,13 +415,13 @@ class GratingMaterial::Prepared final : public PreparedKernel {
     /// Wavelength slot i's BackOrders at wi (back_'s at the query's own wi).
     OrderRange BackAt(const Vec3 &wi, int i) const {
         if (wi == q_.wi) return back_[std::size_t(i)];
-        return BackOrders(wi, Indices(wi, i).first, Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period), q_.wl->lambda[i]);
+        return BackOrders(wi, Indices(wi, i).first, site_.UnitShift(), q_.wl->lambda[i]);
     }
     /// Order j's direction at carried wavelength slot i for light leaving along wi (the vector
     /// grating equation, shift j·2π/Λ·ĝ as List's l.shift); false where it is evanescent.
     bool OrderDirection(const Vec3 &wi, bool transmitted, int j, int i, Vec3 *wo) const {
         const auto [nWi, nFar] = Indices(wi, i);
-        const Vec2 shift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period) * double(j);
+        const Vec2 shift = site_.UnitShift() * double(j);
         return NearDeltaDirection(wi, nWi, transmitted ? nFar : nWi, shift, q_.wl->lambda[i], transmitted, wo);
     }
     /// The indices of wi's medium and of the far side (the substrate, or the outside when wi is
@@ -461,7 +461,7 @@ double GratingMaterial::Prepared::AngularBandwidth(double kappaMax) const {
 void GratingMaterial::Prepared::List(const ScatterQuery &q, int maxOrder, LobeList &out) const {
     const GratingMaterial &m = *m_;
     const int count = q.wl->Count();
-    const Vec2 unitShift = Vec2(site_.g.x, site_.g.y) * (2 * Pi / site_.period);
+    const Vec2 unitShift = site_.UnitShift();
     GratingOrders scratch;
     for (const bool transmitted : {false, true}) {
         if (transmitted && !m.transmission_) break;

@@ -140,6 +140,8 @@ class GratingMaterial final : public Material, public ReferenceDirection {
         Vec3 g;
         const double *thickness = nullptr;
         std::array<Complex, NumWavelengths> substrate{};
+        /// ĝ·2π/Λ [1/m] (local, in the tangent plane): the tangential wavevector shift of order 1.
+        Vec2 UnitShift() const { return Vec2(g.x, g.y) * (2 * Pi / period); }
     };
     /// The site of the query's hit; `thickness` must hold LayerCount() values (filled here).
     Site SiteOf(const ScatterQuery &q, double *thickness) const;
